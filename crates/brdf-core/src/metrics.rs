@@ -1,0 +1,216 @@
+//! Error metrics between measured values `R` and model values `M`.
+//!
+//! All sample metrics take channel-major arrays (`[c * n + j]`, the order of
+//! [`crate::SampleSet::values_channel_major`] and of model batch output), the
+//! `cos theta_i` of each sample and per-sample weights, and return the total
+//! and the per-channel values.
+
+use crate::CoreError;
+
+/// A metric's value over all channels and per channel.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct MetricValue {
+    /// Over all channels (squared terms averaged over channels).
+    pub total: f64,
+    /// Per channel.
+    pub per_channel: Vec<f64>,
+}
+
+fn check(measured: &[f64], model: &[f64], n: usize, other: &[&[f64]]) -> Result<usize, CoreError> {
+    if n == 0 {
+        return Err(CoreError::Empty { what: "sample set" });
+    }
+    if measured.len() != model.len() {
+        return Err(CoreError::LengthMismatch {
+            what: "measured vs model values",
+            left: measured.len(),
+            right: model.len(),
+        });
+    }
+    if measured.len() % n != 0 {
+        return Err(CoreError::LengthMismatch {
+            what: "values vs samples x channels",
+            left: measured.len(),
+            right: n,
+        });
+    }
+    for o in other {
+        if o.len() != n {
+            return Err(CoreError::LengthMismatch {
+                what: "per-sample array vs samples",
+                left: o.len(),
+                right: n,
+            });
+        }
+    }
+    Ok(measured.len() / n)
+}
+
+/// Weighted root-mean-square of per-sample terms `t(c, j)` per channel, and the
+/// total `sqrt(mean_c E_c^2)`.
+fn weighted_rms(
+    nc: usize,
+    weights: &[f64],
+    term: impl Fn(usize, usize) -> f64,
+) -> Result<MetricValue, CoreError> {
+    let n = weights.len();
+    let wsum: f64 = weights.iter().sum();
+    if !(wsum > 0.0) {
+        return Err(CoreError::InvalidOption {
+            name: "weights",
+            value: wsum,
+            reason: "the weights must have a positive sum",
+        });
+    }
+    let per_channel: Vec<f64> = (0..nc)
+        .map(|c| {
+            let s: f64 = (0..n)
+                .map(|j| {
+                    let t = term(c, j);
+                    weights[j] * t * t
+                })
+                .sum();
+            (s / wsum).sqrt()
+        })
+        .collect();
+    let total = (per_channel.iter().map(|e| e * e).sum::<f64>() / nc as f64).sqrt();
+    Ok(MetricValue { total, per_channel })
+}
+
+/// Ngan et al. (2005) / Kurt (2007) L2 metric:
+/// `E_c = sqrt( sum_j w_j (cos_i_j (R_cj - M_cj))^2 / sum_j w_j )`,
+/// total `sqrt(mean_c E_c^2)`. `w_j = 1` for scattered data, the solid angle
+/// for gridded data.
+pub fn ngan_l2(
+    measured: &[f64],
+    model: &[f64],
+    cos_i: &[f64],
+    weights: &[f64],
+) -> Result<MetricValue, CoreError> {
+    let n = cos_i.len();
+    let nc = check(measured, model, n, &[weights])?;
+    weighted_rms(nc, weights, |c, j| {
+        cos_i[j] * (measured[c * n + j] - model[c * n + j])
+    })
+}
+
+/// Lafortune et al. (1997) metric: residuals multiplied by `cos_i cos_o`,
+/// `sqrt( sum_j w_j (cos_i cos_o (R - M))^2 / sum_j w_j )`.
+pub fn lafortune_l2(
+    measured: &[f64],
+    model: &[f64],
+    cos_i: &[f64],
+    cos_o: &[f64],
+    weights: &[f64],
+) -> Result<MetricValue, CoreError> {
+    let n = cos_i.len();
+    let nc = check(measured, model, n, &[cos_o, weights])?;
+    weighted_rms(nc, weights, |c, j| {
+        cos_i[j] * cos_o[j] * (measured[c * n + j] - model[c * n + j])
+    })
+}
+
+/// Log metric (Matusik et al. 2003; poor near zero, Ngan):
+/// `sqrt( sum_j w_j (ln(1 + R cos_i) - ln(1 + M cos_i))^2 / sum_j w_j )`.
+/// Arguments of the logarithm are clamped at `-1 + 1e-12` so slightly
+/// negative measured values stay finite.
+pub fn log_metric(
+    measured: &[f64],
+    model: &[f64],
+    cos_i: &[f64],
+    weights: &[f64],
+) -> Result<MetricValue, CoreError> {
+    let n = cos_i.len();
+    let nc = check(measured, model, n, &[weights])?;
+    let lg = |x: f64| (x.max(-1.0 + 1e-12)).ln_1p();
+    weighted_rms(nc, weights, |c, j| {
+        lg(measured[c * n + j] * cos_i[j]) - lg(model[c * n + j] * cos_i[j])
+    })
+}
+
+/// Sopp (2017) error: residuals `r_j = w_j cos_i_j (R_j - M_j) / sum_k w_k`,
+/// error `sqrt(sum_j r_j^2)` per channel. With `weighted = false` every
+/// `w_j = 1` (so `r_j = cos_i (R - M) / n`): Sopp reports this unweighted
+/// value for both weighted and unweighted fits so they can be compared.
+/// Total: `sqrt(mean_c E_c^2)`.
+pub fn sopp_error(
+    measured: &[f64],
+    model: &[f64],
+    cos_i: &[f64],
+    weights: &[f64],
+    weighted: bool,
+) -> Result<MetricValue, CoreError> {
+    let n = cos_i.len();
+    let nc = check(measured, model, n, &[weights])?;
+    let w = |j: usize| if weighted { weights[j] } else { 1.0 };
+    let wsum: f64 = (0..n).map(w).sum();
+    if !(wsum > 0.0) {
+        return Err(CoreError::InvalidOption {
+            name: "weights",
+            value: wsum,
+            reason: "the weights must have a positive sum",
+        });
+    }
+    let per_channel: Vec<f64> = (0..nc)
+        .map(|c| {
+            (0..n)
+                .map(|j| {
+                    let r = w(j) * cos_i[j] * (measured[c * n + j] - model[c * n + j]) / wsum;
+                    r * r
+                })
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let total = (per_channel.iter().map(|e| e * e).sum::<f64>() / nc as f64).sqrt();
+    Ok(MetricValue { total, per_channel })
+}
+
+/// Root mean square difference `sqrt(mean (a - b)^2)`.
+pub fn rms(a: &[f64], b: &[f64]) -> Result<f64, CoreError> {
+    if a.is_empty() {
+        return Err(CoreError::Empty { what: "array" });
+    }
+    if a.len() != b.len() {
+        return Err(CoreError::LengthMismatch {
+            what: "rms arrays",
+            left: a.len(),
+            right: b.len(),
+        });
+    }
+    let s: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
+    Ok((s / a.len() as f64).sqrt())
+}
+
+/// Relative RMS `sqrt( sum (a - b)^2 / sum b^2 )`, `b` the reference.
+/// `+inf` when the reference is all zero and `a` is not; `0` when both are.
+pub fn relative_rms(a: &[f64], reference: &[f64]) -> Result<f64, CoreError> {
+    let num = rms(a, reference)?;
+    let den = (reference.iter().map(|x| x * x).sum::<f64>() / reference.len() as f64).sqrt();
+    Ok(if den > 0.0 {
+        num / den
+    } else if num == 0.0 {
+        0.0
+    } else {
+        f64::INFINITY
+    })
+}
+
+/// Peak signal-to-noise ratio between two images (any layout, same length):
+/// `PSNR = 10 log10(peak^2 / MSE)` in dB; `+inf` for identical images.
+pub fn psnr(a: &[f64], b: &[f64], peak: f64) -> Result<f64, CoreError> {
+    if !(peak > 0.0 && peak.is_finite()) {
+        return Err(CoreError::InvalidOption {
+            name: "peak",
+            value: peak,
+            reason: "the peak must be positive and finite",
+        });
+    }
+    let r = rms(a, b)?;
+    Ok(if r == 0.0 {
+        f64::INFINITY
+    } else {
+        20.0 * (peak / r).log10()
+    })
+}

@@ -1,0 +1,94 @@
+//! The catalogue: every model by name, with a constructor from a
+//! [`ModelConfig`], so the command line, the study and the tests can build
+//! any model without naming its type.
+
+use brdf_core::{ParamError, Parametric};
+
+use crate::Lambert;
+
+/// Structural options of a model (not parameters: they fix the parameter
+/// vector's length).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ModelConfig {
+    /// Colour channels (1 grey, 3 RGB).
+    pub channels: usize,
+    /// Specular lobes (Lafortune, Cook-Torrance).
+    pub lobes: usize,
+    /// Expansion order (Koenderink).
+    pub order: usize,
+    /// Polynomial degree (Kurt).
+    pub degree: usize,
+}
+
+impl Default for ModelConfig {
+    fn default() -> Self {
+        ModelConfig {
+            channels: 1,
+            lobes: 1,
+            order: 8,
+            degree: 7,
+        }
+    }
+}
+
+/// A catalogue entry.
+#[derive(Clone, Copy)]
+pub struct ModelEntry {
+    /// Name used on the command line and in saved models.
+    pub name: &'static str,
+    /// Model family (as the Cargo feature that provides it).
+    pub family: &'static str,
+    /// One-line summary.
+    pub summary: &'static str,
+    /// The paper the formula comes from.
+    pub paper: &'static str,
+    /// Whether the `lobes` option applies.
+    pub has_lobes: bool,
+    /// Build the model at its default parameters.
+    pub build: fn(&ModelConfig) -> Result<Box<dyn Parametric>, ParamError>,
+}
+
+impl std::fmt::Debug for ModelEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ModelEntry")
+            .field("name", &self.name)
+            .finish()
+    }
+}
+
+/// Every model compiled into this build, in a stable order.
+pub fn catalogue() -> Vec<ModelEntry> {
+    #[allow(unused_mut)]
+    let mut v = vec![ModelEntry {
+        name: Lambert::NAME,
+        family: "lambert",
+        summary: "ideal diffuse reflector, f = kd / pi",
+        paper: "Lambert 1760, Photometria",
+        has_lobes: false,
+        build: |c| Ok(Box::new(Lambert::with_channels(c.channels)?)),
+    }];
+    v
+}
+
+/// Look up a model by name.
+pub fn entry(name: &str) -> Option<ModelEntry> {
+    catalogue().into_iter().find(|e| e.name == name)
+}
+
+/// Build a model by name at its default parameters.
+pub fn build(name: &str, config: &ModelConfig) -> Result<Box<dyn Parametric>, ParamError> {
+    match entry(name) {
+        Some(e) => (e.build)(config),
+        None => Err(ParamError::Config {
+            model: name.to_string(),
+            reason: format!(
+                "no such model; available: {}",
+                catalogue()
+                    .iter()
+                    .map(|e| e.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        }),
+    }
+}

@@ -1,0 +1,26 @@
+//! # brdf-models
+//!
+//! Every analytic reflectance model of the study, one per file, each with its
+//! formula, parameter table, properties and paper in its doc comment, validated
+//! construction and analytic parameter derivatives. All implement
+//! [`brdf_core::Parametric`], so any solver fits any of them.
+//!
+//! ## Catalogue by family
+//!
+//! | family (feature) | models |
+//! | --- | --- |
+//! | always | [`Lambert`] |
+//!
+//! [`catalogue()`] lists the models compiled into this build; [`build`]
+//! constructs one by name.
+//!
+//! ## Crate features
+//!
+//! Features only subtract: the default build has every family. A renderer
+//! that needs only some families turns the default off and names them.
+
+pub mod catalogue;
+pub mod lambert;
+
+pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
+pub use lambert::Lambert;

@@ -1,0 +1,52 @@
+//! Command-line definition (clap derive). One subcommand per file in
+//! `commands/`.
+
+use clap::{Parser, Subcommand};
+
+/// Fit analytic BRDF models to measured reflectance data, and reproduce the
+/// Kurt (2007) and Sopp (2017) studies.
+#[derive(Debug, Parser)]
+#[command(name = "brdf", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List the available models with their parameters, boxes and which are linear.
+    Models(crate::commands::models::ModelsArgs),
+    /// Evaluate a model at one direction pair.
+    Eval(crate::commands::eval::EvalArgs),
+}
+
+/// Structural options shared by every command that builds a model.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ModelOpts {
+    /// Colour channels of the model (1 grey, 3 RGB).
+    #[arg(long, default_value_t = 1)]
+    pub channels: usize,
+    /// Specular lobes (Lafortune, Cook-Torrance).
+    #[arg(long, default_value_t = 1)]
+    pub lobes: usize,
+    /// Koenderink expansion order.
+    #[arg(long, default_value_t = 8)]
+    pub order: usize,
+    /// Polynomial degree (Kurt's model).
+    #[arg(long, default_value_t = 7)]
+    pub degree: usize,
+}
+
+impl ModelOpts {
+    /// As a model configuration.
+    pub fn config(&self) -> brdf_models::ModelConfig {
+        brdf_models::ModelConfig {
+            channels: self.channels,
+            lobes: self.lobes,
+            order: self.order,
+            degree: self.degree,
+        }
+    }
+}

@@ -1,0 +1,29 @@
+//! The command line's error type: every lower crate's error, plus usage
+//! errors, each with a message a user can act on.
+
+use thiserror::Error;
+
+/// Errors of the `brdf` command.
+#[derive(Debug, Error)]
+pub enum StudyError {
+    /// Bad command-line input.
+    #[error("{0}")]
+    Usage(String),
+    /// A parameter was impossible.
+    #[error(transparent)]
+    Param(#[from] brdf_core::ParamError),
+    /// A core value could not be built.
+    #[error(transparent)]
+    Core(#[from] brdf_core::CoreError),
+    /// JSON output failed.
+    #[error("JSON: {0}")]
+    Json(#[from] serde_json::Error),
+    /// Writing output failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// file or folder
+        path: String,
+        /// the underlying error
+        source: std::io::Error,
+    },
+}
