@@ -1,0 +1,90 @@
+//! The `brdf models` and `brdf eval` commands, run as a user would.
+
+use std::process::Command;
+
+fn brdf(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_brdf"))
+        .args(args)
+        .output()
+        .expect("the brdf binary runs");
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn models_json_lists_lambert_with_its_box() {
+    let (ok, out, err) = brdf(&["models", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let lambert = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["name"] == "lambert")
+        .unwrap();
+    assert_eq!(lambert["parameters"][0]["name"], "kd");
+    assert_eq!(lambert["parameters"][0]["upper"], 1.0);
+    assert_eq!(lambert["parameters"][0]["linear"], true);
+}
+
+#[test]
+fn eval_json_gives_kd_over_pi() {
+    let (ok, out, err) = brdf(&[
+        "eval",
+        "--model",
+        "lambert",
+        "--params",
+        "kd=0.5",
+        "--wi",
+        "30,0",
+        "--wo",
+        "60,180",
+        "--degrees",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let f = v["channels"][0].as_f64().unwrap();
+    assert!((f - 0.5 / std::f64::consts::PI).abs() < 1e-15);
+    // Three channels, per-channel names.
+    let (ok, out, err) = brdf(&[
+        "eval",
+        "--model",
+        "lambert",
+        "--channels",
+        "3",
+        "--params",
+        "kd_g=1",
+        "--wi",
+        "0.1,0",
+        "--wo",
+        "0.2,1",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!((v["channels"][1].as_f64().unwrap() - 1.0 / std::f64::consts::PI).abs() < 1e-15);
+}
+
+#[test]
+fn eval_rejects_bad_input_with_a_message() {
+    let (ok, _, err) = brdf(&[
+        "eval", "--model", "lambert", "--params", "kd=2", "--wi", "0,0", "--wo", "0,0",
+    ]);
+    assert!(!ok);
+    assert!(err.contains("`kd` = 2 is outside its box [0, 1]"), "{err}");
+    let (ok, _, err) = brdf(&["eval", "--model", "nope", "--wi", "0,0", "--wo", "0,0"]);
+    assert!(!ok);
+    assert!(err.contains("no such model"), "{err}");
+    let (ok, _, err) = brdf(&["eval", "--model", "lambert", "--wi", "x,0", "--wo", "0,0"]);
+    assert!(!ok);
+    assert!(err.contains("not a number"), "{err}");
+    let (ok, _, err) = brdf(&[
+        "eval", "--model", "lambert", "--params", "kd", "--wi", "0,0", "--wo", "0,0",
+    ]);
+    assert!(!ok);
+    assert!(err.contains("name=value"), "{err}");
+}
