@@ -359,10 +359,8 @@ pub fn directional_albedo(
                 opts,
             );
             evals += inner.evaluations;
-            for c in 0..nc {
-                out[c] = inner.value[c];
-                out[nc + c] = inner.error[c];
-            }
+            out[..nc].copy_from_slice(&inner.value);
+            out[nc..].copy_from_slice(&inner.error);
         },
         &breaks,
         2 * nc,

@@ -67,6 +67,40 @@ pub fn catalogue() -> Vec<ModelEntry> {
         has_lobes: false,
         build: |c| Ok(Box::new(Lambert::with_channels(c.channels)?)),
     }];
+    #[cfg(feature = "polynomial")]
+    {
+        use crate::kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
+        v.push(ModelEntry {
+            name: KurtPolynomial::NAME,
+            family: "polynomial",
+            summary: "Kurt's PCA response surface in W1 = ux vx + uy vy, W2 = uz vz; 2p+1 coefficients",
+            paper: "Kurt 2007, MSc thesis, Ege University",
+            has_lobes: false,
+            build: |c| {
+                Ok(Box::new(KurtPolynomial::new(
+                    PolyVariant::Isotropic,
+                    c.degree,
+                    c.channels,
+                    Pca::identity(2),
+                )?))
+            },
+        });
+        v.push(ModelEntry {
+            name: KurtPolynomial::NAME_ANISO,
+            family: "polynomial",
+            summary: "Kurt's PCA response surface in X1 = ux vx, X2 = uy vy, X3 = uz vz; 3p+1 coefficients",
+            paper: "Kurt 2007, MSc thesis, Ege University",
+            has_lobes: false,
+            build: |c| {
+                Ok(Box::new(KurtPolynomial::new(
+                    PolyVariant::Anisotropic,
+                    c.degree,
+                    c.channels,
+                    Pca::identity(3),
+                )?))
+            },
+        });
+    }
     v
 }
 

@@ -10,6 +10,7 @@
 //! | family (feature) | models |
 //! | --- | --- |
 //! | always | [`Lambert`] |
+//! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
 //!
 //! [`catalogue()`] lists the models compiled into this build; [`build`]
 //! constructs one by name.
@@ -20,7 +21,11 @@
 //! that needs only some families turns the default off and names them.
 
 pub mod catalogue;
+#[cfg(feature = "polynomial")]
+pub mod kurt_polynomial;
 pub mod lambert;
 
 pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
+#[cfg(feature = "polynomial")]
+pub use kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
 pub use lambert::Lambert;
