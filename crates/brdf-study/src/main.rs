@@ -8,6 +8,10 @@ use clap::Parser;
 mod cli;
 mod commands;
 mod error;
+#[cfg(feature = "plots")]
+mod plots;
+mod render;
+mod report;
 
 use cli::{Cli, Command};
 pub use error::StudyError;
