@@ -12,6 +12,7 @@ mod error;
 mod plots;
 mod render;
 mod report;
+mod synthetic;
 
 use cli::{Cli, Command};
 pub use error::StudyError;

@@ -29,7 +29,9 @@ fn range(series: &[Series], f: impl Fn(&(f64, f64)) -> f64, log: bool) -> (f64, 
         .iter()
         .flat_map(|s| s.points.iter().map(&f))
         .filter(|v| v.is_finite() && (!log || *v > 0.0));
-    let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
     if !lo.is_finite() {
         return (if log { 1e-3 } else { 0.0 }, 1.0);
     }
@@ -80,7 +82,10 @@ pub fn plot_series(
                     .iter()
                     .copied()
                     .filter(|(x, y)| {
-                        x.is_finite() && y.is_finite() && (!log_x || *x > 0.0) && (!log_y || *y > 0.0)
+                        x.is_finite()
+                            && y.is_finite()
+                            && (!log_x || *x > 0.0)
+                            && (!log_y || *y > 0.0)
                     })
                     .collect();
                 if lines {
@@ -117,16 +122,26 @@ pub fn plot_series(
         }};
     }
     match (log_x, log_y) {
-        (false, false) => draw!(builder.build_cartesian_2d(x0..x1, y0..y1).map_err(|e| err(path, e))?),
-        (false, true) => draw!(builder
-            .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-            .map_err(|e| err(path, e))?),
-        (true, false) => draw!(builder
-            .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
-            .map_err(|e| err(path, e))?),
-        (true, true) => draw!(builder
-            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-            .map_err(|e| err(path, e))?),
+        (false, false) => draw!(
+            builder
+                .build_cartesian_2d(x0..x1, y0..y1)
+                .map_err(|e| err(path, e))?
+        ),
+        (false, true) => draw!(
+            builder
+                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+                .map_err(|e| err(path, e))?
+        ),
+        (true, false) => draw!(
+            builder
+                .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+                .map_err(|e| err(path, e))?
+        ),
+        (true, true) => draw!(
+            builder
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(|e| err(path, e))?
+        ),
     }
     root.present().map_err(|e| err(path, e))?;
     Ok(())

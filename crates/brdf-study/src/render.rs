@@ -110,7 +110,8 @@ impl Image {
             for y in 0..h.min(img.height) {
                 for x in 0..img.width {
                     for c in 0..nc.min(img.channels) {
-                        data[(y * w + x0 + x) * nc + c] = img.data[(y * img.width + x) * img.channels + c];
+                        data[(y * w + x0 + x) * nc + c] =
+                            img.data[(y * img.width + x) * img.channels + c];
                     }
                 }
             }

@@ -128,6 +128,9 @@ mod tests {
     fn markdown_layout() {
         let mut t = Table::new("T", &["a", "b"]);
         t.rows.push(vec![Cell::Text("x".into()), Cell::Num(0.5, 2)]);
-        assert_eq!(t.markdown(), "## T\n\n| a | b |\n| --- | --- |\n| x | 0.50 |\n");
+        assert_eq!(
+            t.markdown(),
+            "## T\n\n| a | b |\n| --- | --- |\n| x | 0.50 |\n"
+        );
     }
 }
