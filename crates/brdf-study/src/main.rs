@@ -3,19 +3,9 @@
 
 use std::process::ExitCode;
 
+use brdf_study::cli::{Cli, Command};
+use brdf_study::{StudyError, commands};
 use clap::Parser;
-
-mod cli;
-mod commands;
-mod error;
-#[cfg(feature = "plots")]
-mod plots;
-mod render;
-mod report;
-mod synthetic;
-
-use cli::{Cli, Command};
-pub use error::StudyError;
 
 fn run() -> Result<(), StudyError> {
     let cli = Cli::parse();
