@@ -67,6 +67,15 @@ pub fn catalogue() -> Vec<ModelEntry> {
         has_lobes: false,
         build: |c| Ok(Box::new(Lambert::with_channels(c.channels)?)),
     }];
+    #[cfg(feature = "koenderink")]
+    v.push(ModelEntry {
+        name: crate::Koenderink::NAME,
+        family: "koenderink",
+        summary: "Zernike-product expansion of order N, linear in all coefficients (5, 14, 55 for N = 2, 4, 8)",
+        paper: "Koenderink, van Doorn & Stavridis 1996, ECCV",
+        has_lobes: false,
+        build: |c| Ok(Box::new(crate::Koenderink::new(c.order, c.channels)?)),
+    });
     #[cfg(feature = "polynomial")]
     {
         use crate::kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};

@@ -10,6 +10,7 @@
 //! | family (feature) | models |
 //! | --- | --- |
 //! | always | [`Lambert`] |
+//! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
 //!
 //! [`catalogue()`] lists the models compiled into this build; [`build`]
@@ -21,11 +22,15 @@
 //! that needs only some families turns the default off and names them.
 
 pub mod catalogue;
+#[cfg(feature = "koenderink")]
+pub mod koenderink;
 #[cfg(feature = "polynomial")]
 pub mod kurt_polynomial;
 pub mod lambert;
 
 pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
+#[cfg(feature = "koenderink")]
+pub use koenderink::Koenderink;
 #[cfg(feature = "polynomial")]
 pub use kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
 pub use lambert::Lambert;
