@@ -67,6 +67,60 @@ pub fn catalogue() -> Vec<ModelEntry> {
         has_lobes: false,
         build: |c| Ok(Box::new(Lambert::with_channels(c.channels)?)),
     }];
+    macro_rules! lobe_model {
+        ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
+            v.push(ModelEntry {
+                name: <<$t as crate::combinators::HasLobe>::L as crate::combinators::Lobe>::NAME,
+                family: $family,
+                summary: $summary,
+                paper: $paper,
+                has_lobes: false,
+                build: |c| Ok(Box::new(<$t>::with_channels(c.channels)?)),
+            })
+        };
+    }
+    #[cfg(feature = "phong")]
+    {
+        lobe_model!(
+            crate::Phong,
+            "phong",
+            "kd/pi + ks (n+2)/(2 pi) cos^n(alpha_r)",
+            "Phong 1975; Lafortune & Willems 1994"
+        );
+        lobe_model!(
+            crate::BlinnPhong,
+            "phong",
+            "kd/pi + ks (n+2)/(2 pi) cos^n(delta)",
+            "Blinn 1977"
+        );
+    }
+    #[cfg(feature = "ward")]
+    {
+        lobe_model!(
+            crate::Ward,
+            "ward",
+            "kd/pi + ks exp(-tan^2 delta/a^2)/(4 pi a^2 sqrt(cos_i cos_o))",
+            "Ward 1992"
+        );
+        lobe_model!(
+            crate::WardAniso,
+            "ward",
+            "Ward with roughness ax, ay along x, y",
+            "Ward 1992"
+        );
+        lobe_model!(
+            crate::WardDuer,
+            "ward",
+            "Ward with cos_i cos_o in the denominator",
+            "Duer 2004"
+        );
+        lobe_model!(
+            crate::WardDuerAniso,
+            "ward",
+            "Ward-Duer with roughness ax, ay",
+            "Duer 2004"
+        );
+    }
     #[cfg(feature = "koenderink")]
     v.push(ModelEntry {
         name: crate::Koenderink::NAME,

@@ -10,6 +10,8 @@
 //! | family (feature) | models |
 //! | --- | --- |
 //! | always | [`Lambert`] |
+//! | `phong` | [`Phong`] (modified), [`BlinnPhong`] |
+//! | `ward` | [`Ward`], [`WardAniso`], [`WardDuer`], [`WardDuerAniso`] |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
 //!
@@ -21,16 +23,29 @@
 //! Features only subtract: the default build has every family. A renderer
 //! that needs only some families turns the default off and names them.
 
+#[cfg(feature = "phong")]
+pub mod blinn_phong;
 pub mod catalogue;
+pub mod combinators;
 #[cfg(feature = "koenderink")]
 pub mod koenderink;
 #[cfg(feature = "polynomial")]
 pub mod kurt_polynomial;
 pub mod lambert;
+#[cfg(feature = "phong")]
+pub mod phong;
+#[cfg(feature = "ward")]
+pub mod ward;
 
+#[cfg(feature = "phong")]
+pub use blinn_phong::BlinnPhong;
 pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
 #[cfg(feature = "koenderink")]
 pub use koenderink::Koenderink;
 #[cfg(feature = "polynomial")]
 pub use kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
 pub use lambert::Lambert;
+#[cfg(feature = "phong")]
+pub use phong::Phong;
+#[cfg(feature = "ward")]
+pub use ward::{Ward, WardAniso, WardDuer, WardDuerAniso};

@@ -1,0 +1,186 @@
+//! Physical-plausibility and derivative properties, written once and applied
+//! to every model in the catalogue (with 1 and 3 channels):
+//!
+//! - analytic parameter derivatives agree with central finite differences
+//!   (proptest over directions above the horizon, including the pole and
+//!   `1e-6` from the horizon, and parameters in the box; exponents are drawn
+//!   up to 200 and unbounded coefficients from `[-1, 1]` so the finite
+//!   difference itself is accurate; channels whose value is within `1e-8` of
+//!   a clamp at 0 are skipped, since the clamp is a kink in parameter space);
+//! - non-negativity and finiteness at the corners of the box (exponents up to
+//!   `1e6`, the smallest roughness) on a direction set with the pole and
+//!   near-grazing directions;
+//! - reciprocity for every model that declares itself reciprocal.
+
+use brdf_core::plausibility::{hemisphere_directions, nonnegativity_scan, reciprocity_deviation};
+use brdf_core::{ParamSpec, Parametric, central_difference_grad};
+use brdf_models::{ModelConfig, catalogue};
+use nalgebra::Vector3;
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestRunner};
+
+fn configs() -> Vec<ModelConfig> {
+    [1, 3]
+        .iter()
+        .map(|&channels| ModelConfig {
+            channels,
+            lobes: 1,
+            order: 4,
+            degree: 3,
+        })
+        .collect()
+}
+
+/// The sampling range of a parameter for derivative checks.
+fn range(s: &ParamSpec) -> (f64, f64) {
+    let hi = s.upper.min(200.0);
+    let mut lo = s.lower.max(-1.0);
+    if s.lower_open {
+        lo += 0.02 * (hi - lo);
+    }
+    let hi = if s.upper.is_infinite() { 1.0 } else { hi };
+    (lo, hi)
+}
+
+fn unit_params(model: &dyn Parametric, u: &[f64]) -> Vec<f64> {
+    model
+        .param_specs()
+        .iter()
+        .zip(u)
+        .map(|(s, t)| {
+            let (lo, hi) = range(s);
+            lo + (hi - lo) * t
+        })
+        .collect()
+}
+
+#[test]
+fn derivatives_match_finite_differences() {
+    for config in configs() {
+        for entry in catalogue() {
+            let model = (entry.build)(&config).expect("catalogue models build");
+            let np = model.n_params();
+            let nc = model.channels();
+            let mut runner = TestRunner::new(Config {
+                cases: 24,
+                ..Config::default()
+            });
+            let strategy = (
+                brdf_core::proptest::pair_above_horizon(),
+                proptest::collection::vec(0.0..1.0f64, np),
+            );
+            let result = runner.run(&strategy, |((l, v), u)| {
+                let p = unit_params(model.as_ref(), &u);
+                let mut out = vec![0.0; nc];
+                let mut grad = vec![0.0; nc * np];
+                let mut fd = vec![0.0; nc * np];
+                model.eval_grad_at(&p, &l, &v, &mut out, &mut grad);
+                central_difference_grad(model.as_ref(), &p, &l, &v, &mut fd);
+                let mut check = vec![0.0; nc];
+                model.eval_at(&p, &l, &v, &mut check);
+                for c in 0..nc {
+                    prop_assert_eq!(
+                        out[c],
+                        check[c],
+                        "value from eval_grad_at differs from eval_at"
+                    );
+                    if out[c].abs() < 1e-8 {
+                        continue;
+                    }
+                    for k in 0..np {
+                        let (g, f) = (grad[c * np + k], fd[c * np + k]);
+                        let tol = 1e-4 * g.abs().max(f.abs()) + 1e-8 * (1.0 + out[c].abs());
+                        prop_assert!(
+                            (g - f).abs() <= tol,
+                            "{} ch {} d/d{}: analytic {} vs fd {} at p {:?}, l {:?}, v {:?}",
+                            entry.name,
+                            c,
+                            model.param_specs()[k].name,
+                            g,
+                            f,
+                            p,
+                            l,
+                            v
+                        );
+                    }
+                }
+                Ok(())
+            });
+            if let Err(e) = result {
+                panic!("{} ({} channels): {e}", entry.name, config.channels);
+            }
+        }
+    }
+}
+
+/// Box corners: every parameter at its lower end (just inside when open) or
+/// its upper end; infinite ends become -1 / +1.
+fn corners(model: &dyn Parametric) -> Vec<Vec<f64>> {
+    let specs = model.param_specs();
+    let end = |s: &ParamSpec, upper: bool| {
+        if upper {
+            if s.upper.is_finite() { s.upper } else { 1.0 }
+        } else if s.lower.is_finite() {
+            if s.lower_open {
+                s.lower + 1e-6
+            } else {
+                s.lower
+            }
+        } else {
+            -1.0
+        }
+    };
+    let mut out = vec![
+        specs.iter().map(|s| end(s, false)).collect::<Vec<_>>(),
+        specs.iter().map(|s| end(s, true)).collect(),
+    ];
+    // Linear parameters high, non-linear low (smallest roughness, exponent 0)
+    // and the reverse (largest exponent).
+    out.push(specs.iter().map(|s| end(s, s.linear)).collect());
+    out.push(specs.iter().map(|s| end(s, !s.linear)).collect());
+    out
+}
+
+#[test]
+fn finite_and_non_negative_at_the_box_corners() {
+    let dirs: Vec<Vector3<f64>> = hemisphere_directions(8, 6, 1e-6);
+    for config in configs() {
+        for entry in catalogue() {
+            let mut model = (entry.build)(&config).expect("catalogue models build");
+            for p in corners(model.as_ref()) {
+                model.set_params(&p).expect("corners lie in the box");
+                let r = nonnegativity_scan(model.as_ref(), &dirs);
+                assert_eq!(
+                    r.non_finite, 0,
+                    "{} at {p:?}: non-finite values",
+                    entry.name
+                );
+                assert_eq!(
+                    r.negative, 0,
+                    "{} at {p:?}: min {} at {:?}",
+                    entry.name, r.min_value, r.at
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn reciprocal_models_are_reciprocal() {
+    let dirs: Vec<Vector3<f64>> = hemisphere_directions(7, 5, 1e-6);
+    for config in configs() {
+        for entry in catalogue() {
+            let mut model = (entry.build)(&config).expect("catalogue models build");
+            if !model.is_reciprocal() {
+                continue;
+            }
+            let u: Vec<f64> = (0..model.n_params())
+                .map(|k| (0.37 + 0.61 * k as f64).fract())
+                .collect();
+            let p = unit_params(model.as_ref(), &u);
+            model.set_params(&p).expect("in the box");
+            let r = reciprocity_deviation(model.as_ref(), &dirs);
+            assert!(r.max_rel < 1e-9, "{}: {r:?}", entry.name);
+        }
+    }
+}
