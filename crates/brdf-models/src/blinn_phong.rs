@@ -15,7 +15,9 @@
 //! model energy conserving for every `n` and `ks`: the half-vector lobe
 //! `cos^n(delta)` is about four times wider in `V` than a Phong lobe of the
 //! same exponent, so for large `n` the lobe's albedo at normal incidence tends
-//! to about `4 ks` (exceeding 1 for `ks > 1/4`).
+//! to about `4 ks` (exceeding 1 for `ks > 1/4`). Plausible domain:
+//! `kd + 4 ks <= 1`, which conserves energy at every exponent and incidence
+//! (tested in `tests/energy.rs`, with a point just outside that does not).
 //!
 //! ```
 //! use brdf_core::Brdf;
