@@ -1,7 +1,21 @@
 //! # brdf-solve
 //!
 //! Solvers for fitting any [`brdf_core::Parametric`] model (or any problem
-//! implementing this crate's problem traits) to data: dense linear least
-//! squares, non-negative least squares, robust IRLS, Levenberg-Marquardt, a
-//! bounded SQP-style solver, variable projection and deterministic
-//! multi-start. Every factorisation is faer's.
+//! implementing this crate's problem traits) to data. Every factorisation is
+//! faer's.
+//!
+//! | module | what |
+//! | --- | --- |
+//! | [`linear`] | dense (weighted) least squares: pivoted QR with a rank report, SVD, normal equations as an option; leverages |
+//! | [`error`] | [`SolveError`] |
+//!
+//! ## Crate features
+//!
+//! - `rayon` (default): parallel multi-start.
+//! - `serde`: serialize reports.
+
+pub mod error;
+pub mod linear;
+
+pub use error::SolveError;
+pub use linear::{LstsqMethod, LstsqSolution, lstsq};
