@@ -7,6 +7,7 @@
 //! | module | what |
 //! | --- | --- |
 //! | [`linear`] | dense (weighted) least squares: pivoted QR with a rank report, SVD, normal equations as an option; leverages |
+//! | [`nnls`] | Lawson-Hanson non-negative least squares |
 //! | [`error`] | [`SolveError`] |
 //!
 //! ## Crate features
@@ -16,6 +17,8 @@
 
 pub mod error;
 pub mod linear;
+pub mod nnls;
 
 pub use error::SolveError;
 pub use linear::{LstsqMethod, LstsqSolution, lstsq};
+pub use nnls::{NnlsSolution, NnlsTermination, nnls};

@@ -1,0 +1,150 @@
+//! Non-negative least squares `min ||A x - b|| s.t. x >= 0` by the active-set
+//! method of Lawson & Hanson (1974, "Solving Least Squares Problems", ch. 23).
+//!
+//! The passive set `P` starts empty; the variable with the largest dual
+//! `w = A^T (b - A x)` enters `P`; the unconstrained least-squares solution on
+//! `P` (column-pivoted QR through [`crate::lstsq`], SVD on rank deficiency)
+//! is accepted when positive, otherwise the step is cut back at the first
+//! variable that would become negative and that variable leaves `P`. At the
+//! solution the KKT conditions hold: `x >= 0`, `w <= tol` on the active set,
+//! `w = 0` on the passive set (up to rounding).
+
+use faer::{Mat, MatRef};
+
+use crate::{LstsqMethod, SolveError, lstsq};
+
+/// Why NNLS stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NnlsTermination {
+    /// The KKT conditions hold.
+    Optimal,
+    /// The iteration cap was reached (the current feasible `x` is returned).
+    MaxIterations,
+}
+
+/// Result of [`nnls`].
+#[derive(Clone, Debug)]
+pub struct NnlsSolution {
+    /// The solution, `x >= 0`.
+    pub x: Vec<f64>,
+    /// Indices of the passive (free, positive) variables.
+    pub passive: Vec<usize>,
+    /// Outer iterations.
+    pub iterations: usize,
+    /// `||A x - b||`.
+    pub residual_norm: f64,
+    /// Why it stopped.
+    pub termination: NnlsTermination,
+}
+
+/// Solve `min ||A x - b||` subject to `x >= 0`. `max_iter` caps the outer
+/// iterations (`3 n` is Lawson-Hanson's suggestion).
+pub fn nnls(a: MatRef<'_, f64>, b: &[f64], max_iter: usize) -> Result<NnlsSolution, SolveError> {
+    let (m, n) = (a.nrows(), a.ncols());
+    if m == 0 || n == 0 {
+        return Err(SolveError::Empty {
+            what: "design matrix",
+        });
+    }
+    if b.len() != m {
+        return Err(SolveError::Dimension {
+            what: "rows of A vs length of b",
+            left: m,
+            right: b.len(),
+        });
+    }
+    for (i, v) in b.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(SolveError::NonFinite {
+                what: "b",
+                row: i,
+                col: 0,
+                value: *v,
+            });
+        }
+    }
+    let norm1 = (0..n)
+        .map(|j| (0..m).map(|i| a[(i, j)].abs()).sum::<f64>())
+        .fold(0.0, f64::max);
+    if !norm1.is_finite() {
+        return Err(SolveError::NonFinite {
+            what: "A",
+            row: 0,
+            col: 0,
+            value: norm1,
+        });
+    }
+    let tol = 10.0 * f64::EPSILON * norm1 * (m.max(n) as f64);
+    let mut x = vec![0.0; n];
+    let mut passive = vec![false; n];
+    let dual = |x: &[f64]| -> Vec<f64> {
+        let r: Vec<f64> = (0..m)
+            .map(|i| b[i] - (0..n).map(|j| a[(i, j)] * x[j]).sum::<f64>())
+            .collect();
+        (0..n)
+            .map(|j| (0..m).map(|i| a[(i, j)] * r[i]).sum())
+            .collect()
+    };
+    let solve_passive = |passive: &[bool]| -> Result<Vec<f64>, SolveError> {
+        let cols: Vec<usize> = (0..n).filter(|&j| passive[j]).collect();
+        let ap = Mat::from_fn(m, cols.len(), |i, k| a[(i, cols[k])]);
+        let bm = Mat::from_fn(m, 1, |i, _| b[i]);
+        let s = lstsq(ap.as_ref(), bm.as_ref(), None, LstsqMethod::PivotedQr)?;
+        let mut z = vec![0.0; n];
+        for (k, &j) in cols.iter().enumerate() {
+            z[j] = s.x[(k, 0)];
+        }
+        Ok(z)
+    };
+    let mut iterations = 0;
+    let mut termination = NnlsTermination::Optimal;
+    loop {
+        let w = dual(&x);
+        let candidate = (0..n)
+            .filter(|&j| !passive[j] && w[j] > tol)
+            .max_by(|&i, &j| w[i].total_cmp(&w[j]));
+        let Some(t) = candidate else { break };
+        if iterations >= max_iter {
+            termination = NnlsTermination::MaxIterations;
+            break;
+        }
+        iterations += 1;
+        passive[t] = true;
+        loop {
+            let z = solve_passive(&passive)?;
+            if (0..n).filter(|&j| passive[j]).all(|j| z[j] > 0.0) {
+                x = z;
+                break;
+            }
+            // Step from x towards z until the first passive variable hits 0.
+            let alpha = (0..n)
+                .filter(|&j| passive[j] && z[j] <= 0.0)
+                .map(|j| x[j] / (x[j] - z[j]))
+                .fold(f64::INFINITY, f64::min);
+            for j in 0..n {
+                x[j] += alpha * (z[j] - x[j]);
+                if passive[j] && x[j] <= tol {
+                    passive[j] = false;
+                    x[j] = 0.0;
+                }
+            }
+            if !passive.iter().any(|p| *p) {
+                break;
+            }
+        }
+    }
+    let residual_norm = (0..m)
+        .map(|i| {
+            let r = b[i] - (0..n).map(|j| a[(i, j)] * x[j]).sum::<f64>();
+            r * r
+        })
+        .sum::<f64>()
+        .sqrt();
+    Ok(NnlsSolution {
+        passive: (0..n).filter(|&j| passive[j]).collect(),
+        x,
+        iterations,
+        residual_norm,
+        termination,
+    })
+}
