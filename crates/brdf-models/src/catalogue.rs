@@ -2,7 +2,7 @@
 //! [`ModelConfig`], so the command line, the study and the tests can build
 //! any model without naming its type.
 
-use brdf_core::{ParamError, Parametric};
+use brdf_core::{DirPairs, ParamError, Parametric};
 
 use crate::Lambert;
 
@@ -31,6 +31,9 @@ impl Default for ModelConfig {
     }
 }
 
+/// Constructor of a model whose structure depends on the data.
+pub type BuildForData = fn(&ModelConfig, &DirPairs) -> Result<Box<dyn Parametric>, ParamError>;
+
 /// A catalogue entry.
 #[derive(Clone, Copy)]
 pub struct ModelEntry {
@@ -46,6 +49,10 @@ pub struct ModelEntry {
     pub has_lobes: bool,
     /// Build the model at its default parameters.
     pub build: fn(&ModelConfig) -> Result<Box<dyn Parametric>, ParamError>,
+    /// Build the model for a given set of direction pairs, for models whose
+    /// structure depends on the data (Kurt's polynomial: its PCA transform).
+    /// `None`: the data do not matter, use `build`.
+    pub build_for_data: Option<BuildForData>,
 }
 
 impl std::fmt::Debug for ModelEntry {
@@ -66,6 +73,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
         paper: "Lambert 1760, Photometria",
         has_lobes: false,
         build: |c| Ok(Box::new(Lambert::with_channels(c.channels)?)),
+        build_for_data: None,
     }];
     macro_rules! lobe_model {
         ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
@@ -76,6 +84,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
                 paper: $paper,
                 has_lobes: false,
                 build: |c| Ok(Box::new(<$t>::with_channels(c.channels)?)),
+                build_for_data: None,
             })
         };
     }
@@ -129,6 +138,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
         paper: "Koenderink, van Doorn & Stavridis 1996, ECCV",
         has_lobes: false,
         build: |c| Ok(Box::new(crate::Koenderink::new(c.order, c.channels)?)),
+        build_for_data: None,
     });
     #[cfg(feature = "polynomial")]
     {
@@ -147,6 +157,10 @@ pub fn catalogue() -> Vec<ModelEntry> {
                     Pca::identity(2),
                 )?))
             },
+            build_for_data: Some(|c, pairs| {
+                let pca = Pca::from_pairs(PolyVariant::Isotropic, pairs)?;
+                Ok(Box::new(KurtPolynomial::new(PolyVariant::Isotropic, c.degree, c.channels, pca)?))
+            }),
         });
         v.push(ModelEntry {
             name: KurtPolynomial::NAME_ANISO,
@@ -162,6 +176,10 @@ pub fn catalogue() -> Vec<ModelEntry> {
                     Pca::identity(3),
                 )?))
             },
+            build_for_data: Some(|c, pairs| {
+                let pca = Pca::from_pairs(PolyVariant::Anisotropic, pairs)?;
+                Ok(Box::new(KurtPolynomial::new(PolyVariant::Anisotropic, c.degree, c.channels, pca)?))
+            }),
         });
     }
     v

@@ -231,7 +231,7 @@ impl Koenderink {
                 .map(|(x, y)| x * y)
                 .sum();
             out[c] = s.max(0.0);
-            if with_grad && s > 0.0 {
+            if with_grad {
                 grad[c * np + c * per..c * np + (c + 1) * per].copy_from_slice(b);
             }
         }

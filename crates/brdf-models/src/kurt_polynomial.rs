@@ -392,9 +392,7 @@ impl Parametric for KurtPolynomial {
         for c in 0..self.channels {
             let s = self.unclamped(p, c, &row);
             out[c] = s.max(0.0);
-            if s > 0.0 {
-                grad[c * np + c * per..c * np + (c + 1) * per].copy_from_slice(&row);
-            }
+            grad[c * np + c * per..c * np + (c + 1) * per].copy_from_slice(&row);
         }
     }
     fn clone_box(&self) -> Box<dyn Parametric> {

@@ -94,7 +94,7 @@ fn reciprocal_by_construction_and_clamped_at_zero() {
 }
 
 #[test]
-fn derivatives_are_the_design_row_where_positive() {
+fn derivatives_are_the_design_row_and_match_finite_differences_where_unclamped() {
     let p = pairs();
     let pca = Pca::from_pairs(PolyVariant::Isotropic, &p).unwrap();
     let mut m = KurtPolynomial::new(PolyVariant::Isotropic, 3, 3, pca).unwrap();

@@ -20,6 +20,8 @@ pub enum Command {
     Models(crate::commands::models::ModelsArgs),
     /// Evaluate a model at one direction pair.
     Eval(crate::commands::eval::EvalArgs),
+    /// Fit a model to a data set (all-linear models so far).
+    Fit(crate::commands::fit::FitArgs),
 }
 
 /// Structural options shared by every command that builds a model.

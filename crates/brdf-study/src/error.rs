@@ -15,6 +15,12 @@ pub enum StudyError {
     /// A core value could not be built.
     #[error(transparent)]
     Core(#[from] brdf_core::CoreError),
+    /// Reading data failed.
+    #[error(transparent)]
+    Data(#[from] brdf_io::IoError),
+    /// A solver was misused or given impossible input.
+    #[error(transparent)]
+    Solve(#[from] brdf_solve::SolveError),
     /// JSON output failed.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),

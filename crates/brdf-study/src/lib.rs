@@ -11,7 +11,9 @@
 
 pub mod cli;
 pub mod commands;
+pub mod data;
 pub mod error;
+pub mod fit;
 #[cfg(feature = "plots")]
 pub mod plots;
 pub mod render;

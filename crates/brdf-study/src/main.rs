@@ -12,6 +12,7 @@ fn run() -> Result<(), StudyError> {
     match cli.command {
         Command::Models(a) => commands::models::run(&a),
         Command::Eval(a) => commands::eval::run(&a),
+        Command::Fit(a) => commands::fit::run(&a),
     }
 }
 

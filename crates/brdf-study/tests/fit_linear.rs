@@ -1,0 +1,120 @@
+//! The linear fitting pipeline: exact recovery of known coefficients from
+//! synthetic data, and the `brdf fit` command on the real CUReT data when
+//! `BRDF_DATA` is set.
+
+use std::process::Command;
+
+use brdf_core::SampleSet;
+use brdf_models::{ModelConfig, entry};
+use brdf_study::fit::fit_linear;
+use brdf_study::synthetic::scattered_pairs;
+
+#[test]
+fn known_coefficients_are_recovered_exactly() {
+    let pairs = scattered_pairs(205, 80f64.to_radians());
+    for (name, config) in [
+        (
+            "koenderink",
+            ModelConfig {
+                channels: 3,
+                order: 4,
+                ..ModelConfig::default()
+            },
+        ),
+        (
+            "lambert",
+            ModelConfig {
+                channels: 3,
+                ..ModelConfig::default()
+            },
+        ),
+    ] {
+        let e = entry(name).unwrap();
+        let mut truth = (e.build)(&config).unwrap();
+        let np = truth.n_params();
+        // Coefficients chosen so the model stays positive (no clamp active).
+        let per = np / 3;
+        let p: Vec<f64> = (0..np)
+            .map(|k| {
+                if k % per == 0 {
+                    0.5 + 0.1 * (k / per) as f64
+                } else {
+                    0.005 * ((k * 7) % 5) as f64 - 0.01
+                }
+            })
+            .collect();
+        truth.set_params(&p).unwrap();
+        let mut set = SampleSet::new(
+            "synthetic",
+            "test",
+            vec!["r".into(), "g".into(), "b".into()],
+        );
+        let mut f = vec![0.0; 3];
+        for (l, v) in &pairs {
+            truth.eval(l.vector(), v.vector(), &mut f);
+            assert!(
+                f.iter().all(|x| *x > 0.0),
+                "choose coefficients without clamping"
+            );
+            set.push(l, v, &f, 1.0).unwrap();
+        }
+        let mut model = (e.build)(&config).unwrap();
+        let r = fit_linear(model.as_mut(), &set).unwrap();
+        assert!(r.ngan_l2 < 1e-12, "{name}: {}", r.ngan_l2);
+        for (k, (_, v)) in r.parameters.iter().enumerate() {
+            assert!((v - p[k]).abs() < 1e-9, "{name} param {k}: {v} vs {}", p[k]);
+        }
+    }
+}
+
+#[test]
+fn non_linear_models_are_refused_with_a_message() {
+    let pairs = scattered_pairs(50, 1.2);
+    let mut set = SampleSet::new("s", "test", vec!["grey".into()]);
+    for (l, v) in &pairs {
+        set.push(l, v, &[0.1], 1.0).unwrap();
+    }
+    let mut m = (entry("ward").unwrap().build)(&ModelConfig::default()).unwrap();
+    let e = fit_linear(m.as_mut(), &set).unwrap_err();
+    assert!(e.to_string().contains("non-linear parameter `a`"), "{e}");
+}
+
+#[test]
+fn fit_command_on_curet_quarry_tile() {
+    let Some(root) = std::env::var_os("BRDF_DATA") else {
+        eprintln!("skipped: BRDF_DATA is not set");
+        return;
+    };
+    let path = std::path::PathBuf::from(root).join("curet/abrdf.dat");
+    assert!(
+        path.exists(),
+        "BRDF_DATA is set but {} is missing",
+        path.display()
+    );
+    let run = |model: &[&str]| -> f64 {
+        let mut args = vec!["fit", "--json", "--data"];
+        let spec = format!("{}#25", path.display());
+        args.push(&spec);
+        args.push("--model");
+        args.extend_from_slice(model);
+        let out = Command::new(env!("CARGO_BIN_EXE_brdf"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["fit"]["data"], "curet#25 Quarry Tile");
+        v["fit"]["ngan_l2"].as_f64().unwrap()
+    };
+    let lambert = run(&["lambert"]);
+    let k8 = run(&["koenderink", "--order", "8"]);
+    let p7 = run(&["polynomial", "--degree", "7"]);
+    // Kurt's ranking on quarry tile (his RGB errors: Koenderink 0.0069 <
+    // polynomial 0.0108); a diffuse-only model is far worse.
+    assert!(k8 < p7 && p7 < lambert, "{k8} {p7} {lambert}");
+    assert!(k8 > 0.0 && lambert < 0.1);
+}
