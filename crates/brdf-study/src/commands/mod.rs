@@ -3,3 +3,4 @@
 pub mod eval;
 pub mod fit;
 pub mod models;
+pub mod reproduce;
