@@ -223,3 +223,27 @@ macro_rules! impl_brdf_via_params {
         }
     };
 }
+
+/// The four bookkeeping methods of [`Parametric`] for a model that stores
+/// `specs: Vec<ParamSpec>` and `params: Vec<f64>` and is `Clone`:
+/// `param_specs`, `params`, `set_params` (validated against the boxes, under
+/// the model's `name()`) and `clone_box`. Use inside `impl Parametric for T`.
+#[macro_export]
+macro_rules! param_accessors {
+    () => {
+        fn param_specs(&self) -> &[$crate::ParamSpec] {
+            &self.specs
+        }
+        fn params(&self) -> &[f64] {
+            &self.params
+        }
+        fn set_params(&mut self, p: &[f64]) -> Result<(), $crate::ParamError> {
+            $crate::params::validate($crate::Parametric::name(self), &self.specs, p)?;
+            self.params.copy_from_slice(p);
+            Ok(())
+        }
+        fn clone_box(&self) -> Box<dyn $crate::Parametric> {
+            Box::new(self.clone())
+        }
+    };
+}

@@ -93,6 +93,34 @@ pub fn is_isotropic(n: u32) -> bool {
     (1..=61).contains(&n) && !ANISOTROPIC.contains(&n)
 }
 
+/// The finite numbers of one data line, exactly `expected` of them.
+fn data_line(
+    path: &Path,
+    line_no: usize,
+    line: &str,
+    expected: usize,
+    what: &str,
+) -> Result<Vec<f64>, IoError> {
+    let f = parse_fields(path, line_no, line)?;
+    if f.len() != expected {
+        return Err(IoError::Count {
+            path: path.into(),
+            line: line_no,
+            expected: what.into(),
+            found: format!("{} fields", f.len()),
+        });
+    }
+    if let Some((i, v)) = f.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(IoError::NotFinite {
+            path: path.into(),
+            line: line_no,
+            field: i + 1,
+            value: *v,
+        });
+    }
+    Ok(f)
+}
+
 /// The measurement geometry: `(L, V)` of the 205 configurations.
 pub fn read_table(path: &Path) -> Result<Vec<(Direction, Direction)>, IoError> {
     let text = std::fs::read_to_string(path).map_err(|e| IoError::Io {
@@ -104,23 +132,13 @@ pub fn read_table(path: &Path) -> Result<Vec<(Direction, Direction)>, IoError> {
         if line.trim().is_empty() {
             continue;
         }
-        let f = parse_fields(path, k + 1, line)?;
-        if f.len() != 5 {
-            return Err(IoError::Count {
-                path: path.into(),
-                line: k + 1,
-                expected: "5 fields (index theta_v phi_v theta_i phi_i)".into(),
-                found: format!("{} fields", f.len()),
-            });
-        }
-        if let Some((i, v)) = f.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(IoError::NotFinite {
-                path: path.into(),
-                line: k + 1,
-                field: i + 1,
-                value: *v,
-            });
-        }
+        let f = data_line(
+            path,
+            k + 1,
+            line,
+            5,
+            "5 fields (index theta_v phi_v theta_i phi_i)",
+        )?;
         if f[0] != (out.len() + 1) as f64 {
             return Err(IoError::Format {
                 path: path.into(),
@@ -165,23 +183,13 @@ pub fn read_values(path: &Path) -> Result<Vec<(u32, Vec<f64>)>, IoError> {
         if line.trim().is_empty() {
             continue;
         }
-        let f = parse_fields(path, k + 1, line)?;
-        if f.len() != CONFIGURATIONS + 1 {
-            return Err(IoError::Count {
-                path: path.into(),
-                line: k + 1,
-                expected: format!("sample number and {CONFIGURATIONS} values"),
-                found: format!("{} fields", f.len()),
-            });
-        }
-        if let Some((i, v)) = f.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(IoError::NotFinite {
-                path: path.into(),
-                line: k + 1,
-                field: i + 1,
-                value: *v,
-            });
-        }
+        let f = data_line(
+            path,
+            k + 1,
+            line,
+            CONFIGURATIONS + 1,
+            "sample number and 205 values",
+        )?;
         let n = f[0];
         if !((1.0..=61.0).contains(&n) && n.fract() == 0.0) {
             return Err(IoError::Format {

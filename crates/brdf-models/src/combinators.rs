@@ -8,7 +8,7 @@
 
 use std::f64::consts::FRAC_1_PI;
 
-use brdf_core::params::{per_channel_specs, validate};
+use brdf_core::params::per_channel_specs;
 use brdf_core::{Brdf, ParamError, ParamSpec, Parametric};
 use nalgebra::Vector3;
 
@@ -90,19 +90,9 @@ impl<S: Lobe> Brdf for DiffuseLobe<S> {
 }
 
 impl<S: Lobe> Parametric for DiffuseLobe<S> {
+    brdf_core::param_accessors!();
     fn name(&self) -> &str {
         S::NAME
-    }
-    fn param_specs(&self) -> &[ParamSpec] {
-        &self.specs
-    }
-    fn params(&self) -> &[f64] {
-        &self.params
-    }
-    fn set_params(&mut self, p: &[f64]) -> Result<(), ParamError> {
-        validate(S::NAME, &self.specs, p)?;
-        self.params.copy_from_slice(p);
-        Ok(())
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         let nc = self.channels;
@@ -143,9 +133,6 @@ impl<S: Lobe> Parametric for DiffuseLobe<S> {
                 row[2 * nc + k] = ks * dq[k];
             }
         }
-    }
-    fn clone_box(&self) -> Box<dyn Parametric> {
-        Box::new(self.clone())
     }
     fn is_reciprocal(&self) -> bool {
         S::reciprocal()

@@ -41,7 +41,7 @@
 //! assert!((f[0] - 0.5 / std::f64::consts::PI).abs() < 1e-15);
 //! ```
 
-use brdf_core::params::{channel_param_name, validate};
+use brdf_core::params::channel_param_name;
 use brdf_core::trig::cos_dphi;
 use brdf_core::{ParamError, ParamSpec, Parametric, impl_brdf_via_params};
 use nalgebra::Vector3;
@@ -167,19 +167,9 @@ impl Koenderink {
 }
 
 impl Parametric for Koenderink {
+    brdf_core::param_accessors!();
     fn name(&self) -> &str {
         Self::NAME
-    }
-    fn param_specs(&self) -> &[ParamSpec] {
-        &self.specs
-    }
-    fn params(&self) -> &[f64] {
-        &self.params
-    }
-    fn set_params(&mut self, p: &[f64]) -> Result<(), ParamError> {
-        validate(Self::NAME, &self.specs, p)?;
-        self.params.copy_from_slice(p);
-        Ok(())
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         let mut grad = Vec::new();
@@ -194,9 +184,6 @@ impl Parametric for Koenderink {
         grad: &mut [f64],
     ) {
         self.value_and_grad(p, l, v, out, grad, true);
-    }
-    fn clone_box(&self) -> Box<dyn Parametric> {
-        Box::new(self.clone())
     }
 }
 

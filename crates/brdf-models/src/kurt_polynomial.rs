@@ -49,7 +49,7 @@
 //! assert_eq!(m.n_params(), 3);
 //! ```
 
-use brdf_core::params::{channel_param_name, validate};
+use brdf_core::params::channel_param_name;
 use brdf_core::{DirPairs, ParamError, ParamSpec, Parametric, impl_brdf_via_params};
 use nalgebra::{Matrix2, Matrix3, Vector3};
 
@@ -336,22 +336,12 @@ impl KurtPolynomial {
 }
 
 impl Parametric for KurtPolynomial {
+    brdf_core::param_accessors!();
     fn name(&self) -> &str {
         match self.variant {
             PolyVariant::Isotropic => Self::NAME,
             PolyVariant::Anisotropic => Self::NAME_ANISO,
         }
-    }
-    fn param_specs(&self) -> &[ParamSpec] {
-        &self.specs
-    }
-    fn params(&self) -> &[f64] {
-        &self.params
-    }
-    fn set_params(&mut self, p: &[f64]) -> Result<(), ParamError> {
-        validate(self.name(), &self.specs, p)?;
-        self.params.copy_from_slice(p);
-        Ok(())
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         if !(l.z > 0.0 && v.z > 0.0) {
@@ -394,9 +384,6 @@ impl Parametric for KurtPolynomial {
             out[c] = s.max(0.0);
             grad[c * np + c * per..c * np + (c + 1) * per].copy_from_slice(&row);
         }
-    }
-    fn clone_box(&self) -> Box<dyn Parametric> {
-        Box::new(self.clone())
     }
 }
 

@@ -23,7 +23,7 @@
 
 use std::f64::consts::FRAC_1_PI;
 
-use brdf_core::params::{per_channel_specs, validate};
+use brdf_core::params::per_channel_specs;
 use brdf_core::{ParamError, ParamSpec, Parametric, impl_brdf_via_params};
 use nalgebra::Vector3;
 
@@ -65,19 +65,9 @@ impl Lambert {
 }
 
 impl Parametric for Lambert {
+    brdf_core::param_accessors!();
     fn name(&self) -> &str {
         Self::NAME
-    }
-    fn param_specs(&self) -> &[ParamSpec] {
-        &self.specs
-    }
-    fn params(&self) -> &[f64] {
-        &self.params
-    }
-    fn set_params(&mut self, p: &[f64]) -> Result<(), ParamError> {
-        validate(Self::NAME, &self.specs, p)?;
-        self.params.copy_from_slice(p);
-        Ok(())
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         let above = l.z > 0.0 && v.z > 0.0;
@@ -102,9 +92,6 @@ impl Parametric for Lambert {
                 grad[c * np + c] = FRAC_1_PI;
             }
         }
-    }
-    fn clone_box(&self) -> Box<dyn Parametric> {
-        Box::new(self.clone())
     }
 }
 
