@@ -8,6 +8,7 @@
 //! | --- | --- |
 //! | [`linear`] | dense (weighted) least squares: pivoted QR with a rank report, SVD, normal equations as an option; leverages |
 //! | [`nnls`] | Lawson-Hanson non-negative least squares |
+//! | [`robust_weights`] | the eight robust weight functions with their tuning constants |
 //! | [`error`] | [`SolveError`] |
 //!
 //! ## Crate features
@@ -18,6 +19,7 @@
 pub mod error;
 pub mod linear;
 pub mod nnls;
+pub mod robust_weights;
 
 pub use error::SolveError;
 pub use linear::{LstsqMethod, LstsqSolution, lstsq};
