@@ -130,6 +130,27 @@ pub fn catalogue() -> Vec<ModelEntry> {
             "Duer 2004"
         );
     }
+    #[cfg(feature = "lafortune")]
+    {
+        v.push(ModelEntry {
+            name: crate::Lafortune::NAME,
+            family: "lafortune",
+            summary: "kd/pi + K generalised cosine lobes Cxy (ux vx + uy vy) + Cz uz vz",
+            paper: "Lafortune, Foo, Torrance & Greenberg 1997, SIGGRAPH",
+            has_lobes: true,
+            build: |c| Ok(Box::new(crate::Lafortune::new(false, c.lobes, c.channels)?)),
+            build_for_data: None,
+        });
+        v.push(ModelEntry {
+            name: crate::Lafortune::NAME_ANISO,
+            family: "lafortune",
+            summary: "Lafortune with Cx, Cy, Cz per lobe",
+            paper: "Lafortune, Foo, Torrance & Greenberg 1997, SIGGRAPH",
+            has_lobes: true,
+            build: |c| Ok(Box::new(crate::Lafortune::new(true, c.lobes, c.channels)?)),
+            build_for_data: None,
+        });
+    }
     #[cfg(feature = "koenderink")]
     v.push(ModelEntry {
         name: crate::Koenderink::NAME,

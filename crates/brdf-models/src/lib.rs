@@ -12,6 +12,7 @@
 //! | always | [`Lambert`] |
 //! | `phong` | [`Phong`] (modified), [`BlinnPhong`] |
 //! | `ward` | [`Ward`], [`WardAniso`], [`WardDuer`], [`WardDuerAniso`] |
+//! | `lafortune` | [`Lafortune`] (isotropic and anisotropic, K lobes) |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
 //!
@@ -31,6 +32,8 @@ pub mod combinators;
 pub mod koenderink;
 #[cfg(feature = "polynomial")]
 pub mod kurt_polynomial;
+#[cfg(feature = "lafortune")]
+pub mod lafortune;
 pub mod lambert;
 #[cfg(feature = "phong")]
 pub mod phong;
@@ -44,6 +47,8 @@ pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
 pub use koenderink::Koenderink;
 #[cfg(feature = "polynomial")]
 pub use kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
+#[cfg(feature = "lafortune")]
+pub use lafortune::Lafortune;
 pub use lambert::Lambert;
 #[cfg(feature = "phong")]
 pub use phong::Phong;

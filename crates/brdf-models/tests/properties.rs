@@ -20,11 +20,11 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 
 fn configs() -> Vec<ModelConfig> {
-    [1, 3]
+    [(1, 1), (3, 1), (1, 2)]
         .iter()
-        .map(|&channels| ModelConfig {
+        .map(|&(channels, lobes)| ModelConfig {
             channels,
-            lobes: 1,
+            lobes,
             order: 4,
             degree: 3,
         })
