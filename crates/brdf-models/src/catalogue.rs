@@ -151,6 +151,16 @@ pub fn catalogue() -> Vec<ModelEntry> {
             build_for_data: None,
         });
     }
+    #[cfg(feature = "oren-nayar")]
+    v.push(ModelEntry {
+        name: crate::OrenNayar::NAME,
+        family: "oren-nayar",
+        summary: "kd/pi (A + B max(0, cos dphi) sin alpha tan beta), rough diffuse",
+        paper: "Oren & Nayar 1994, SIGGRAPH",
+        has_lobes: false,
+        build: |c| Ok(Box::new(crate::OrenNayar::with_channels(c.channels)?)),
+        build_for_data: None,
+    });
     #[cfg(feature = "koenderink")]
     v.push(ModelEntry {
         name: crate::Koenderink::NAME,

@@ -13,6 +13,7 @@
 //! | `phong` | [`Phong`] (modified), [`BlinnPhong`] |
 //! | `ward` | [`Ward`], [`WardAniso`], [`WardDuer`], [`WardDuerAniso`] |
 //! | `lafortune` | [`Lafortune`] (isotropic and anisotropic, K lobes) |
+//! | `oren-nayar` | [`OrenNayar`] (qualitative) |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
 //!
@@ -35,6 +36,8 @@ pub mod kurt_polynomial;
 #[cfg(feature = "lafortune")]
 pub mod lafortune;
 pub mod lambert;
+#[cfg(feature = "oren-nayar")]
+pub mod oren_nayar;
 #[cfg(feature = "phong")]
 pub mod phong;
 #[cfg(feature = "ward")]
@@ -50,6 +53,8 @@ pub use kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
 #[cfg(feature = "lafortune")]
 pub use lafortune::Lafortune;
 pub use lambert::Lambert;
+#[cfg(feature = "oren-nayar")]
+pub use oren_nayar::OrenNayar;
 #[cfg(feature = "phong")]
 pub use phong::Phong;
 #[cfg(feature = "ward")]

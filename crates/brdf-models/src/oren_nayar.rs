@@ -1,0 +1,138 @@
+//! Oren-Nayar (1994, "Generalization of Lambert's reflectance model",
+//! SIGGRAPH), the qualitative model fitted in Kurt's thesis.
+//!
+//! `f = kd/pi (A + B max(0, cos(phi_o - phi_i)) sin(alpha) tan(beta))`,
+//! `A = 1 - 0.5 s2/(s2 + 0.33)`, `B = 0.45 s2/(s2 + 0.09)`, `s2 = sigma^2`,
+//! `alpha = max(theta_i, theta_o)`, `beta = min(theta_i, theta_o)`.
+//!
+//! | parameter | meaning | default box | linear |
+//! | --- | --- | --- | --- |
+//! | `kd` (per channel) | diffuse albedo | `[0, 1]` | yes |
+//! | `sigma` | facet slope standard deviation (radians) | `[0, 0.999]` | no |
+//!
+//! Properties: reciprocal (`alpha`, `beta` and `cos(dphi)` are symmetric);
+//! non-negative (`A >= 1/2`, the `B` term is `>= 0`); `sigma = 0` is
+//! Lambert. Finite above the horizon: `tan(beta) <= tan(pi/2 - 1e-6)`-ish
+//! within `1e-6` of the horizon, never infinite for `theta < pi/2`.
+//!
+//! ```
+//! use brdf_core::Brdf;
+//! use brdf_models::OrenNayar;
+//! use nalgebra::Vector3;
+//! // sigma = 0 is Lambert.
+//! let m = OrenNayar::new(&[0.5], 0.0).unwrap();
+//! let mut f = [0.0];
+//! m.eval(&Vector3::new(0.6, 0.0, 0.8), &Vector3::z(), &mut f);
+//! assert!((f[0] - 0.5 / std::f64::consts::PI).abs() < 1e-15);
+//! ```
+
+use std::f64::consts::FRAC_1_PI;
+
+use brdf_core::params::per_channel_specs;
+use brdf_core::trig::cos_dphi;
+use brdf_core::{ParamError, ParamSpec, Parametric, impl_brdf_via_params};
+use nalgebra::Vector3;
+
+/// The qualitative Oren-Nayar model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrenNayar {
+    channels: usize,
+    specs: Vec<ParamSpec>,
+    params: Vec<f64>,
+}
+
+impl OrenNayar {
+    /// Name in the catalogue.
+    pub const NAME: &'static str = "oren-nayar";
+
+    /// At default parameters.
+    pub fn with_channels(channels: usize) -> Result<Self, ParamError> {
+        if channels == 0 {
+            return Err(ParamError::Config {
+                model: Self::NAME.into(),
+                reason: "a model needs at least one channel".into(),
+            });
+        }
+        let mut specs = per_channel_specs("kd", "diffuse albedo", channels, 0.0, 1.0, 0.5);
+        specs.push(ParamSpec::new(
+            "sigma",
+            "facet slope standard deviation (radians)",
+            0.0,
+            0.999,
+            0.3,
+            false,
+        ));
+        let params = specs.iter().map(|s| s.default).collect();
+        Ok(OrenNayar {
+            channels,
+            specs,
+            params,
+        })
+    }
+
+    /// With per-channel `kd` and `sigma`, validated.
+    pub fn new(kd: &[f64], sigma: f64) -> Result<Self, ParamError> {
+        let mut m = Self::with_channels(kd.len())?;
+        let p: Vec<f64> = kd.iter().copied().chain([sigma]).collect();
+        m.set_params(&p)?;
+        Ok(m)
+    }
+
+    /// `(A + B g, d/dsigma)` with `g = max(0, cos dphi) sin(alpha) tan(beta)`.
+    fn shape(sigma: f64, l: &Vector3<f64>, v: &Vector3<f64>) -> (f64, f64) {
+        let s2 = sigma * sigma;
+        let a = 1.0 - 0.5 * s2 / (s2 + 0.33);
+        let b = 0.45 * s2 / (s2 + 0.09);
+        let da = -0.5 * 2.0 * sigma * 0.33 / ((s2 + 0.33) * (s2 + 0.33));
+        let db = 0.45 * 2.0 * sigma * 0.09 / ((s2 + 0.09) * (s2 + 0.09));
+        let c = cos_dphi(l, v).max(0.0);
+        // alpha = max(theta), beta = min(theta): the smaller cosine is alpha's.
+        let (ca, cb) = if l.z < v.z { (l.z, v.z) } else { (v.z, l.z) };
+        let sin_a = (1.0 - ca * ca).max(0.0).sqrt();
+        let tan_b = (1.0 - cb * cb).max(0.0).sqrt() / cb;
+        let g = c * sin_a * tan_b;
+        (a + b * g, da + db * g)
+    }
+}
+
+impl Parametric for OrenNayar {
+    brdf_core::param_accessors!();
+    fn name(&self) -> &str {
+        Self::NAME
+    }
+    fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        let nc = self.channels;
+        if !(l.z > 0.0 && v.z > 0.0) {
+            out[..nc].iter_mut().for_each(|x| *x = 0.0);
+            return;
+        }
+        let (s, _) = Self::shape(p[nc], l, v);
+        for c in 0..nc {
+            out[c] = p[c] * FRAC_1_PI * s;
+        }
+    }
+    fn eval_grad_at(
+        &self,
+        p: &[f64],
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [f64],
+        grad: &mut [f64],
+    ) {
+        let nc = self.channels;
+        let np = nc + 1;
+        grad[..nc * np].iter_mut().for_each(|g| *g = 0.0);
+        if !(l.z > 0.0 && v.z > 0.0) {
+            out[..nc].iter_mut().for_each(|x| *x = 0.0);
+            return;
+        }
+        let (s, ds) = Self::shape(p[nc], l, v);
+        for c in 0..nc {
+            out[c] = p[c] * FRAC_1_PI * s;
+            grad[c * np + c] = FRAC_1_PI * s;
+            grad[c * np + nc] = p[c] * FRAC_1_PI * ds;
+        }
+    }
+}
+
+impl_brdf_via_params!(OrenNayar);
