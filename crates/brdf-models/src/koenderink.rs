@@ -69,6 +69,10 @@ pub struct Koenderink {
     order: usize,
     /// `(m, n, n')` of every basis function.
     indices: Vec<(usize, usize, usize)>,
+    /// Coefficients of `R_n^m`: `radial[(n * (N+1) + m) * (N/2+1) + k]` is the
+    /// coefficient of `rho^(n-2k)` (computed once; evaluation is then a few
+    /// multiplications per polynomial).
+    radial: Vec<f64>,
     specs: Vec<ParamSpec>,
     params: Vec<f64>,
 }
@@ -117,10 +121,22 @@ impl Koenderink {
                 ));
             }
         }
+        let stride = order / 2 + 1;
+        let mut radial = vec![0.0; (order + 1) * (order + 1) * stride];
+        let fact = |k: usize| (1..=k).fold(1.0f64, |a, b| a * b as f64);
+        for n in 0..=order {
+            for m in (n % 2..=n).step_by(2) {
+                for k in 0..=(n - m) / 2 {
+                    let c = fact(n - k) / (fact(k) * fact((n + m) / 2 - k) * fact((n - m) / 2 - k));
+                    radial[(n * (order + 1) + m) * stride + k] = if k % 2 == 0 { c } else { -c };
+                }
+            }
+        }
         Ok(Koenderink {
             channels,
             order,
             indices,
+            radial,
             params: vec![0.0; specs.len()],
             specs,
         })
@@ -154,12 +170,37 @@ impl Koenderink {
         for m in 2..=self.order {
             cos_m[m] = 2.0 * c1 * cos_m[m - 1] - cos_m[m - 2];
         }
+        // All R_n^m at rho_i and rho_o once, from the precomputed coefficients.
+        let n1 = self.order + 1;
+        let stride = self.order / 2 + 1;
+        let mut pi = [0.0; 21];
+        let mut po = [0.0; 21];
+        pi[0] = 1.0;
+        po[0] = 1.0;
+        for k in 1..n1 {
+            pi[k] = pi[k - 1] * ri;
+            po[k] = po[k - 1] * ro;
+        }
+        let mut ri_tab = [0.0; 21 * 21];
+        let mut ro_tab = [0.0; 21 * 21];
+        for n in 0..n1 {
+            for m in (n % 2..=n).step_by(2) {
+                let (mut a, mut b) = (0.0, 0.0);
+                for k in 0..=(n - m) / 2 {
+                    let c = self.radial[(n * n1 + m) * stride + k];
+                    a += c * pi[n - 2 * k];
+                    b += c * po[n - 2 * k];
+                }
+                ri_tab[n * n1 + m] = a;
+                ro_tab[n * n1 + m] = b;
+            }
+        }
         for (k, &(m, n, n2)) in self.indices.iter().enumerate() {
-            let a = zernike_radial(n, m, ri) * zernike_radial(n2, m, ro);
+            let a = ri_tab[n * n1 + m] * ro_tab[n2 * n1 + m];
             let s = if n == n2 {
                 a
             } else {
-                a + zernike_radial(n2, m, ri) * zernike_radial(n, m, ro)
+                a + ri_tab[n2 * n1 + m] * ro_tab[n * n1 + m]
             };
             out[k] = s * cos_m[m];
         }
