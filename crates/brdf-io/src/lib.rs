@@ -9,8 +9,10 @@
 //! | module | format | source | units | invalid marker |
 //! | --- | --- | --- | --- | --- |
 //! | [`curet`] | CUReT `abrdf.dat` + `table.txt` (and `r/g/bbrdf.dat`) | Dana et al. 1999 | 1/sr, radians | none (negative values are noise, kept) |
+//! | [`nist`] | NIST StRD non-linear regression `.dat` | NIST ITL | - | - |
 
 pub mod curet;
 pub mod error;
+pub mod nist;
 
 pub use error::IoError;

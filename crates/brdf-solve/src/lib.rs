@@ -8,7 +8,15 @@
 //! | --- | --- |
 //! | [`linear`] | dense (weighted) least squares: pivoted QR with a rank report, SVD, normal equations as an option; leverages |
 //! | [`nnls`] | Lawson-Hanson non-negative least squares |
+//! | [`lsi`] | least squares with linear inequality constraints (LDP through NNLS) |
 //! | [`robust_weights`] | the eight robust weight functions with their tuning constants |
+//! | [`problem`] | [`LeastSquaresProblem`]: what a non-linear solver needs from a problem |
+//! | [`levenberg_marquardt`] | Levenberg-Marquardt: stacked-QR steps, Marquardt scaling, Nielsen's or Sopp's damping, geodesic acceleration |
+//! | [`covariance`] | parameter covariance and standard errors (SVD of `J`) |
+//! | [`constraints`] | box bounds and linear inequalities |
+//! | [`bounded`] | the bounded SQP-style solver (LSI subproblem per iteration) |
+//! | [`report`] | [`SolverReport`], [`Termination`], [`BoundStatus`] |
+//! | [`strd`] | the 27 NIST StRD model functions with analytic gradients, LRE |
 //! | [`error`] | [`SolveError`] |
 //!
 //! ## Crate features
@@ -16,11 +24,25 @@
 //! - `rayon` (default): parallel multi-start.
 //! - `serde`: serialize reports.
 
+pub mod bounded;
+pub mod constraints;
+pub mod covariance;
 pub mod error;
+pub mod levenberg_marquardt;
 pub mod linear;
+pub mod lsi;
 pub mod nnls;
+pub mod problem;
+pub mod report;
 pub mod robust_weights;
+pub mod strd;
 
+pub use bounded::bounded_least_squares;
+pub use constraints::Constraints;
 pub use error::SolveError;
+pub use levenberg_marquardt::{Damping, LmOptions, Scaling, levenberg_marquardt};
 pub use linear::{LstsqMethod, LstsqSolution, lstsq};
+pub use lsi::lsi;
 pub use nnls::{NnlsSolution, NnlsTermination, nnls};
+pub use problem::{LeastSquaresProblem, fd_jacobian};
+pub use report::{BoundStatus, SolverReport, Termination};

@@ -22,6 +22,8 @@ pub enum Command {
     Eval(crate::commands::eval::EvalArgs),
     /// Fit a model to a data set (all-linear models so far).
     Fit(crate::commands::fit::FitArgs),
+    /// Certify the solver on the NIST StRD non-linear regression problems.
+    Nist(crate::commands::nist::NistArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
 }

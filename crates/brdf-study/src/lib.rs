@@ -14,6 +14,7 @@ pub mod commands;
 pub mod data;
 pub mod error;
 pub mod fit;
+pub mod nist;
 #[cfg(feature = "plots")]
 pub mod plots;
 pub mod render;

@@ -3,4 +3,5 @@
 pub mod eval;
 pub mod fit;
 pub mod models;
+pub mod nist;
 pub mod reproduce;

@@ -1,0 +1,216 @@
+//! NIST StRD non-linear regression `.dat` files (NIST ITL, Statistical
+//! Reference Datasets): the header with the model, both certified starting
+//! points, the certified parameters and their standard deviations, the
+//! certified residual sum of squares and standard deviation, and the data.
+//!
+//! Layout: parameter lines `b1 = start1 start2 certified sd`; lines
+//! `Residual Sum of Squares: v`, `Residual Standard Deviation: v`,
+//! `Degrees of Freedom: n`, `Number of Observations: n`; then a line
+//! `Data: y x` (or `y x1 x2`) naming the columns, followed by exactly
+//! `Number of Observations` data lines.
+
+use std::path::{Path, PathBuf};
+
+use crate::IoError;
+use crate::error::parse_fields;
+
+/// One StRD problem as read from its file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NistDataset {
+    /// Problem name (the file stem, e.g. `BoxBOD`).
+    pub name: String,
+    /// The file read.
+    pub path: PathBuf,
+    /// The model text of the header.
+    pub model_text: String,
+    /// The two certified starting points.
+    pub starts: [Vec<f64>; 2],
+    /// Certified parameter values.
+    pub certified: Vec<f64>,
+    /// Certified standard deviations of the parameters.
+    pub certified_sd: Vec<f64>,
+    /// Certified residual sum of squares.
+    pub rss: f64,
+    /// Certified residual standard deviation.
+    pub residual_sd: f64,
+    /// Degrees of freedom.
+    pub dof: usize,
+    /// Number of predictors per observation.
+    pub n_predictors: usize,
+    /// Predictors, row after row.
+    pub x: Vec<f64>,
+    /// Responses.
+    pub y: Vec<f64>,
+}
+
+fn value_after_colon(path: &Path, no: usize, line: &str) -> Result<f64, IoError> {
+    let text = line.split(':').nth(1).unwrap_or("").trim();
+    text.parse::<f64>().map_err(|_| IoError::NotANumber {
+        path: path.to_path_buf(),
+        line: no,
+        field: 1,
+        text: text.to_string(),
+    })
+}
+
+/// Read a StRD `.dat` file.
+pub fn read(path: &Path) -> Result<NistDataset, IoError> {
+    let text = std::fs::read_to_string(path).map_err(|source| IoError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse(path, &text)
+}
+
+/// Parse the text of a StRD `.dat` file (`path` only names it in errors).
+pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
+    let fmt = |line: usize, reason: String| IoError::Format {
+        path: path.to_path_buf(),
+        line,
+        reason,
+    };
+    let lines: Vec<&str> = text.lines().collect();
+    let mut params: Vec<(usize, [f64; 4])> = Vec::new();
+    let (mut rss, mut rsd, mut dof, mut nobs) = (None, None, None, None);
+    let mut model_text = String::new();
+    let mut in_model = false;
+    let mut data_header = None;
+    for (i, line) in lines.iter().enumerate() {
+        let no = i + 1;
+        let t = line.trim();
+        if t.starts_with("Model:") {
+            in_model = true;
+            continue;
+        }
+        if in_model {
+            if t.starts_with("Starting") || t.starts_with("b1") {
+                in_model = false;
+            } else {
+                if !t.is_empty() {
+                    model_text.push_str(t);
+                    model_text.push('\n');
+                }
+                continue;
+            }
+        }
+        if let Some((lhs, rhs)) = t.split_once('=')
+            && let Some(k) = lhs.trim().strip_prefix('b')
+            && let Ok(k) = k.parse::<usize>()
+        {
+            let v = parse_fields(path, no, rhs)?;
+            if v.len() != 4 {
+                return Err(IoError::Count {
+                    path: path.to_path_buf(),
+                    line: no,
+                    expected: "4 numbers (start 1, start 2, certified, sd)".into(),
+                    found: format!("{}", v.len()),
+                });
+            }
+            if k != params.len() + 1 {
+                return Err(fmt(no, format!("parameter b{k} out of order")));
+            }
+            params.push((no, [v[0], v[1], v[2], v[3]]));
+        } else if t.starts_with("Residual Sum of Squares:") {
+            rss = Some(value_after_colon(path, no, t)?);
+        } else if t.starts_with("Residual Standard Deviation:") {
+            rsd = Some(value_after_colon(path, no, t)?);
+        } else if t.starts_with("Degrees of Freedom:") {
+            dof = Some(value_after_colon(path, no, t)? as usize);
+        } else if t.starts_with("Number of Observations:") {
+            nobs = Some(value_after_colon(path, no, t)? as usize);
+        } else if let Some(rest) = t.strip_prefix("Data:") {
+            let cols: Vec<&str> = rest.split_whitespace().collect();
+            if !cols.is_empty() && cols.iter().all(|c| c.starts_with('y') || c.starts_with('x')) {
+                data_header = Some((i, cols.len()));
+                break;
+            }
+        }
+    }
+    let missing = |what: &str| fmt(0, format!("missing {what}"));
+    if params.is_empty() {
+        return Err(missing("parameter lines `b1 = ...`"));
+    }
+    let rss = rss.ok_or_else(|| missing("Residual Sum of Squares"))?;
+    let residual_sd = rsd.ok_or_else(|| missing("Residual Standard Deviation"))?;
+    let dof = dof.ok_or_else(|| missing("Degrees of Freedom"))?;
+    let nobs = nobs.ok_or_else(|| missing("Number of Observations"))?;
+    let (hdr, ncols) = data_header.ok_or_else(|| missing("the `Data: y x` line"))?;
+    let mut x = Vec::new();
+    let mut y = Vec::new();
+    for (i, line) in lines.iter().enumerate().skip(hdr + 1) {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let v = parse_fields(path, i + 1, line)?;
+        if v.len() != ncols {
+            return Err(IoError::Count {
+                path: path.to_path_buf(),
+                line: i + 1,
+                expected: format!("{ncols} columns"),
+                found: format!("{}", v.len()),
+            });
+        }
+        if let Some(k) = v.iter().position(|f| !f.is_finite()) {
+            return Err(IoError::NotFinite {
+                path: path.to_path_buf(),
+                line: i + 1,
+                field: k + 1,
+                value: v[k],
+            });
+        }
+        y.push(v[0]);
+        x.extend_from_slice(&v[1..]);
+    }
+    if y.len() != nobs {
+        return Err(IoError::Count {
+            path: path.to_path_buf(),
+            line: 0,
+            expected: format!("{nobs} observations (header)"),
+            found: format!("{} data lines (truncated file?)", y.len()),
+        });
+    }
+    if dof + params.len() != nobs {
+        return Err(fmt(
+            0,
+            format!(
+                "degrees of freedom {dof} + parameters {} != observations {nobs}",
+                params.len()
+            ),
+        ));
+    }
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    Ok(NistDataset {
+        name,
+        path: path.to_path_buf(),
+        model_text,
+        starts: [
+            params.iter().map(|p| p.1[0]).collect(),
+            params.iter().map(|p| p.1[1]).collect(),
+        ],
+        certified: params.iter().map(|p| p.1[2]).collect(),
+        certified_sd: params.iter().map(|p| p.1[3]).collect(),
+        rss,
+        residual_sd,
+        dof,
+        n_predictors: ncols - 1,
+        x,
+        y,
+    })
+}
+
+/// Every `.dat` file of a folder, read and sorted by name.
+pub fn read_dir(dir: &Path) -> Result<Vec<NistDataset>, IoError> {
+    let rd = std::fs::read_dir(dir).map_err(|source| IoError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut paths: Vec<PathBuf> = rd
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "dat"))
+        .collect();
+    paths.sort();
+    paths.iter().map(|p| read(p)).collect()
+}

@@ -1,0 +1,510 @@
+//! Levenberg-Marquardt (Levenberg 1944, Marquardt 1963) for any
+//! [`LeastSquaresProblem`], optionally inside [`Constraints`] (then it is the
+//! bounded solver of [`crate::bounded`]).
+//!
+//! Each iteration solves the damped Gauss-Newton problem
+//! `min_d ||J d + r||^2 + lambda ||D d||^2`, i.e.
+//! `(J^T J + lambda D^2) d = -J^T r`, never by forming `J^T J`: the stacked
+//! system `[J; sqrt(lambda) D] d = [-r; 0]` is solved by Householder QR
+//! (faer). With constraints the same stacked problem is solved as a
+//! least-squares problem with linear inequalities ([`crate::lsi`]) so every
+//! iterate stays feasible.
+//!
+//! Scaling `D`: Marquardt's `D^2 = diag(J^T J)`, with MINPACK's rule of
+//! keeping the largest column norm seen so far (so a column that vanishes on
+//! a plateau does not make the damping vanish with it); or the identity.
+//!
+//! Damping schedules ([`Damping`]):
+//! - Nielsen (1999) (default): gain ratio `rho = actual / predicted
+//!   reduction`; accepted (`rho > 0`): `lambda *= max(1/3, 1 - (2 rho - 1)^3)`,
+//!   `nu = 2`; rejected: `lambda *= nu`, `nu *= 2`.
+//! - Sopp's (Sopp 2008): start `1e-3`; a step is kept only if the error
+//!   falls; rejected: double, capped at 1 (no progress at 1 stops with
+//!   [`Termination::DampingLimit`]); accepted: halve, floored at `1e-4`.
+//!
+//! Optional geodesic acceleration (Transtrum & Sethna 2012), unconstrained
+//! only: a second-order correction `a` from the directional second
+//! derivative `r'' ~ 2/h ((r(p + h d) - r(p))/h - J d)`, accepted when
+//! `2 ||a|| / ||d|| <= 0.75`.
+//!
+//! Stopping (MINPACK's tests, all scaled): `max_k |g_k| / (||J_k|| ||r||) <=
+//! gtol` (projected gradient under bounds); actual and predicted relative
+//! reductions `<= ftol`; `||D d|| <= xtol (||D p|| + xtol)`; an exact fit;
+//! iteration and evaluation caps; after a few consecutive steps at the noise
+//! level of the cost (where only the Gauss-Newton step can still improve the
+//! parameters). A convergence test that holds where some parameter has lost
+//! its influence on the residuals is reported as
+//! [`Termination::SingularPlateau`], not as convergence.
+
+use faer::Mat;
+use faer::linalg::solvers::SolveLstsq;
+
+use crate::constraints::Constraints;
+use crate::problem::LeastSquaresProblem;
+use crate::report::{SolverReport, Termination};
+use crate::{SolveError, lsi};
+
+/// Damping schedule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Damping {
+    /// Nielsen's gain-ratio update (default).
+    #[default]
+    Nielsen,
+    /// Sopp's schedule: start 1e-3, x2 on rejection up to 1, /2 on acceptance
+    /// down to 1e-4.
+    Sopp,
+}
+
+/// Scaling matrix `D` of the damping term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Scaling {
+    /// `D^2 = diag(J^T J)`, largest column norms kept (default).
+    #[default]
+    Marquardt,
+    /// `D = I` (Levenberg).
+    Identity,
+}
+
+/// Options of [`levenberg_marquardt`] and [`crate::bounded::bounded_least_squares`].
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct LmOptions {
+    /// Iteration cap [1000].
+    pub max_iterations: usize,
+    /// Residual-evaluation cap [10000].
+    pub max_evaluations: usize,
+    /// Relative cost-reduction tolerance [1e-15].
+    pub ftol: f64,
+    /// Relative step tolerance [1e-15].
+    pub xtol: f64,
+    /// Scaled gradient tolerance [1e-15].
+    pub gtol: f64,
+    /// Damping schedule [Nielsen].
+    pub damping: Damping,
+    /// Scaling [Marquardt].
+    pub scaling: Scaling,
+    /// Initial damping; `None` uses `1e-3` (times `max diag(J^T J)` with the
+    /// identity scaling).
+    pub initial_damping: Option<f64>,
+    /// Geodesic acceleration (unconstrained problems only) [false].
+    pub geodesic_acceleration: bool,
+}
+
+impl Default for LmOptions {
+    fn default() -> Self {
+        Self {
+            max_iterations: 1000,
+            max_evaluations: 10_000,
+            ftol: 1e-15,
+            xtol: 1e-15,
+            gtol: 1e-15,
+            damping: Damping::Nielsen,
+            scaling: Scaling::Marquardt,
+            initial_damping: None,
+            geodesic_acceleration: false,
+        }
+    }
+}
+
+impl LmOptions {
+    /// Sopp's configuration: his damping schedule, Marquardt scaling.
+    pub fn sopp() -> Self {
+        Self {
+            damping: Damping::Sopp,
+            ..Self::default()
+        }
+    }
+
+    fn validate(&self) -> Result<(), SolveError> {
+        for (name, v) in [("ftol", self.ftol), ("xtol", self.xtol), ("gtol", self.gtol)] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(SolveError::InvalidOption {
+                    name,
+                    value: v,
+                    reason: "tolerances must be finite and >= 0",
+                });
+            }
+        }
+        if let Some(l) = self.initial_damping
+            && !(l > 0.0 && l.is_finite())
+        {
+            return Err(SolveError::InvalidOption {
+                name: "initial_damping",
+                value: l,
+                reason: "must be finite and > 0",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Minimise `1/2 ||r(p)||^2` from `p0` without constraints.
+pub fn levenberg_marquardt<P: LeastSquaresProblem + ?Sized>(
+    problem: &P,
+    p0: &[f64],
+    options: &LmOptions,
+) -> Result<SolverReport, SolveError> {
+    let c = Constraints::unbounded(problem.n_params());
+    minimize(problem, p0, &c, options)
+}
+
+fn sum_sq(r: &[f64]) -> f64 {
+    r.iter().map(|v| v * v).sum()
+}
+
+fn all_finite(v: &[f64]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+/// The damped LM driver shared by the unconstrained and the bounded solver.
+pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
+    problem: &P,
+    p0: &[f64],
+    constraints: &Constraints,
+    options: &LmOptions,
+) -> Result<SolverReport, SolveError> {
+    options.validate()?;
+    let (m, n) = (problem.n_residuals(), problem.n_params());
+    if n == 0 {
+        return Err(SolveError::Empty { what: "parameters" });
+    }
+    if p0.len() != n || constraints.len() != n {
+        return Err(SolveError::Dimension {
+            what: "start / constraints vs parameters",
+            left: p0.len(),
+            right: n,
+        });
+    }
+    if m < n {
+        return Err(SolveError::Dimension {
+            what: "fewer residuals than parameters",
+            left: m,
+            right: n,
+        });
+    }
+    if let Some(k) = p0.iter().position(|v| !v.is_finite()) {
+        return Err(SolveError::NonFinite {
+            what: "start",
+            row: k,
+            col: 0,
+            value: p0[k],
+        });
+    }
+    if !constraints.is_feasible(p0, 1e-12) {
+        return Err(SolveError::InvalidOption {
+            name: "start",
+            value: f64::NAN,
+            reason: "the start violates the bounds or inequality constraints",
+        });
+    }
+    let constrained = !constraints.is_unconstrained();
+    let mut p = p0.to_vec();
+    let mut r = vec![0.0; m];
+    problem.residuals(&p, &mut r);
+    let mut evaluations = 1;
+    let mut jac = vec![0.0; m * n];
+    let report = |p: Vec<f64>, ssr: f64, t, it, ev, g, l| SolverReport {
+        bounds: constraints.status(&p),
+        params: p,
+        ssr,
+        termination: t,
+        iterations: it,
+        evaluations: ev,
+        gradient_norm: g,
+        damping: l,
+    };
+    if !all_finite(&r) {
+        return Ok(report(p, f64::NAN, Termination::NonFiniteStart, 0, 1, f64::NAN, 0.0));
+    }
+    let mut cost = 0.5 * sum_sq(&r);
+    let mut d = vec![0.0f64; n];
+
+    let mut lambda = f64::NAN;
+    let mut nu = 2.0;
+    let mut iterations = 0;
+    let mut r_new = vec![0.0; m];
+    let mut r_tmp = vec![0.0; m];
+    let mut p_new = vec![0.0; n];
+    let mut gnorm;
+    let mut polished = 0;
+    let termination = 'outer: loop {
+        problem.jacobian(&p, &mut jac);
+        if !all_finite(&jac) {
+            if iterations == 0 {
+                return Ok(report(p, 2.0 * cost, Termination::NonFiniteStart, 0, evaluations, f64::NAN, 0.0));
+            }
+            // A non-finite Jacobian at an accepted point: fall back to the
+            // finite-difference one, and stop if that fails too.
+            crate::problem::fd_jacobian(problem, &p, &mut jac);
+            evaluations += 2 * n;
+            if !all_finite(&jac) {
+                break Termination::NonFiniteStart;
+            }
+        }
+        // Column norms, scaling, gradient.
+        let mut colnorm = vec![0.0f64; n];
+        let mut g = vec![0.0; n];
+        for i in 0..m {
+            for k in 0..n {
+                let v = jac[i * n + k];
+                colnorm[k] += v * v;
+                g[k] += v * r[i];
+            }
+        }
+        for k in 0..n {
+            colnorm[k] = colnorm[k].sqrt();
+            d[k] = match options.scaling {
+                Scaling::Marquardt => d[k].max(colnorm[k]),
+                Scaling::Identity => 1.0,
+            };
+        }
+        for k in 0..n {
+            if d[k] == 0.0 {
+                d[k] = 1.0;
+            }
+        }
+        let status = constraints.status(&p);
+        let rnorm = (2.0 * cost).sqrt();
+        gnorm = 0.0f64;
+        let mut gscaled = 0.0f64;
+        for k in 0..n {
+            let blocked = (status[k] == crate::BoundStatus::AtLower && g[k] > 0.0)
+                || (status[k] == crate::BoundStatus::AtUpper && g[k] < 0.0);
+            if !blocked {
+                gnorm = gnorm.max(g[k].abs());
+                if colnorm[k] > 0.0 && rnorm > 0.0 {
+                    gscaled = gscaled.max(g[k].abs() / (colnorm[k] * rnorm));
+                }
+            }
+        }
+        if cost <= f64::MIN_POSITIVE {
+            break Termination::ZeroResidual;
+        }
+        if gscaled <= options.gtol {
+            break Termination::SmallGradient;
+        }
+        if iterations >= options.max_iterations {
+            break Termination::MaxIterations;
+        }
+        iterations += 1;
+        if lambda.is_nan() {
+            lambda = options.initial_damping.unwrap_or(match options.scaling {
+                Scaling::Marquardt => 1e-3,
+                Scaling::Identity => 1e-3 * colnorm.iter().fold(0.0f64, |a, c| a.max(c * c)),
+            });
+            if lambda <= 0.0 {
+                lambda = 1e-3;
+            }
+        }
+        let jm = Mat::from_fn(m, n, |i, k| jac[i * n + k]);
+        let (grows, hrows) = if constrained {
+            constraints.step_rows(&p)
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        let gmat = Mat::from_fn(grows.len(), n, |i, k| grows[i][k]);
+        // Inner loop: find an acceptable damping.
+        loop {
+            if evaluations >= options.max_evaluations {
+                break 'outer Termination::MaxEvaluations;
+            }
+            let sl = lambda.sqrt();
+            let e = Mat::from_fn(m + n, n, |i, k| {
+                if i < m {
+                    jm[(i, k)]
+                } else if i - m == k {
+                    sl * d[k]
+                } else {
+                    0.0
+                }
+            });
+            let f: Vec<f64> = (0..m + n).map(|i| if i < m { -r[i] } else { 0.0 }).collect();
+            let step = if constrained {
+                lsi::lsi(e.as_ref(), &f, gmat.as_ref(), &hrows)
+            } else {
+                let fm = Mat::from_fn(m + n, 1, |i, _| f[i]);
+                let s = e.qr().solve_lstsq(&fm);
+                Ok((0..n).map(|k| s[(k, 0)]).collect::<Vec<f64>>())
+            };
+            let mut delta = match step {
+                Ok(s) if all_finite(&s) => s,
+                _ => {
+                    // A failed subproblem is treated as a rejected step.
+                    if !increase_damping(options.damping, &mut lambda, &mut nu) {
+                        break 'outer Termination::DampingLimit;
+                    }
+                    continue;
+                }
+            };
+            // Predicted reduction from the linear model (before acceleration).
+            let mut jd = vec![0.0; m];
+            for i in 0..m {
+                jd[i] = (0..n).map(|k| jac[i * n + k] * delta[k]).sum();
+            }
+            let pred = cost - 0.5 * (0..m).map(|i| (r[i] + jd[i]).powi(2)).sum::<f64>();
+            if options.geodesic_acceleration && !constrained {
+                let h = 0.1;
+                for k in 0..n {
+                    p_new[k] = p[k] + h * delta[k];
+                }
+                problem.residuals(&p_new, &mut r_tmp);
+                evaluations += 1;
+                if all_finite(&r_tmp) {
+                    let fm = Mat::from_fn(m + n, 1, |i, _| {
+                        if i < m {
+                            -(2.0 / h) * ((r_tmp[i] - r[i]) / h - jd[i])
+                        } else {
+                            0.0
+                        }
+                    });
+                    let a = e.qr().solve_lstsq(&fm);
+                    let an = (0..n).map(|k| (d[k] * a[(k, 0)]).powi(2)).sum::<f64>().sqrt();
+                    let dn = (0..n).map(|k| (d[k] * delta[k]).powi(2)).sum::<f64>().sqrt();
+                    if an.is_finite() && 2.0 * an <= 0.75 * dn {
+                        for k in 0..n {
+                            delta[k] += 0.5 * a[(k, 0)];
+                        }
+                    }
+                }
+            }
+            let dnorm = (0..n).map(|k| (d[k] * delta[k]).powi(2)).sum::<f64>().sqrt();
+            let pnorm = (0..n).map(|k| (d[k] * p[k]).powi(2)).sum::<f64>().sqrt();
+            for k in 0..n {
+                p_new[k] = p[k] + delta[k];
+            }
+            if constrained {
+                constraints.clamp(&mut p_new);
+            }
+            if dnorm <= options.xtol * (pnorm + options.xtol) {
+                break 'outer Termination::SmallStep;
+            }
+            problem.residuals(&p_new, &mut r_new);
+            evaluations += 1;
+            let cost_new = if all_finite(&r_new) {
+                0.5 * sum_sq(&r_new)
+            } else {
+                f64::INFINITY
+            };
+            let actual = cost - cost_new;
+            // At the noise level of the cost (reductions of a few ulps) the
+            // cost can no longer rank steps, but the Gauss-Newton step is
+            // still accurate: accept it if the cost does not rise beyond
+            // rounding, and stop after a few consecutive polishing steps
+            // (Gauss-Newton converges quadratically, so by then the
+            // parameters no longer change beyond rounding). A cost test
+            // alone certifies only half the digits of the parameters.
+            let noise = NOISE * cost;
+            let polishing = pred.abs() <= noise && cost_new <= cost + noise;
+            let accept = polishing
+                || match options.damping {
+                    Damping::Nielsen => pred > 0.0 && actual > 0.0,
+                    Damping::Sopp => actual > 0.0,
+                };
+            if accept {
+                let rho = actual / pred;
+                std::mem::swap(&mut p, &mut p_new);
+                std::mem::swap(&mut r, &mut r_new);
+                let old = cost;
+                cost = cost_new;
+                match options.damping {
+                    Damping::Nielsen => {
+                        lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
+                        lambda = lambda.max(1e-300);
+                        nu = 2.0;
+                    }
+                    Damping::Sopp => lambda = (lambda / 2.0).max(1e-4),
+                }
+                if polishing {
+                    polished += 1;
+                    if polished >= POLISH_STEPS {
+                        break 'outer Termination::SmallReduction;
+                    }
+                } else {
+                    polished = 0;
+                }
+                if actual <= options.ftol * old && pred.abs() <= options.ftol * old {
+                    break 'outer Termination::SmallReduction;
+                }
+                continue 'outer;
+            }
+            if !increase_damping(options.damping, &mut lambda, &mut nu) {
+                break 'outer Termination::DampingLimit;
+            }
+        }
+    };
+    let termination = if termination.is_converged() && termination != Termination::ZeroResidual {
+        let jnow = if termination == Termination::SmallGradient {
+            jac.clone()
+        } else {
+            let mut j = vec![0.0; m * n];
+            problem.jacobian(&p, &mut j);
+            j
+        };
+        if plateau(&jnow, &r, &p, &constraints.status(&p)) {
+            Termination::SingularPlateau
+        } else {
+            termination
+        }
+    } else {
+        termination
+    };
+    let ssr = 2.0 * cost;
+    let gn = {
+        let mut g = vec![0.0; n];
+        problem.jacobian(&p, &mut jac);
+        for i in 0..m {
+            for k in 0..n {
+                g[k] += jac[i * n + k] * r[i];
+            }
+        }
+        g.iter().fold(0.0f64, |a, v| a.max(v.abs()))
+    };
+    Ok(report(p, ssr, termination, iterations, evaluations, gn, lambda))
+}
+
+/// Raise the damping after a rejected step; false when the schedule is
+/// exhausted.
+fn increase_damping(schedule: Damping, lambda: &mut f64, nu: &mut f64) -> bool {
+    match schedule {
+        Damping::Nielsen => {
+            *lambda *= *nu;
+            *nu *= 2.0;
+            lambda.is_finite() && *lambda < 1e300
+        }
+        Damping::Sopp => {
+            if *lambda >= 1.0 {
+                return false;
+            }
+            *lambda = (*lambda * 2.0).min(1.0);
+            true
+        }
+    }
+}
+
+/// Whether some free parameter has lost its influence: a 100% change of
+/// `p_k` would change the residual by less than `PLATEAU_RCOND ||r||`
+/// (`||J_k|| max(|p_k|, 1e-300) <= PLATEAU_RCOND ||r||`). There a stationary
+/// point is a plateau, not a certified minimum (BoxBOD from start 1 ends
+/// with `exp(-b2 x) ~ 0`).
+fn plateau(jac: &[f64], r: &[f64], p: &[f64], status: &[crate::BoundStatus]) -> bool {
+    let n = p.len();
+    let rnorm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if rnorm == 0.0 {
+        return false;
+    }
+    (0..n).filter(|k| status[*k] == crate::BoundStatus::Free).any(|k| {
+        let col = (0..r.len()).map(|i| jac[i * n + k].powi(2)).sum::<f64>().sqrt();
+        col * p[k].abs().max(1e-300) <= PLATEAU_RCOND * rnorm
+    })
+}
+
+/// Relative size of a cost change that rounding can produce.
+const NOISE: f64 = 64.0 * f64::EPSILON;
+
+/// Consecutive noise-level steps after which the solver stops.
+const POLISH_STEPS: usize = 4;
+
+/// Relative influence below which a parameter is considered lost.
+const PLATEAU_RCOND: f64 = 1e-6;

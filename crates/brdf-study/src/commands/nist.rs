@@ -1,0 +1,103 @@
+//! `brdf nist --dir DIR [--json] [--out DIR]`: certify the solver on every
+//! NIST StRD problem of a folder, from both starts.
+
+use std::path::PathBuf;
+
+use brdf_solve::{Damping, LmOptions, Scaling};
+
+use crate::StudyError;
+
+/// Arguments of `brdf nist`.
+#[derive(Debug, clap::Args)]
+pub struct NistArgs {
+    /// Folder with StRD `.dat` files (default: `$BRDF_DATA/nist_strd`).
+    #[arg(long)]
+    pub dir: Option<PathBuf>,
+    /// Machine-readable output.
+    #[arg(long)]
+    pub json: bool,
+    /// Run only the configured solver (no fallback strategy); the other
+    /// solver options apply only with this flag.
+    #[arg(long)]
+    pub single: bool,
+    /// Damping schedule: nielsen (default) or sopp.
+    #[arg(long, default_value = "nielsen")]
+    pub damping: String,
+    /// Use geodesic acceleration.
+    #[arg(long)]
+    pub geodesic: bool,
+    /// Iteration cap.
+    #[arg(long, default_value_t = 1000)]
+    pub max_iterations: usize,
+    /// Relative-reduction tolerance (0 disables the test: the default, since
+    /// a cost test certifies only half the digits of the parameters).
+    #[arg(long, default_value_t = 0.0)]
+    pub ftol: f64,
+    /// Scaling of the damping term: marquardt (default) or identity.
+    #[arg(long, default_value = "marquardt")]
+    pub scaling: String,
+    /// Initial damping (default: 1e-3).
+    #[arg(long)]
+    pub initial_damping: Option<f64>,
+    /// Also write `nist.md` and `nist.csv` into this folder.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Run `brdf nist`.
+pub fn run(args: &NistArgs) -> Result<(), StudyError> {
+    let dir = match &args.dir {
+        Some(d) => d.clone(),
+        None => std::env::var_os("BRDF_DATA")
+            .map(|d| PathBuf::from(d).join("nist_strd"))
+            .ok_or_else(|| StudyError::Usage("give --dir DIR or set BRDF_DATA".into()))?,
+    };
+    let damping = match args.damping.as_str() {
+        "nielsen" => Damping::Nielsen,
+        "sopp" => Damping::Sopp,
+        other => {
+            return Err(StudyError::Usage(format!(
+                "--damping {other}: expected nielsen or sopp"
+            )));
+        }
+    };
+    let scaling = match args.scaling.as_str() {
+        "marquardt" => Scaling::Marquardt,
+        "identity" => Scaling::Identity,
+        other => {
+            return Err(StudyError::Usage(format!(
+                "--scaling {other}: expected marquardt or identity"
+            )));
+        }
+    };
+    let options = LmOptions {
+        scaling,
+        damping,
+        geodesic_acceleration: args.geodesic,
+        max_iterations: args.max_iterations,
+        max_evaluations: 20 * args.max_iterations,
+        ftol: args.ftol,
+        initial_damping: args.initial_damping,
+        ..LmOptions::default()
+    };
+    let strategies = if args.single {
+        vec![("LM (as configured)", options)]
+    } else {
+        crate::nist::strategies()
+    };
+    let runs = crate::nist::run_dir(&dir, &strategies)?;
+    let table = crate::nist::table(&runs, &dir);
+    if let Some(out) = &args.out {
+        std::fs::create_dir_all(out).map_err(|e| StudyError::Io {
+            path: out.display().to_string(),
+            source: e,
+        })?;
+        table.write(out, "nist")?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&runs)?);
+    } else {
+        print!("{}", table.markdown());
+    }
+    Ok(())
+}
