@@ -10,6 +10,7 @@
 //! | [`nnls`] | Lawson-Hanson non-negative least squares |
 //! | [`lsi`] | least squares with linear inequality constraints (LDP through NNLS) |
 //! | [`robust_weights`] | the eight robust weight functions with their tuning constants |
+//! | [`irls`] | robust regression by IRLS (MATLAB `robustfit`; three scale conventions) |
 //! | [`problem`] | [`LeastSquaresProblem`]: what a non-linear solver needs from a problem |
 //! | [`levenberg_marquardt`] | Levenberg-Marquardt: stacked-QR steps, Marquardt scaling, Nielsen's or Sopp's damping, geodesic acceleration |
 //! | [`covariance`] | parameter covariance and standard errors (SVD of `J`) |
@@ -28,6 +29,7 @@ pub mod bounded;
 pub mod constraints;
 pub mod covariance;
 pub mod error;
+pub mod irls;
 pub mod levenberg_marquardt;
 pub mod linear;
 pub mod lsi;
@@ -40,6 +42,7 @@ pub mod strd;
 pub use bounded::bounded_least_squares;
 pub use constraints::Constraints;
 pub use error::SolveError;
+pub use irls::{IrlsOptions, IrlsSolution, ScaleConvention, irls};
 pub use levenberg_marquardt::{Damping, LmOptions, Scaling, levenberg_marquardt};
 pub use linear::{LstsqMethod, LstsqSolution, lstsq};
 pub use lsi::lsi;
