@@ -17,6 +17,9 @@
 //! | [`constraints`] | box bounds and linear inequalities |
 //! | [`bounded`] | the bounded SQP-style solver (LSI subproblem per iteration) |
 //! | [`report`] | [`SolverReport`], [`Termination`], [`BoundStatus`] |
+//! | [`varpro`] | variable projection: linear coefficients (NNLS) projected out, Golub-Pereyra Jacobian |
+//! | [`model_problem`] | least-squares problems from any `Parametric` model and samples (full and separable) |
+//! | [`multistart`] | deterministic Halton multi-start, best result and spread |
 //! | [`strd`] | the 27 NIST StRD model functions with analytic gradients, LRE |
 //! | [`error`] | [`SolveError`] |
 //!
@@ -33,11 +36,14 @@ pub mod irls;
 pub mod levenberg_marquardt;
 pub mod linear;
 pub mod lsi;
+pub mod model_problem;
+pub mod multistart;
 pub mod nnls;
 pub mod problem;
 pub mod report;
 pub mod robust_weights;
 pub mod strd;
+pub mod varpro;
 
 pub use bounded::bounded_least_squares;
 pub use constraints::Constraints;
@@ -48,4 +54,7 @@ pub use linear::{LstsqMethod, LstsqSolution, lstsq};
 pub use lsi::lsi;
 pub use nnls::{NnlsSolution, NnlsTermination, nnls};
 pub use problem::{LeastSquaresProblem, fd_jacobian};
+pub use model_problem::ModelProblem;
+pub use multistart::{MultiStartReport, StartBox, multistart};
+pub use varpro::{SeparableProblem, VarPro};
 pub use report::{BoundStatus, SolverReport, Termination};
