@@ -120,7 +120,11 @@ pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
             nobs = Some(value_after_colon(path, no, t)? as usize);
         } else if let Some(rest) = t.strip_prefix("Data:") {
             let cols: Vec<&str> = rest.split_whitespace().collect();
-            if !cols.is_empty() && cols.iter().all(|c| c.starts_with('y') || c.starts_with('x')) {
+            if !cols.is_empty()
+                && cols
+                    .iter()
+                    .all(|c| c.starts_with('y') || c.starts_with('x'))
+            {
                 data_header = Some((i, cols.len()));
                 break;
             }

@@ -31,7 +31,11 @@ fn bad_input_names_the_line() {
     let good = std::fs::read_to_string(fixture()).unwrap();
     let p = Path::new("bad.dat");
     // Truncated: one data line missing.
-    let truncated: String = good.lines().take(good.lines().count() - 1).collect::<Vec<_>>().join("\n");
+    let truncated: String = good
+        .lines()
+        .take(good.lines().count() - 1)
+        .collect::<Vec<_>>()
+        .join("\n");
     match nist::parse(p, &truncated) {
         Err(IoError::Count { found, .. }) => assert!(found.contains("2 data lines"), "{found}"),
         other => panic!("{other:?}"),
@@ -47,17 +51,26 @@ fn bad_input_names_the_line() {
     }
     // A parameter line with three numbers.
     let bad = good.replace("0.25          2.0000000000E-01", "2.0000000000E-01");
-    assert!(matches!(nist::parse(p, &bad), Err(IoError::Count { line: 13, .. })));
+    assert!(matches!(
+        nist::parse(p, &bad),
+        Err(IoError::Count { line: 13, .. })
+    ));
     // NaN in the data.
     let bad = good.replace("      1.5             4", "      NaN             4");
-    assert!(matches!(nist::parse(p, &bad), Err(IoError::NotFinite { line: 23, .. })));
+    assert!(matches!(
+        nist::parse(p, &bad),
+        Err(IoError::NotFinite { line: 23, .. })
+    ));
     // Missing header value.
     let bad = good.replace("Residual Sum of Squares:", "Residual Sum:");
     assert!(matches!(nist::parse(p, &bad), Err(IoError::Format { .. })));
     // Empty file.
     assert!(nist::parse(p, "").is_err());
     // Missing file.
-    assert!(matches!(nist::read(Path::new("/nonexistent/x.dat")), Err(IoError::Io { .. })));
+    assert!(matches!(
+        nist::read(Path::new("/nonexistent/x.dat")),
+        Err(IoError::Io { .. })
+    ));
 }
 
 #[test]
@@ -77,9 +90,17 @@ fn real_files_match_the_index() {
             .iter()
             .find(|d| d.name == f[0])
             .unwrap_or_else(|| panic!("{} listed in INDEX.tsv but not read", f[0]));
-        assert_eq!(d.certified.len(), f[2].parse::<usize>().unwrap(), "{}", f[0]);
+        assert_eq!(
+            d.certified.len(),
+            f[2].parse::<usize>().unwrap(),
+            "{}",
+            f[0]
+        );
         assert_eq!(d.y.len(), f[3].parse::<usize>().unwrap(), "{}", f[0]);
-        let cert: Vec<f64> = f[9].split_whitespace().map(|v| v.parse().unwrap()).collect();
+        let cert: Vec<f64> = f[9]
+            .split_whitespace()
+            .map(|v| v.parse().unwrap())
+            .collect();
         assert_eq!(d.certified, cert, "{}", f[0]);
         assert_eq!(d.rss, f[11].parse::<f64>().unwrap(), "{}", f[0]);
     }

@@ -10,11 +10,11 @@
 //! The options are [`LmOptions`](crate::LmOptions); the stopping gradient is
 //! the projected one (components pushing against an active bound removed).
 
+use crate::SolveError;
 use crate::constraints::Constraints;
 use crate::levenberg_marquardt::{LmOptions, minimize};
 use crate::problem::LeastSquaresProblem;
 use crate::report::SolverReport;
-use crate::SolveError;
 
 /// Minimise `1/2 ||r(p)||^2` subject to `constraints`, from a feasible `p0`.
 pub fn bounded_least_squares<P: LeastSquaresProblem + ?Sized>(

@@ -145,7 +145,11 @@ pub fn robust_scale(r: &[f64], p: usize, y: &[f64], convention: ScaleConvention)
 }
 
 /// Robust fit of `y ~ X b`.
-pub fn irls(x: MatRef<'_, f64>, y: &[f64], options: &IrlsOptions) -> Result<IrlsSolution, SolveError> {
+pub fn irls(
+    x: MatRef<'_, f64>,
+    y: &[f64],
+    options: &IrlsOptions,
+) -> Result<IrlsSolution, SolveError> {
     let (m, p) = (x.nrows(), x.ncols());
     if y.len() != m {
         return Err(SolveError::Dimension {

@@ -118,7 +118,11 @@ impl LmOptions {
     }
 
     fn validate(&self) -> Result<(), SolveError> {
-        for (name, v) in [("ftol", self.ftol), ("xtol", self.xtol), ("gtol", self.gtol)] {
+        for (name, v) in [
+            ("ftol", self.ftol),
+            ("xtol", self.xtol),
+            ("gtol", self.gtol),
+        ] {
             if !(v >= 0.0 && v.is_finite()) {
                 return Err(SolveError::InvalidOption {
                     name,
@@ -216,7 +220,15 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
         damping: l,
     };
     if !all_finite(&r) {
-        return Ok(report(p, f64::NAN, Termination::NonFiniteStart, 0, 1, f64::NAN, 0.0));
+        return Ok(report(
+            p,
+            f64::NAN,
+            Termination::NonFiniteStart,
+            0,
+            1,
+            f64::NAN,
+            0.0,
+        ));
     }
     let mut cost = 0.5 * sum_sq(&r);
     let mut d = vec![0.0f64; n];
@@ -233,7 +245,15 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
         problem.jacobian(&p, &mut jac);
         if !all_finite(&jac) {
             if iterations == 0 {
-                return Ok(report(p, 2.0 * cost, Termination::NonFiniteStart, 0, evaluations, f64::NAN, 0.0));
+                return Ok(report(
+                    p,
+                    2.0 * cost,
+                    Termination::NonFiniteStart,
+                    0,
+                    evaluations,
+                    f64::NAN,
+                    0.0,
+                ));
             }
             // A non-finite Jacobian at an accepted point: fall back to the
             // finite-difference one, and stop if that fails too.
@@ -320,7 +340,9 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
                     0.0
                 }
             });
-            let f: Vec<f64> = (0..m + n).map(|i| if i < m { -r[i] } else { 0.0 }).collect();
+            let f: Vec<f64> = (0..m + n)
+                .map(|i| if i < m { -r[i] } else { 0.0 })
+                .collect();
             let step = if constrained {
                 lsi::lsi(e.as_ref(), &f, gmat.as_ref(), &hrows)
             } else {
@@ -360,8 +382,14 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
                         }
                     });
                     let a = e.qr().solve_lstsq(&fm);
-                    let an = (0..n).map(|k| (d[k] * a[(k, 0)]).powi(2)).sum::<f64>().sqrt();
-                    let dn = (0..n).map(|k| (d[k] * delta[k]).powi(2)).sum::<f64>().sqrt();
+                    let an = (0..n)
+                        .map(|k| (d[k] * a[(k, 0)]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    let dn = (0..n)
+                        .map(|k| (d[k] * delta[k]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
                     if an.is_finite() && 2.0 * an <= 0.75 * dn {
                         for k in 0..n {
                             delta[k] += 0.5 * a[(k, 0)];
@@ -369,7 +397,10 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
                     }
                 }
             }
-            let dnorm = (0..n).map(|k| (d[k] * delta[k]).powi(2)).sum::<f64>().sqrt();
+            let dnorm = (0..n)
+                .map(|k| (d[k] * delta[k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
             let pnorm = (0..n).map(|k| (d[k] * p[k]).powi(2)).sum::<f64>().sqrt();
             for k in 0..n {
                 p_new[k] = p[k] + delta[k];
@@ -461,7 +492,15 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
         }
         g.iter().fold(0.0f64, |a, v| a.max(v.abs()))
     };
-    Ok(report(p, ssr, termination, iterations, evaluations, gn, lambda))
+    Ok(report(
+        p,
+        ssr,
+        termination,
+        iterations,
+        evaluations,
+        gn,
+        lambda,
+    ))
 }
 
 /// Raise the damping after a rejected step; false when the schedule is
@@ -494,10 +533,15 @@ fn plateau(jac: &[f64], r: &[f64], p: &[f64], status: &[crate::BoundStatus]) -> 
     if rnorm == 0.0 {
         return false;
     }
-    (0..n).filter(|k| status[*k] == crate::BoundStatus::Free).any(|k| {
-        let col = (0..r.len()).map(|i| jac[i * n + k].powi(2)).sum::<f64>().sqrt();
-        col * p[k].abs().max(1e-300) <= PLATEAU_RCOND * rnorm
-    })
+    (0..n)
+        .filter(|k| status[*k] == crate::BoundStatus::Free)
+        .any(|k| {
+            let col = (0..r.len())
+                .map(|i| jac[i * n + k].powi(2))
+                .sum::<f64>()
+                .sqrt();
+            col * p[k].abs().max(1e-300) <= PLATEAU_RCOND * rnorm
+        })
 }
 
 /// Relative size of a cost change that rounding can produce.

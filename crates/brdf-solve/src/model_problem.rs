@@ -163,7 +163,8 @@ impl SeparableProblem for ModelProblem<'_> {
             None => {
                 // One gradient evaluation gives every basis column.
                 let p = self.assemble(a, &vec![0.0; nl]);
-                self.model.eval_grad_batch_at(&p, self.pairs, &mut val, &mut jac);
+                self.model
+                    .eval_grad_batch_at(&p, self.pairs, &mut val, &mut jac);
                 for (t, k) in self.linear.iter().enumerate() {
                     for i in 0..m {
                         phi[t * m + i] = jac[i * np + k] * self.scale[i % n];
@@ -178,7 +179,8 @@ impl SeparableProblem for ModelProblem<'_> {
                     c.fill(0.0);
                     c[t] = 1.0;
                     let p = self.assemble(a, &c);
-                    self.model.eval_grad_batch_at(&p, self.pairs, &mut val, &mut jac);
+                    self.model
+                        .eval_grad_batch_at(&p, self.pairs, &mut val, &mut jac);
                     for i in 0..m {
                         let s = self.scale[i % n];
                         phi[t * m + i] = val[i] * s;

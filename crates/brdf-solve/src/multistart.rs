@@ -125,13 +125,18 @@ where
     };
     let Some((best_start, best)) = pick(true).or_else(|| pick(false)) else {
         // Every start failed: return the first error.
-        return Err(results.into_iter().find_map(|r| r.err()).unwrap_or(SolveError::Empty {
-            what: "successful starts",
-        }));
+        return Err(results
+            .into_iter()
+            .find_map(|r| r.err())
+            .unwrap_or(SolveError::Empty {
+                what: "successful starts",
+            }));
     };
     let n_at_best = ssr
         .iter()
-        .filter(|s| s.is_finite() && (**s - best.ssr).abs() <= 1e-6 * best.ssr.max(f64::MIN_POSITIVE))
+        .filter(|s| {
+            s.is_finite() && (**s - best.ssr).abs() <= 1e-6 * best.ssr.max(f64::MIN_POSITIVE)
+        })
         .count();
     Ok(MultiStartReport {
         best,

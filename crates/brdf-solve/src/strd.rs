@@ -36,9 +36,9 @@ use std::f64::consts::PI;
 /// The names of all 27 StRD non-linear regression problems.
 pub const PROBLEMS: [&str; 27] = [
     "Misra1a", "Chwirut2", "Chwirut1", "Lanczos3", "Gauss1", "Gauss2", "DanWood", "Misra1b",
-    "Kirby2", "Hahn1", "Nelson", "MGH17", "Lanczos1", "Lanczos2", "Gauss3", "Misra1c",
-    "Misra1d", "Roszman1", "ENSO", "MGH09", "Thurber", "BoxBOD", "Rat42", "MGH10", "Eckerle4",
-    "Rat43", "Bennett5",
+    "Kirby2", "Hahn1", "Nelson", "MGH17", "Lanczos1", "Lanczos2", "Gauss3", "Misra1c", "Misra1d",
+    "Roszman1", "ENSO", "MGH09", "Thurber", "BoxBOD", "Rat42", "MGH10", "Eckerle4", "Rat43",
+    "Bennett5",
 ];
 
 /// A StRD model family (several problems share one formula).
@@ -411,8 +411,11 @@ impl LeastSquaresProblem for StrdProblem {
         let np = self.model.n_predictors();
         let n = self.model.n_params();
         for i in 0..self.y.len() {
-            self.model
-                .eval(&self.x[i * np..(i + 1) * np], p, &mut jac[i * n..(i + 1) * n]);
+            self.model.eval(
+                &self.x[i * np..(i + 1) * np],
+                p,
+                &mut jac[i * n..(i + 1) * n],
+            );
         }
     }
 }

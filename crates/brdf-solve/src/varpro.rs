@@ -153,7 +153,9 @@ impl<S: SeparableProblem + ?Sized> LeastSquaresProblem for VarPro<'_, S> {
             let mut col = vec![0.0; m];
             if let (Some(q), Some(rr)) = (&q, &rr) {
                 // P_perp u.
-                let qtu: Vec<f64> = (0..nf).map(|t| (0..m).map(|i| q[(i, t)] * u[i]).sum()).collect();
+                let qtu: Vec<f64> = (0..nf)
+                    .map(|t| (0..m).map(|i| q[(i, t)] * u[i]).sum())
+                    .collect();
                 for i in 0..m {
                     u[i] -= (0..nf).map(|t| q[(i, t)] * qtu[t]).sum::<f64>();
                 }
@@ -161,7 +163,9 @@ impl<S: SeparableProblem + ?Sized> LeastSquaresProblem for VarPro<'_, S> {
                 let mut z = Mat::from_fn(nf, 1, |t, _| {
                     (0..m).map(|i| dk[free[t] * m + i] * r[i]).sum::<f64>()
                 });
-                rr.as_ref().transpose().solve_lower_triangular_in_place(z.as_mut());
+                rr.as_ref()
+                    .transpose()
+                    .solve_lower_triangular_in_place(z.as_mut());
                 for i in 0..m {
                     col[i] = u[i] - (0..nf).map(|t| q[(i, t)] * z[(t, 0)]).sum::<f64>();
                 }

@@ -8,12 +8,19 @@ use brdf_solve::{IrlsOptions, ScaleConvention, irls};
 use faer::Mat;
 
 fn fixture() -> serde_json::Value {
-    let p = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/irls/statsmodels.json");
+    let p = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/irls/statsmodels.json"
+    );
     serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
 }
 
 fn vecf(v: &serde_json::Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
 }
 
 #[test]
@@ -40,11 +47,20 @@ fn matches_statsmodels_rlm() {
         for k in 0..3 {
             // Our stopping rule is MATLAB's (a change below sqrt(eps) per
             // iteration); statsmodels ran to 1e-14: agreement to 1e-5.
-            assert!((s.coef[k] - coef[k]).abs() < 1e-5 * coef[k].abs().max(1.0), "{name}: {:?} vs {coef:?}", s.coef);
+            assert!(
+                (s.coef[k] - coef[k]).abs() < 1e-5 * coef[k].abs().max(1.0),
+                "{name}: {:?} vs {coef:?}",
+                s.coef
+            );
         }
         let w = vecf(&f["fits"][name]["weights"]);
         for i in 0..y.len() {
-            assert!((s.weights[i] - w[i]).abs() < 1e-4, "{name} weight {i}: {} vs {}", s.weights[i], w[i]);
+            assert!(
+                (s.weights[i] - w[i]).abs() < 1e-4,
+                "{name} weight {i}: {} vs {}",
+                s.weights[i],
+                w[i]
+            );
         }
     }
 }
@@ -69,7 +85,11 @@ fn exact_line_with_outlier_is_recovered() {
         let s = irls(x.as_ref(), &y, &opts).unwrap();
         assert!(s.converged, "{conv:?}: {s:?}");
         assert_eq!(s.weights[7], 0.0, "{conv:?}");
-        assert!((s.coef[0] - 2.0).abs() < 1e-10 && (s.coef[1] - 0.5).abs() < 1e-10, "{conv:?}: {:?}", s.coef);
+        assert!(
+            (s.coef[0] - 2.0).abs() < 1e-10 && (s.coef[1] - 0.5).abs() < 1e-10,
+            "{conv:?}: {:?}",
+            s.coef
+        );
     }
 }
 
@@ -77,7 +97,11 @@ fn exact_line_with_outlier_is_recovered() {
 fn zero_scale_is_an_exact_fit_not_a_division_by_zero() {
     let x = Mat::from_fn(5, 2, |i, j| if j == 0 { 1.0 } else { i as f64 });
     let y: Vec<f64> = (0..5).map(|i| 1.0 + 3.0 * i as f64).collect();
-    for conv in [ScaleConvention::Matlab2004, ScaleConvention::Matlab2011, ScaleConvention::Statsmodels] {
+    for conv in [
+        ScaleConvention::Matlab2004,
+        ScaleConvention::Matlab2011,
+        ScaleConvention::Statsmodels,
+    ] {
         let s = irls(
             x.as_ref(),
             &y,
@@ -88,7 +112,10 @@ fn zero_scale_is_an_exact_fit_not_a_division_by_zero() {
         )
         .unwrap();
         assert!(s.coef.iter().all(|v| v.is_finite()));
-        assert!((s.coef[0] - 1.0).abs() < 1e-10 && (s.coef[1] - 3.0).abs() < 1e-10, "{conv:?}");
+        assert!(
+            (s.coef[0] - 1.0).abs() < 1e-10 && (s.coef[1] - 3.0).abs() < 1e-10,
+            "{conv:?}"
+        );
     }
 }
 
@@ -112,7 +139,14 @@ fn bad_input_is_an_error() {
     assert!(irls(x.as_ref(), &[1.0, 2.0], &IrlsOptions::default()).is_err());
     let x = Mat::from_fn(4, 1, |_, _| 1.0);
     assert!(irls(x.as_ref(), &[1.0, 2.0], &IrlsOptions::default()).is_err());
-    assert!(irls(x.as_ref(), &[1.0, f64::NAN, 1.0, 1.0], &IrlsOptions::default()).is_err());
+    assert!(
+        irls(
+            x.as_ref(),
+            &[1.0, f64::NAN, 1.0, 1.0],
+            &IrlsOptions::default()
+        )
+        .is_err()
+    );
     let bad = IrlsOptions {
         tune: Some(-1.0),
         ..IrlsOptions::default()

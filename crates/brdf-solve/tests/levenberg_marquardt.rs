@@ -49,7 +49,11 @@ fn rosenbrock_from_the_classic_start() {
             ..LmOptions::default()
         };
         let rep = levenberg_marquardt(&Rosenbrock, &[-1.2, 1.0], &opts).unwrap();
-        assert!(rep.termination.is_converged(), "{damping:?}: {:?}", rep.termination);
+        assert!(
+            rep.termination.is_converged(),
+            "{damping:?}: {:?}",
+            rep.termination
+        );
         assert!((rep.params[0] - 1.0).abs() < 1e-10 && (rep.params[1] - 1.0).abs() < 1e-10);
         assert!(rep.ssr < 1e-20);
     }
@@ -70,7 +74,12 @@ fn boxbod_plateau_is_not_called_convergence() {
     // Either it escapes to the certified minimum, or it must not claim
     // convergence on the plateau (SSR far above the certified 1168.0).
     if rep.ssr > 1200.0 {
-        assert!(!rep.termination.is_converged(), "{:?} at ssr {}", rep.termination, rep.ssr);
+        assert!(
+            !rep.termination.is_converged(),
+            "{:?} at ssr {}",
+            rep.termination,
+            rep.ssr
+        );
         assert_eq!(rep.termination, Termination::SingularPlateau);
     } else {
         assert!((rep.ssr - 1.1680088766e3).abs() < 1e-6);
@@ -100,8 +109,13 @@ fn bounded_solution_sits_on_the_bound_and_iterates_stay_feasible() {
     let x = [1.0, 2.0, 3.0, 5.0, 7.0, 10.0];
     let y = [109.0, 149.0, 149.0, 191.0, 213.0, 224.0];
     let g: Vec<f64> = x.iter().map(|x: &f64| 1.0 - (-0.4 * x).exp()).collect();
-    let b1 = g.iter().zip(&y).map(|(g, y)| g * y).sum::<f64>() / g.iter().map(|g| g * g).sum::<f64>();
-    assert!((rep.params[0] - b1).abs() < 1e-8 * b1, "{} vs {b1}", rep.params[0]);
+    let b1 =
+        g.iter().zip(&y).map(|(g, y)| g * y).sum::<f64>() / g.iter().map(|g| g * g).sum::<f64>();
+    assert!(
+        (rep.params[0] - b1).abs() < 1e-8 * b1,
+        "{} vs {b1}",
+        rep.params[0]
+    );
 }
 
 #[test]
@@ -125,7 +139,11 @@ fn linear_inequality_is_respected() {
         .with_inequality(vec![1.0, 1.0], 1.0)
         .unwrap();
     let rep = bounded_least_squares(&Dist, &[0.1, 0.1], &c, &LmOptions::default()).unwrap();
-    assert!((rep.params[0] - 0.5).abs() < 1e-9 && (rep.params[1] - 0.5).abs() < 1e-9, "{:?}", rep.params);
+    assert!(
+        (rep.params[0] - 0.5).abs() < 1e-9 && (rep.params[1] - 0.5).abs() < 1e-9,
+        "{:?}",
+        rep.params
+    );
     assert!(rep.params[0] + rep.params[1] <= 1.0 + 1e-12);
     // An infeasible start is refused, not silently moved.
     assert!(bounded_least_squares(&Dist, &[2.0, 2.0], &c, &LmOptions::default()).is_err());
@@ -137,7 +155,10 @@ fn lsi_matches_hand_solution() {
     let e = Mat::<f64>::identity(2, 2);
     let g = Mat::from_fn(2, 2, |i, j| [[1.0, 0.0], [0.0, -1.0]][i][j]);
     let x = lsi(e.as_ref(), &[1.0, 2.0], g.as_ref(), &[1.5, -1.0]).unwrap();
-    assert!((x[0] - 1.5).abs() < 1e-12 && (x[1] - 1.0).abs() < 1e-12, "{x:?}");
+    assert!(
+        (x[0] - 1.5).abs() < 1e-12 && (x[1] - 1.0).abs() < 1e-12,
+        "{x:?}"
+    );
     // Infeasible: x0 >= 1 and -x0 >= 0.
     let g = Mat::from_fn(2, 2, |i, j| [[1.0, 0.0], [-1.0, 0.0]][i][j]);
     assert!(lsi(e.as_ref(), &[1.0, 2.0], g.as_ref(), &[1.0, 0.0]).is_err());
@@ -172,7 +193,10 @@ fn covariance_of_a_straight_line_matches_the_textbook_formula() {
     let s2 = rep.ssr / 3.0;
     let expect = [s2 * sxx / det, -s2 * sx / det, -s2 * sx / det, s2 * n / det];
     for k in 0..4 {
-        assert!((cov[k] - expect[k]).abs() < 1e-9 * expect[k].abs().max(1e-3), "{cov:?} vs {expect:?}");
+        assert!(
+            (cov[k] - expect[k]).abs() < 1e-9 * expect[k].abs().max(1e-3),
+            "{cov:?} vs {expect:?}"
+        );
     }
 }
 

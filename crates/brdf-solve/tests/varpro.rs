@@ -63,7 +63,11 @@ fn reduced_jacobian_matches_differences() {
     // Perturb the data so the residual is not zero (the second term of the
     // Golub-Pereyra Jacobian matters only then).
     let p = Exps {
-        y: p.y.iter().enumerate().map(|(i, v)| v + 1e-2 * ((i * 7919) % 13) as f64 / 13.0).collect(),
+        y: p.y
+            .iter()
+            .enumerate()
+            .map(|(i, v)| v + 1e-2 * ((i * 7919) % 13) as f64 / 13.0)
+            .collect(),
         x: p.x,
     };
     for nonneg in [false, true] {
@@ -75,7 +79,12 @@ fn reduced_jacobian_matches_differences() {
         fd_jacobian(&vp, &a, &mut jf);
         let scale = jf.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for i in 0..ja.len() {
-            assert!((ja[i] - jf[i]).abs() < 1e-7 * scale, "nonneg {nonneg} entry {i}: {} vs {}", ja[i], jf[i]);
+            assert!(
+                (ja[i] - jf[i]).abs() < 1e-7 * scale,
+                "nonneg {nonneg} entry {i}: {} vs {}",
+                ja[i],
+                jf[i]
+            );
         }
     }
 }
@@ -133,7 +142,10 @@ fn unconstrained_varpro_solves_from_nist_start() {
     assert!(rep.termination.is_converged(), "{:?}", rep.termination);
     let mut a = rep.params.clone();
     a.sort_by(|x, y| x.total_cmp(y));
-    assert!((a[0] - 1.0).abs() < 1e-6 && (a[1] - 3.0).abs() < 1e-6 && (a[2] - 5.0).abs() < 1e-6, "{a:?}");
+    assert!(
+        (a[0] - 1.0).abs() < 1e-6 && (a[1] - 3.0).abs() < 1e-6 && (a[2] - 5.0).abs() < 1e-6,
+        "{a:?}"
+    );
 }
 
 #[test]
@@ -149,7 +161,11 @@ fn halton_starts_respect_the_box() {
         assert!(p[0] >= 1.0 && p[0] <= 1e4 && p[1] >= -1.0 && p[1] <= 1.0);
     }
     // First Halton points: base 2 gives 1/2, base 3 gives 1/3.
-    assert!((s[0][0] - 100.0).abs() < 1e-9, "log-scale midpoint {}", s[0][0]);
+    assert!(
+        (s[0][0] - 100.0).abs() < 1e-9,
+        "log-scale midpoint {}",
+        s[0][0]
+    );
     assert!((s[0][1] - (-1.0 + 2.0 / 3.0)).abs() < 1e-12);
     let bad = StartBox {
         lower: vec![0.0],

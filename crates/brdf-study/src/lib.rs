@@ -15,10 +15,12 @@ pub mod data;
 pub mod error;
 pub mod fit;
 pub mod nist;
+pub mod pipeline;
 #[cfg(feature = "plots")]
 pub mod plots;
 pub mod render;
 pub mod report;
+pub mod saved_model;
 pub mod synthetic;
 
 pub use error::StudyError;

@@ -33,7 +33,12 @@ fn certified_values_give_the_certified_rss() {
         // Certified values are printed to 11 digits; the RSS at the rounded
         // values agrees to about 9 digits except for near-zero RSS.
         let digits = lre(ssr, ds.rss);
-        assert!(digits > 6.0 || ds.rss < 1e-20, "{}: ssr {ssr} vs {} ({digits})", ds.name, ds.rss);
+        assert!(
+            digits > 6.0 || ds.rss < 1e-20,
+            "{}: ssr {ssr} vs {} ({digits})",
+            ds.name,
+            ds.rss
+        );
     }
 }
 
@@ -43,9 +48,27 @@ fn every_run_reaches_six_digits_and_the_mean_beats_9_4() {
     let runs = brdf_study::nist::run_dir(&dir, &brdf_study::nist::strategies()).unwrap();
     assert_eq!(runs.len(), 44);
     for r in &runs {
-        assert!(r.termination.is_converged(), "{} start {}: {:?}", r.problem, r.start, r.termination);
-        assert!(r.min_param_lre >= 6.0, "{} start {}: LRE {}", r.problem, r.start, r.min_param_lre);
-        assert!(r.rss_lre >= 6.0 || r.problem == "Lanczos1", "{} start {}: RSS LRE {}", r.problem, r.start, r.rss_lre);
+        assert!(
+            r.termination.is_converged(),
+            "{} start {}: {:?}",
+            r.problem,
+            r.start,
+            r.termination
+        );
+        assert!(
+            r.min_param_lre >= 6.0,
+            "{} start {}: LRE {}",
+            r.problem,
+            r.start,
+            r.min_param_lre
+        );
+        assert!(
+            r.rss_lre >= 6.0 || r.problem == "Lanczos1",
+            "{} start {}: RSS LRE {}",
+            r.problem,
+            r.start,
+            r.rss_lre
+        );
     }
     let mean = runs.iter().map(|r| r.min_param_lre).sum::<f64>() / runs.len() as f64;
     assert!(mean > 9.4, "mean LRE {mean}");

@@ -9,9 +9,12 @@ use crate::cli::ModelOpts;
 /// Arguments of `brdf eval`.
 #[derive(Debug, clap::Args)]
 pub struct EvalArgs {
-    /// Model name (see `brdf models`).
-    #[arg(long)]
+    /// Model name (see `brdf models`); not needed with --load.
+    #[arg(long, default_value = "")]
     pub model: String,
+    /// Evaluate a model saved by `brdf fit --save FILE`.
+    #[arg(long)]
+    pub load: Option<std::path::PathBuf>,
     /// Parameters as `name=value,...`; unnamed ones take their defaults.
     #[arg(long, default_value = "")]
     pub params: String,
@@ -82,19 +85,32 @@ struct EvalOut {
 
 /// Run `brdf eval`.
 pub fn run(args: &EvalArgs) -> Result<(), StudyError> {
-    let mut model = brdf_models::build(&args.model, &args.model_opts.config())?;
-    let values = assign_by_name(
-        &args.model,
-        model.param_specs(),
-        &parse_assignments(&args.params)?,
-    )?;
-    model.set_params(&values)?;
+    let (model, values) = match &args.load {
+        Some(path) => {
+            let m = crate::saved_model::SavedModel::load(path)?.build()?;
+            let v = m.params().to_vec();
+            (m, v)
+        }
+        None => {
+            if args.model.is_empty() {
+                return Err(StudyError::Usage("give --model NAME or --load FILE".into()));
+            }
+            let mut m = brdf_models::build(&args.model, &args.model_opts.config())?;
+            let v = assign_by_name(
+                &args.model,
+                m.param_specs(),
+                &parse_assignments(&args.params)?,
+            )?;
+            m.set_params(&v)?;
+            (m, v)
+        }
+    };
     let wi = parse_direction(&args.wi, args.degrees, "--wi")?;
     let wo = parse_direction(&args.wo, args.degrees, "--wo")?;
     let mut f = vec![0.0; model.channels()];
     model.eval(wi.vector(), wo.vector(), &mut f);
     let out = EvalOut {
-        model: args.model.clone(),
+        model: model.name().to_string(),
         parameters: model
             .param_specs()
             .iter()

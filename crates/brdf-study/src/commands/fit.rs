@@ -1,10 +1,15 @@
-//! `brdf fit`: fit a model to a data set and report parameters, error and time.
+//! `brdf fit`: fit any model to any data set; report parameters (with
+//! standard errors and bounds), the error in the chosen metric and Ngan's,
+//! the time, iterations and termination; optionally save the model.
+
+use std::path::PathBuf;
 
 use brdf_models::{ModelConfig, entry};
 
 use crate::StudyError;
 use crate::cli::ModelOpts;
-use crate::fit::fit_linear;
+use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
+use crate::saved_model::SavedModel;
 
 /// Arguments of `brdf fit`.
 #[derive(Debug, clap::Args)]
@@ -15,9 +20,26 @@ pub struct FitArgs {
     /// Model name (see `brdf models`).
     #[arg(long)]
     pub model: String,
+    /// Objective and metric: ngan, sopp, sopp-unweighted, lafortune, log.
+    #[arg(long, default_value = "ngan")]
+    pub metric: String,
     /// Drop samples with theta_i or theta_o above this angle (degrees).
     #[arg(long, default_value_t = 80.0)]
     pub limit: f64,
+    /// grey (mean of the channels), rgb (shared non-linear, per-channel
+    /// linear parameters) or per-channel (everything per channel).
+    #[arg(long, default_value = "rgb")]
+    pub channels_mode: String,
+    /// Solver: sqp (default; linear parameters projected out), lm, sopp
+    /// (Sopp's two stages), ols or irls[:WEIGHT] (all-linear models).
+    #[arg(long, default_value = "sqp")]
+    pub solver: String,
+    /// Multi-start count.
+    #[arg(long, default_value_t = 12)]
+    pub starts: usize,
+    /// Write the fitted model (JSON) here.
+    #[arg(long)]
+    pub save: Option<PathBuf>,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
@@ -34,46 +56,107 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
             args.limit
         )));
     }
+    let opts = FitOptions {
+        objective: Objective::parse(&args.metric)?,
+        solver: Solver::parse(&args.solver)?,
+        starts: args.starts,
+        ..FitOptions::default()
+    };
     let data = crate::data::load(&args.data)?;
     let (data, invalid) = data.filter_invalid(false);
     let (data, angle) = data.filter_angle_limit(args.limit.to_radians());
-    let e = entry(&args.model)
-        .ok_or_else(|| StudyError::Usage(format!("no such model `{}`", args.model)))?;
-    let config = ModelConfig {
-        channels: data.channels(),
-        ..args.model_opts.config()
+    let sets = match args.channels_mode.as_str() {
+        "rgb" => vec![data.clone()],
+        "grey" => vec![data.mean_channel()],
+        "per-channel" => (0..data.channels())
+            .map(|c| data.single_channel(c))
+            .collect(),
+        other => {
+            return Err(StudyError::Usage(format!(
+                "--channels-mode {other}: expected grey, rgb or per-channel"
+            )));
+        }
     };
-    let mut model = match e.build_for_data {
-        Some(f) => f(&config, data.pairs())?,
-        None => (e.build)(&config)?,
-    };
-    let report = fit_linear(model.as_mut(), &data)?;
+    let e = entry(&args.model).ok_or_else(|| {
+        StudyError::Usage(format!("no such model `{}`; see `brdf models`", args.model))
+    })?;
+    let mut reports: Vec<FitSummary> = Vec::new();
+    for set in &sets {
+        let config = ModelConfig {
+            channels: set.channels(),
+            ..args.model_opts.config()
+        };
+        let build = |config: &ModelConfig| match e.build_for_data {
+            Some(f) => f(config, set.pairs()),
+            None => (e.build)(config),
+        };
+        let mut model = build(&config)?;
+        let report = if opts.solver == Solver::Sopp {
+            let mut grey = build(&ModelConfig {
+                channels: 1,
+                ..config
+            })?;
+            fit_sopp(grey.as_mut(), model.as_mut(), set, &opts)?
+        } else {
+            fit(model.as_mut(), set, &opts)?
+        };
+        if let Some(path) = &args.save {
+            if sets.len() > 1 {
+                return Err(StudyError::Usage(
+                    "--save needs one model: use --channels-mode rgb or grey".into(),
+                ));
+            }
+            let prov = format!(
+                "{} on {}, {} = {:.6e}",
+                report.solver, report.data, report.objective, report.error
+            );
+            SavedModel::capture(model.as_ref(), &config, prov)?.save(path)?;
+        }
+        reports.push(report);
+    }
     if args.json {
         let v = serde_json::json!({
-            "fit": report,
+            "fits": reports,
             "dropped_invalid": invalid.dropped(),
             "dropped_angle": angle.dropped(),
             "negative_values_kept": data.count_negative(),
         });
         println!("{}", serde_json::to_string_pretty(&v)?);
-    } else {
+        return Ok(());
+    }
+    for r in &reports {
         println!(
             "model {} on {} ({} samples; dropped {} invalid, {} beyond {} deg)",
-            report.model,
-            report.data,
-            report.samples,
+            r.model,
+            r.data,
+            r.samples,
             invalid.dropped(),
             angle.dropped(),
             args.limit
         );
-        println!("solver: {}, rank {}", report.solver, report.rank);
-        for (name, v) in &report.parameters {
-            println!("  {name:<8} {v:.6e}");
+        println!("solver: {}", r.solver);
+        println!(
+            "iterations {}, {}; starts {} ({} converged, {} at the best cost)",
+            r.iterations, r.termination, r.starts.0, r.starts.1, r.starts.2
+        );
+        for p in &r.parameters {
+            let se = p
+                .std_error
+                .map(|s| format!("+- {s:.3e}"))
+                .unwrap_or_default();
+            let b = p
+                .at_bound
+                .map(|b| format!(" [at {b} bound]"))
+                .unwrap_or_default();
+            let pr = if p.projected { " (projected)" } else { "" };
+            println!("  {:<8} {:>14.6e} {se}{b}{pr}", p.name, p.value);
         }
         println!(
-            "Ngan L2: {:.6}  time: {:.3} ms",
-            report.ngan_l2,
-            report.seconds * 1e3
+            "{} error: {:.6e}  Ngan L2: {:.6e}  time: {:.3} ms",
+            r.objective,
+            r.error,
+            r.ngan_l2,
+            r.seconds * 1e3
         );
     }
     Ok(())

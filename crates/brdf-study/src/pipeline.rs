@@ -1,0 +1,676 @@
+//! The fitting pipeline: any catalogue model, any data set, any objective,
+//! from automatic starts — the user never supplies start values and the
+//! result is the same from run to run.
+//!
+//! - [`Solver::Sqp`] (default), as Ngan et al. and Kurt fitted: the linear
+//!   parameters (`kd`, `ks` per channel, ...) are projected out by
+//!   non-negative least squares (variable projection), the bounded
+//!   SQP-style solver optimises the non-linear ones inside their box from
+//!   deterministic Halton multi-starts (exponents on a log scale), and the
+//!   best result is polished by the bounded solver on all parameters (which
+//!   also enforces the linear parameters' upper bounds and reports every
+//!   parameter on a bound).
+//! - [`Solver::Lm`]: Levenberg-Marquardt (bounded) on all parameters from
+//!   the same starts, linear parameters initialised by projection.
+//! - [`Solver::Sopp`]: Sopp's procedure: stage 1 fits every parameter of a
+//!   one-channel model on the mean of the channels with his LM and damping
+//!   schedule from the model's default parameters; stage 2 fixes the
+//!   non-linear parameters and solves the per-channel linear coefficients
+//!   directly.
+//! - All-linear models (Lambert, Koenderink, Kurt's polynomial) are solved
+//!   directly: NNLS / column-pivoted QR ([`Solver::Ols`]) or robust IRLS
+//!   ([`Solver::Irls`]).
+//!
+//! Objectives ([`Objective`]) are the row scalings of `fitting.md`; the log
+//! objective transforms the residual and is fitted on all parameters.
+
+use std::time::Instant;
+
+use brdf_core::metrics::{lafortune_l2, log_metric, ngan_l2, sopp_error};
+use brdf_core::{MetricValue, Parametric, SampleSet};
+use brdf_solve::covariance::standard_errors;
+use brdf_solve::multistart::{StartBox, multistart};
+use brdf_solve::robust_weights::RobustWeight;
+use brdf_solve::{
+    BoundStatus, Constraints, IrlsOptions, LeastSquaresProblem, LmOptions, ModelProblem,
+    ScaleConvention, SolverReport, Termination, VarPro, bounded_least_squares, irls,
+};
+use faer::Mat;
+use serde::Serialize;
+
+use crate::StudyError;
+
+/// The fitting objective (see `fitting.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Objective {
+    /// Ngan's / Kurt's L2: rows `sqrt(w) cos_i (R - M)`.
+    Ngan,
+    /// Sopp's: rows `w cos_i (R - M) / sum w` (weighting on) or
+    /// `cos_i (R - M) / n` (off).
+    Sopp {
+        /// Solid-angle weighting ("Gewichtung").
+        weighted: bool,
+    },
+    /// Lafortune et al.: rows `sqrt(w) cos_i cos_o (R - M)`.
+    Lafortune,
+    /// Matusik's log: `ln(1 + M cos_i) - ln(1 + R cos_i)`.
+    Log,
+}
+
+impl Objective {
+    /// Parse `ngan|sopp|sopp-unweighted|lafortune|log`.
+    pub fn parse(s: &str) -> Result<Self, StudyError> {
+        Ok(match s {
+            "ngan" => Objective::Ngan,
+            "sopp" => Objective::Sopp { weighted: true },
+            "sopp-unweighted" => Objective::Sopp { weighted: false },
+            "lafortune" => Objective::Lafortune,
+            "log" => Objective::Log,
+            other => {
+                return Err(StudyError::Usage(format!(
+                    "unknown metric `{other}`: ngan, sopp, sopp-unweighted, lafortune or log"
+                )));
+            }
+        })
+    }
+
+    /// Name in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Objective::Ngan => "ngan",
+            Objective::Sopp { weighted: true } => "sopp",
+            Objective::Sopp { weighted: false } => "sopp-unweighted",
+            Objective::Lafortune => "lafortune",
+            Objective::Log => "log",
+        }
+    }
+
+    /// Row scales `s_j` (the residual is `s_j (M - R)`); the log objective
+    /// uses unit scales and transforms the residual instead.
+    pub fn row_scales(self, s: &SampleSet) -> Vec<f64> {
+        let p = s.pairs();
+        let w = s.weights();
+        let n = s.len();
+        match self {
+            Objective::Ngan => (0..n).map(|j| w[j].sqrt() * p.lz[j]).collect(),
+            Objective::Lafortune => (0..n).map(|j| w[j].sqrt() * p.lz[j] * p.vz[j]).collect(),
+            Objective::Sopp { weighted: true } => {
+                let sw: f64 = w.iter().sum();
+                (0..n).map(|j| w[j] * p.lz[j] / sw).collect()
+            }
+            Objective::Sopp { weighted: false } => (0..n).map(|j| p.lz[j] / n as f64).collect(),
+            Objective::Log => vec![1.0; n],
+        }
+    }
+
+    /// The objective's error of `fitted` (channel-major) on `s`.
+    pub fn error(self, s: &SampleSet, fitted: &[f64]) -> Result<MetricValue, StudyError> {
+        let m = s.values_channel_major();
+        let p = s.pairs();
+        Ok(match self {
+            Objective::Ngan => ngan_l2(&m, fitted, &p.lz, s.weights())?,
+            Objective::Lafortune => lafortune_l2(&m, fitted, &p.lz, &p.vz, s.weights())?,
+            Objective::Sopp { weighted } => sopp_error(&m, fitted, &p.lz, s.weights(), weighted)?,
+            Objective::Log => log_metric(&m, fitted, &p.lz, s.weights())?,
+        })
+    }
+}
+
+/// Which solver fits the model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Solver {
+    /// Variable projection + bounded SQP-style solver + multi-start (default).
+    Sqp,
+    /// Bounded Levenberg-Marquardt on all parameters + multi-start.
+    Lm,
+    /// Sopp's two-stage procedure with his damping schedule.
+    Sopp,
+    /// Direct linear least squares (all-linear models).
+    Ols,
+    /// Robust IRLS (all-linear models), with a weight function.
+    Irls(RobustWeight),
+}
+
+impl Solver {
+    /// Parse `sqp|lm|sopp|ols|irls[:weight]`.
+    pub fn parse(s: &str) -> Result<Self, StudyError> {
+        Ok(match s {
+            "sqp" => Solver::Sqp,
+            "lm" => Solver::Lm,
+            "sopp" => Solver::Sopp,
+            "ols" => Solver::Ols,
+            "irls" => Solver::Irls(RobustWeight::Bisquare),
+            other => match other.strip_prefix("irls:") {
+                Some(w) => Solver::Irls(w.parse().map_err(|e| StudyError::Usage(format!("{e}")))?),
+                None => {
+                    return Err(StudyError::Usage(format!(
+                        "unknown solver `{other}`: sqp, lm, sopp, ols, irls or irls:WEIGHT"
+                    )));
+                }
+            },
+        })
+    }
+}
+
+/// Options of [`fit`].
+#[derive(Clone, Debug)]
+pub struct FitOptions {
+    /// Objective [Ngan].
+    pub objective: Objective,
+    /// Solver [Sqp].
+    pub solver: Solver,
+    /// Multi-start count [12].
+    pub starts: usize,
+    /// Solver options of the non-linear stages.
+    pub lm: LmOptions,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        Self {
+            objective: Objective::Ngan,
+            solver: Solver::Sqp,
+            starts: 12,
+            lm: LmOptions {
+                max_iterations: 300,
+                max_evaluations: 3000,
+                ..LmOptions::default()
+            },
+        }
+    }
+}
+
+/// One fitted parameter.
+#[derive(Clone, Debug, Serialize)]
+pub struct FittedParam {
+    /// Name as in the model's documentation.
+    pub name: String,
+    /// Value.
+    pub value: f64,
+    /// Standard error (from the Jacobian at the solution), if computable.
+    pub std_error: Option<f64>,
+    /// `lower`/`upper` when on that bound.
+    pub at_bound: Option<&'static str>,
+    /// Whether it was projected out (linear) by the outer solver.
+    pub projected: bool,
+}
+
+/// What a fit reports.
+#[derive(Clone, Debug, Serialize)]
+pub struct FitSummary {
+    /// Model name.
+    pub model: String,
+    /// Data set name.
+    pub data: String,
+    /// Samples used.
+    pub samples: usize,
+    /// Parameters.
+    pub parameters: Vec<FittedParam>,
+    /// Objective name.
+    pub objective: &'static str,
+    /// Error in the objective's metric (total, per channel).
+    pub error: f64,
+    /// Per-channel error in the objective's metric.
+    pub error_per_channel: Vec<f64>,
+    /// Ngan's L2 (total).
+    pub ngan_l2: f64,
+    /// Ngan's L2 per channel.
+    pub ngan_l2_per_channel: Vec<f64>,
+    /// Solver description.
+    pub solver: String,
+    /// Iterations of the solve that produced the result.
+    pub iterations: usize,
+    /// Why it stopped.
+    pub termination: String,
+    /// Starts tried, converged, and at the best cost (within 1e-6).
+    pub starts: (usize, usize, usize),
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// Number of stored numbers (parameters).
+    pub stored_numbers: usize,
+}
+
+/// Fit `model` (same channel count as `data`) in place and summarise.
+pub fn fit(
+    model: &mut dyn Parametric,
+    data: &SampleSet,
+    opts: &FitOptions,
+) -> Result<FitSummary, StudyError> {
+    let t0 = Instant::now();
+    if model.channels() != data.channels() {
+        return Err(StudyError::Usage(format!(
+            "model `{}` has {} channels, data `{}` has {}",
+            model.name(),
+            model.channels(),
+            data.name,
+            data.channels()
+        )));
+    }
+    let specs = model.param_specs().to_vec();
+    let np = specs.len();
+    if data.len() * data.channels() <= np {
+        return Err(StudyError::Usage(format!(
+            "{} samples x {} channels are not more than the {np} parameters of `{}`",
+            data.len(),
+            data.channels(),
+            model.name()
+        )));
+    }
+    let all_linear = specs.iter().all(|s| s.linear);
+    let scales = opts.objective.row_scales(data);
+    let values = data.values_channel_major();
+    let (p, solver, rep, starts_info) = if all_linear && opts.objective != Objective::Log {
+        let (p, how) = fit_all_linear(model, data, &scales, opts.solver)?;
+        (p, how, None, (1, 1, 1))
+    } else {
+        match opts.solver {
+            Solver::Ols | Solver::Irls(_) => {
+                return Err(StudyError::Usage(format!(
+                    "--solver ols/irls need an all-linear model; `{}` has the non-linear parameter `{}`",
+                    model.name(),
+                    specs
+                        .iter()
+                        .find(|s| !s.linear)
+                        .map(|s| s.name.as_str())
+                        .unwrap_or("?")
+                )));
+            }
+            Solver::Sopp => return Err(StudyError::Usage(
+                "Sopp's two-stage procedure needs a one-channel model for stage 1: use fit_sopp"
+                    .into(),
+            )),
+            Solver::Sqp | Solver::Lm => {
+                let (p, rep, info, how) = fit_nonlinear(model, data, &values, &scales, opts)?;
+                (p, how, Some(rep), info)
+            }
+        }
+    };
+    model.set_params(&p)?;
+    summarise(
+        model,
+        data,
+        opts,
+        &p,
+        &scales,
+        &values,
+        solver,
+        rep,
+        starts_info,
+        t0,
+    )
+}
+
+/// Sopp's two-stage procedure: `grey` is a one-channel instance of the same
+/// model (stage 1 on the mean of the channels), `model` the full one.
+pub fn fit_sopp(
+    grey: &mut dyn Parametric,
+    model: &mut dyn Parametric,
+    data: &SampleSet,
+    opts: &FitOptions,
+) -> Result<FitSummary, StudyError> {
+    let t0 = Instant::now();
+    let mean = data.mean_channel();
+    let scales = opts.objective.row_scales(&mean);
+    let lm = LmOptions {
+        damping: brdf_solve::Damping::Sopp,
+        ..opts.lm.clone()
+    };
+    let gp = ModelProblem::new(&*grey, mean.pairs(), &mean.values_channel_major(), &scales)?;
+    let c = box_constraints(grey)?;
+    let start = grey.params().to_vec();
+    let rep1 = bounded_least_squares(&gp, &start, &c, &lm)?;
+    // Stage 2: the non-linear parameters by name, the linear ones solved.
+    let gspecs = grey.param_specs().to_vec();
+    let mut p = model.params().to_vec();
+    for (k, s) in model.param_specs().iter().enumerate() {
+        if !s.linear
+            && let Some(g) = gspecs.iter().position(|g| g.name == s.name)
+        {
+            p[k] = rep1.params[g];
+        }
+    }
+    model.set_params(&p)?;
+    let scales = opts.objective.row_scales(data);
+    let values = data.values_channel_major();
+    let mp = ModelProblem::new(&*model, data.pairs(), &values, &scales)?;
+    let nl: Vec<f64> = mp.nonlinear_indices().iter().map(|k| p[*k]).collect();
+    let vp = VarPro::new(&mp, true);
+    let coef = vp.linear_coefficients(&nl)?;
+    let p = mp.assemble(&nl, &coef);
+    drop(mp);
+    model.set_params(&p)?;
+    summarise(
+        model,
+        data,
+        opts,
+        &p,
+        &scales,
+        &values,
+        "Sopp two-stage: LM (Sopp damping) on the channel mean, then per-channel linear NNLS"
+            .into(),
+        Some(rep1),
+        (1, 1, 1),
+        t0,
+    )
+}
+
+/// Box constraints of a model's parameters (open lower ends moved inside by
+/// `1e-9` of the box width).
+pub fn box_constraints(model: &dyn Parametric) -> Result<Constraints, StudyError> {
+    let specs = model.param_specs();
+    let lower = specs
+        .iter()
+        .map(|s| {
+            if s.lower_open {
+                s.lower + 1e-9 * (s.upper - s.lower).min(1.0)
+            } else {
+                s.lower
+            }
+        })
+        .collect();
+    Ok(Constraints::boxed(
+        lower,
+        specs.iter().map(|s| s.upper).collect(),
+    )?)
+}
+
+/// The multi-start box of the non-linear parameters: exponents (upper end
+/// of 1e3 or more) on a log scale over `[max(lower, 1), min(upper, 1e4)]`,
+/// the rest linearly over the box (infinite ends replaced by +-1).
+fn start_box(model: &dyn Parametric, nonlinear: &[usize]) -> StartBox {
+    let specs = model.param_specs();
+    let mut b = StartBox {
+        lower: Vec::new(),
+        upper: Vec::new(),
+        log_scale: Vec::new(),
+    };
+    for k in nonlinear {
+        let s = &specs[*k];
+        if s.upper >= 1e3 {
+            b.lower.push(s.lower.max(1.0));
+            b.upper.push(s.upper.min(1e4));
+            b.log_scale.push(true);
+        } else {
+            let lo = if s.lower.is_finite() { s.lower } else { -1.0 };
+            let hi = if s.upper.is_finite() {
+                s.upper
+            } else {
+                lo + 2.0
+            };
+            let width = hi - lo;
+            let lo = if s.lower_open { lo + 1e-3 * width } else { lo };
+            b.lower.push(lo);
+            b.upper.push(hi);
+            b.log_scale.push(false);
+        }
+    }
+    b
+}
+
+type NonlinearFit = (Vec<f64>, SolverReport, (usize, usize, usize), String);
+
+fn fit_nonlinear(
+    model: &dyn Parametric,
+    data: &SampleSet,
+    values: &[f64],
+    scales: &[f64],
+    opts: &FitOptions,
+) -> Result<NonlinearFit, StudyError> {
+    let full = box_constraints(model)?;
+    let log_problem;
+    let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
+    let nonlinear = mp.nonlinear_indices().to_vec();
+    let sb = start_box(model, &nonlinear);
+    let starts = sb.starts(opts.starts.max(1))?;
+    let nl_box = Constraints::boxed(
+        nonlinear.iter().map(|k| full.lower()[*k]).collect(),
+        nonlinear.iter().map(|k| full.upper()[*k]).collect(),
+    )?;
+    let use_varpro = opts.solver == Solver::Sqp && opts.objective != Objective::Log;
+    let problem: &(dyn LeastSquaresProblem + Sync) = if opts.objective == Objective::Log {
+        log_problem = LogProblem::new(&mp, data)?;
+        &log_problem
+    } else {
+        &mp
+    };
+    // Full parameter vector from non-linear values: linear ones projected.
+    let project = |a: &[f64]| -> Result<Vec<f64>, brdf_solve::SolveError> {
+        let vp = VarPro::new(&mp, true);
+        let c = vp.linear_coefficients(a)?;
+        let mut p = mp.assemble(a, &c);
+        full.clamp(&mut p);
+        Ok(p)
+    };
+    let ms = multistart(&starts, |s| {
+        if use_varpro {
+            let vp = VarPro::new(&mp, true);
+            bounded_least_squares(&vp, s, &nl_box, &opts.lm)
+        } else {
+            let p0 = project(s)?;
+            bounded_least_squares(problem, &p0, &full, &opts.lm)
+        }
+    })?;
+    let info = (starts.len(), ms.n_converged, ms.n_at_best);
+    let (p, rep, how) = if use_varpro {
+        // Polish on all parameters (enforces the linear upper bounds and
+        // reports every parameter's bound status).
+        let p0 = project(&ms.best.params)?;
+        let polish = bounded_least_squares(problem, &p0, &full, &opts.lm)?;
+        let rep = SolverReport {
+            iterations: ms.best.iterations + polish.iterations,
+            evaluations: ms.best.evaluations + polish.evaluations,
+            ..polish
+        };
+        (
+            rep.params.clone(),
+            rep,
+            format!(
+                "variable projection (NNLS) + bounded SQP-style LM, {} Halton starts, polished on all parameters",
+                starts.len()
+            ),
+        )
+    } else {
+        (
+            ms.best.params.clone(),
+            ms.best,
+            format!(
+                "bounded LM on all parameters, {} Halton starts",
+                starts.len()
+            ),
+        )
+    };
+    Ok((p, rep, info, how))
+}
+
+fn fit_all_linear(
+    model: &dyn Parametric,
+    data: &SampleSet,
+    scales: &[f64],
+    solver: Solver,
+) -> Result<(Vec<f64>, String), StudyError> {
+    let specs = model.param_specs();
+    let (n, nc, np) = (data.len(), model.channels(), specs.len());
+    let zero = vec![0.0; np];
+    let mut offset = vec![0.0; nc * n];
+    let mut jac = vec![0.0; nc * n * np];
+    model.eval_grad_batch_at(&zero, data.pairs(), &mut offset, &mut jac);
+    let mut p = zero;
+    let mut how = String::new();
+    for c in 0..nc {
+        let cols: Vec<usize> = (0..np)
+            .filter(|&k| (0..n).any(|j| jac[(c * n + j) * np + k] != 0.0))
+            .collect();
+        if cols.is_empty() {
+            continue;
+        }
+        let y = data.channel(c);
+        let a = Mat::from_fn(n, cols.len(), |j, k| {
+            scales[j] * jac[(c * n + j) * np + cols[k]]
+        });
+        let b: Vec<f64> = (0..n)
+            .map(|j| scales[j] * (y[j] - offset[c * n + j]))
+            .collect();
+        let x: Vec<f64> = match solver {
+            Solver::Irls(weight) => {
+                let s = irls(
+                    a.as_ref(),
+                    &b,
+                    &IrlsOptions {
+                        weight,
+                        scale: ScaleConvention::Matlab2004,
+                        ..IrlsOptions::default()
+                    },
+                )?;
+                how = format!(
+                    "IRLS ({}, MATLAB 2004 scale), {} iterations{}",
+                    weight.name(),
+                    s.iterations,
+                    if s.converged { "" } else { ", NOT converged" }
+                );
+                s.coef
+            }
+            _ if cols.iter().all(|&k| specs[k].lower == 0.0) => {
+                how = "NNLS (Lawson-Hanson)".into();
+                brdf_solve::nnls(a.as_ref(), &b, 3 * cols.len() + 10)?.x
+            }
+            _ => {
+                let bm = Mat::from_fn(n, 1, |j, _| b[j]);
+                let s = brdf_solve::lstsq(
+                    a.as_ref(),
+                    bm.as_ref(),
+                    None,
+                    brdf_solve::LstsqMethod::PivotedQr,
+                )?;
+                how = format!("least squares (column-pivoted QR, rank {})", s.rank);
+                (0..cols.len()).map(|k| s.x[(k, 0)]).collect()
+            }
+        };
+        for (k, &col) in cols.iter().enumerate() {
+            p[col] = x[k];
+        }
+    }
+    Ok((p, how))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn summarise(
+    model: &dyn Parametric,
+    data: &SampleSet,
+    opts: &FitOptions,
+    p: &[f64],
+    scales: &[f64],
+    values: &[f64],
+    solver: String,
+    rep: Option<SolverReport>,
+    starts: (usize, usize, usize),
+    t0: Instant,
+) -> Result<FitSummary, StudyError> {
+    let seconds = t0.elapsed().as_secs_f64();
+    let n = data.len();
+    let mut fitted = vec![0.0; n * model.channels()];
+    model.eval_batch_at(p, data.pairs(), &mut fitted);
+    let err = opts.objective.error(data, &fitted)?;
+    let ngan = ngan_l2(&values.to_vec(), &fitted, &data.pairs().lz, data.weights())?;
+    let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
+    let se = standard_errors(&mp, p).ok();
+    let status = box_constraints(model)?.status(p);
+    let specs = model.param_specs();
+    let parameters = specs
+        .iter()
+        .enumerate()
+        .map(|(k, s)| FittedParam {
+            name: s.name.clone(),
+            value: p[k],
+            std_error: se.as_ref().map(|v| v[k]).filter(|v| v.is_finite()),
+            at_bound: match status[k] {
+                BoundStatus::Free => None,
+                BoundStatus::AtLower => Some("lower"),
+                BoundStatus::AtUpper => Some("upper"),
+            },
+            projected: s.linear && matches!(opts.solver, Solver::Sqp),
+        })
+        .collect();
+    Ok(FitSummary {
+        model: model.name().to_string(),
+        data: data.name.clone(),
+        samples: n,
+        parameters,
+        objective: opts.objective.name(),
+        error: err.total,
+        error_per_channel: err.per_channel,
+        ngan_l2: ngan.total,
+        ngan_l2_per_channel: ngan.per_channel,
+        solver,
+        iterations: rep.as_ref().map(|r| r.iterations).unwrap_or(0),
+        termination: rep
+            .as_ref()
+            .map(|r| r.termination.describe().to_string())
+            .unwrap_or_else(|| "direct solve".into()),
+        starts,
+        seconds,
+        stored_numbers: specs.len(),
+    })
+}
+
+/// The log objective as a least-squares problem over all parameters:
+/// residual `ln(1 + M cos_i) - ln(1 + R cos_i)`.
+struct LogProblem<'a> {
+    inner: &'a ModelProblem<'a>,
+    cos_i: Vec<f64>,
+    log_target: Vec<f64>,
+    values: Vec<f64>,
+}
+
+impl<'a> LogProblem<'a> {
+    fn new(inner: &'a ModelProblem<'a>, data: &SampleSet) -> Result<Self, StudyError> {
+        let n = data.len();
+        let values = data.values_channel_major();
+        let cos_i: Vec<f64> = (0..values.len()).map(|i| data.pairs().lz[i % n]).collect();
+        let log_target = values
+            .iter()
+            .zip(&cos_i)
+            .map(|(r, c)| (r * c).max(-1.0 + 1e-12).ln_1p())
+            .collect();
+        Ok(Self {
+            inner,
+            cos_i,
+            log_target,
+            values,
+        })
+    }
+}
+
+impl LeastSquaresProblem for LogProblem<'_> {
+    fn n_params(&self) -> usize {
+        self.inner.n_params()
+    }
+    fn n_residuals(&self) -> usize {
+        self.inner.n_residuals()
+    }
+    fn residuals(&self, p: &[f64], out: &mut [f64]) {
+        // The inner problem has unit row scales: its residual is M - R.
+        self.inner.residuals(p, out);
+        for i in 0..out.len() {
+            let m = out[i] + self.values[i];
+            out[i] = (m * self.cos_i[i]).max(-1.0 + 1e-12).ln_1p() - self.log_target[i];
+        }
+    }
+    fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
+        let np = p.len();
+        let mut r = vec![0.0; self.n_residuals()];
+        self.inner.residuals(p, &mut r);
+        self.inner.jacobian(p, jac);
+        for i in 0..r.len() {
+            let m = r[i] + self.values[i];
+            let d = self.cos_i[i] / (1.0 + m * self.cos_i[i]).max(1e-12);
+            for v in &mut jac[i * np..(i + 1) * np] {
+                *v *= d;
+            }
+        }
+    }
+}
+
+/// Whether the termination of a report certifies a minimum.
+pub fn converged(t: Termination) -> bool {
+    t.is_converged()
+}
