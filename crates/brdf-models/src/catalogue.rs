@@ -130,6 +130,48 @@ pub fn catalogue() -> Vec<ModelEntry> {
             "Duer 2004"
         );
     }
+    #[cfg(feature = "microfacet")]
+    {
+        lobe_model!(
+            crate::AshikhminShirley,
+            "microfacet",
+            "kd/pi + ks (n+1)/(8 pi) (N.H)^n F(V.H) / ((V.H) max(N.L, N.V))",
+            "Ashikhmin & Shirley 2000, Journal of Graphics Tools"
+        );
+        lobe_model!(
+            crate::AshikhminShirleyAniso,
+            "microfacet",
+            "Ashikhmin-Shirley with exponents nu, nv (anisotropic)",
+            "Ashikhmin & Shirley 2000, Journal of Graphics Tools"
+        );
+        lobe_model!(
+            crate::AshikhminShirleyCoupled,
+            "microfacet",
+            "Ashikhmin-Shirley with the coupled diffuse term 28 kd/(23 pi)(1-F0)(...)",
+            "Ashikhmin & Shirley 2000, Journal of Graphics Tools"
+        );
+        lobe_model!(
+            crate::AshikhminShirleyCoupledAniso,
+            "microfacet",
+            "anisotropic Ashikhmin-Shirley with the coupled diffuse term",
+            "Ashikhmin & Shirley 2000, Journal of Graphics Tools"
+        );
+        lobe_model!(
+            crate::TorranceSparrow,
+            "microfacet",
+            "kd/pi + ks D G F / (N.L N.V), Gaussian D = exp(-(delta/m)^2)/(pi m^2)",
+            "Torrance & Sparrow 1967, JOSA; normalisation of Ramamoorthi & Hanrahan 2001"
+        );
+        v.push(ModelEntry {
+            name: <crate::cook_torrance::CtLobe as crate::combinators::Lobe>::NAME,
+            family: "microfacet",
+            summary: "kd/pi + sum_k ks_k/pi D_k G F_k / (N.L N.V), Beckmann D, K lobes",
+            paper: "Cook & Torrance 1982, ACM TOG",
+            has_lobes: true,
+            build: |c| Ok(Box::new(crate::CookTorrance::new(c.lobes, c.channels)?)),
+            build_for_data: None,
+        });
+    }
     #[cfg(feature = "lafortune")]
     {
         v.push(ModelEntry {

@@ -21,9 +21,18 @@ pub trait Lobe: Clone + Send + Sync + 'static {
     /// `S` at `q`, writing `dS/dq_k` into `dq` when it is `Some`. Called only
     /// for directions above the horizon.
     fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64;
-    /// Whether `S(L, V) = S(V, L)`.
+    /// Whether `S(L, V) = S(V, L)` (and `D`).
     fn reciprocal() -> bool {
         true
+    }
+    /// Name of the diffuse coefficient.
+    const DIFFUSE: &'static str = "kd";
+    /// Name of the specular coefficient.
+    const SPECULAR: &'static str = "ks";
+    /// The diffuse shape `D(L, V; q)`, writing `dD/dq_k` into `dq` (zeroed
+    /// by the caller) when it is `Some`. Lambert's `1/pi` by default.
+    fn diffuse(_q: &[f64], _l: &Vector3<f64>, _v: &Vector3<f64>, _dq: Option<&mut [f64]>) -> f64 {
+        FRAC_1_PI
     }
 }
 
@@ -45,9 +54,9 @@ impl<S: Lobe> DiffuseLobe<S> {
                 reason: "a model needs at least one channel".into(),
             });
         }
-        let mut specs = per_channel_specs("kd", "diffuse albedo", channels, 0.0, 1.0, 0.3);
+        let mut specs = per_channel_specs(S::DIFFUSE, "diffuse albedo", channels, 0.0, 1.0, 0.3);
         specs.extend(per_channel_specs(
-            "ks",
+            S::SPECULAR,
             "specular strength",
             channels,
             0.0,
@@ -100,9 +109,11 @@ impl<S: Lobe> Parametric for DiffuseLobe<S> {
             out[..nc].iter_mut().for_each(|x| *x = 0.0);
             return;
         }
-        let s = S::shape(&p[2 * nc..], l, v, None);
+        let q = &p[2 * nc..];
+        let s = S::shape(q, l, v, None);
+        let d = S::diffuse(q, l, v, None);
         for c in 0..nc {
-            out[c] = p[c] * FRAC_1_PI + p[nc + c] * s;
+            out[c] = p[c] * d + p[nc + c] * s;
         }
     }
     fn eval_grad_at(
@@ -122,15 +133,18 @@ impl<S: Lobe> Parametric for DiffuseLobe<S> {
             return;
         }
         let mut dq = [0.0; 8];
-        let s = S::shape(&p[2 * nc..], l, v, Some(&mut dq[..nq]));
+        let mut dd = [0.0; 8];
+        let q = &p[2 * nc..];
+        let s = S::shape(q, l, v, Some(&mut dq[..nq]));
+        let d = S::diffuse(q, l, v, Some(&mut dd[..nq]));
         for c in 0..nc {
-            let ks = p[nc + c];
-            out[c] = p[c] * FRAC_1_PI + ks * s;
+            let (kd, ks) = (p[c], p[nc + c]);
+            out[c] = kd * d + ks * s;
             let row = &mut grad[c * np..(c + 1) * np];
-            row[c] = FRAC_1_PI;
+            row[c] = d;
             row[nc + c] = s;
             for k in 0..nq {
-                row[2 * nc + k] = ks * dq[k];
+                row[2 * nc + k] = kd * dd[k] + ks * dq[k];
             }
         }
     }
@@ -160,4 +174,134 @@ pub trait HasLobe {
 
 impl<S: Lobe> HasLobe for DiffuseLobe<S> {
     type L = S;
+}
+
+/// `f_c = kd_c / pi + sum_k ks_kc S(L, V; q_k)`: `K` lobes of one shape.
+/// Parameters: `kd` per channel, then for each lobe `k = 1..K` its `ks{k}`
+/// per channel and its shape parameters with the suffix `k` (`m1`, `f0_1`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MultiLobe<S: Lobe> {
+    pub(crate) channels: usize,
+    lobes: usize,
+    specs: Vec<ParamSpec>,
+    params: Vec<f64>,
+    _lobe: std::marker::PhantomData<S>,
+}
+
+impl<S: Lobe> MultiLobe<S> {
+    /// The model with `lobes >= 1` lobes and `channels` channels at its
+    /// default parameters.
+    pub fn new(lobes: usize, channels: usize) -> Result<Self, ParamError> {
+        if channels == 0 || lobes == 0 {
+            return Err(ParamError::Config {
+                model: S::NAME.into(),
+                reason: "a model needs at least one channel and one lobe".into(),
+            });
+        }
+        let mut specs = per_channel_specs(S::DIFFUSE, "diffuse albedo", channels, 0.0, 1.0, 0.3);
+        for k in 1..=lobes {
+            specs.extend(per_channel_specs(
+                &format!("{}{k}", S::SPECULAR),
+                &format!("strength of lobe {k}"),
+                channels,
+                0.0,
+                1.0,
+                0.2 / lobes as f64,
+            ));
+            for mut q in S::specs() {
+                let sep = if q.name.ends_with(|c: char| c.is_ascii_digit()) { "_" } else { "" };
+                q.name = format!("{}{sep}{k}", q.name);
+                q.meaning = format!("{} of lobe {k}", q.meaning);
+                specs.push(q);
+            }
+        }
+        let params = specs.iter().map(|s| s.default).collect();
+        Ok(Self {
+            channels,
+            lobes,
+            specs,
+            params,
+            _lobe: std::marker::PhantomData,
+        })
+    }
+
+    /// Number of lobes.
+    pub fn lobes(&self) -> usize {
+        self.lobes
+    }
+
+    fn block(&self) -> usize {
+        self.channels + S::specs().len()
+    }
+}
+
+impl<S: Lobe> Brdf for MultiLobe<S> {
+    fn channels(&self) -> usize {
+        self.channels
+    }
+    fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        self.eval_at(&self.params, l, v, out)
+    }
+}
+
+impl<S: Lobe> Parametric for MultiLobe<S> {
+    brdf_core::param_accessors!();
+    fn name(&self) -> &str {
+        S::NAME
+    }
+    fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        let nc = self.channels;
+        out[..nc].iter_mut().enumerate().for_each(|(c, x)| *x = p[c] * FRAC_1_PI);
+        if !(l.z > 0.0 && v.z > 0.0) {
+            out[..nc].iter_mut().for_each(|x| *x = 0.0);
+            return;
+        }
+        let b = self.block();
+        for k in 0..self.lobes {
+            let base = nc + k * b;
+            let s = S::shape(&p[base + nc..base + b], l, v, None);
+            for c in 0..nc {
+                out[c] += p[base + c] * s;
+            }
+        }
+    }
+    fn eval_grad_at(
+        &self,
+        p: &[f64],
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [f64],
+        grad: &mut [f64],
+    ) {
+        let nc = self.channels;
+        let np = self.specs.len();
+        grad[..nc * np].iter_mut().for_each(|g| *g = 0.0);
+        if !(l.z > 0.0 && v.z > 0.0) {
+            out[..nc].iter_mut().for_each(|x| *x = 0.0);
+            return;
+        }
+        let b = self.block();
+        let nq = b - nc;
+        for c in 0..nc {
+            out[c] = p[c] * FRAC_1_PI;
+            grad[c * np + c] = FRAC_1_PI;
+        }
+        let mut dq = [0.0; 8];
+        for k in 0..self.lobes {
+            let base = nc + k * b;
+            let s = S::shape(&p[base + nc..base + b], l, v, Some(&mut dq[..nq]));
+            for c in 0..nc {
+                let ks = p[base + c];
+                out[c] += ks * s;
+                let row = &mut grad[c * np..(c + 1) * np];
+                row[base + c] = s;
+                for t in 0..nq {
+                    row[base + nc + t] = ks * dq[t];
+                }
+            }
+        }
+    }
+    fn is_reciprocal(&self) -> bool {
+        S::reciprocal()
+    }
 }

@@ -13,6 +13,7 @@
 //! | `phong` | [`Phong`] (modified), [`BlinnPhong`] |
 //! | `ward` | [`Ward`], [`WardAniso`], [`WardDuer`], [`WardDuerAniso`] |
 //! | `lafortune` | [`Lafortune`] (isotropic and anisotropic, K lobes) |
+//! | `microfacet` | [`AshikhminShirley`] (+ anisotropic, coupled diffuse), [`TorranceSparrow`], [`CookTorrance`] (K lobes) |
 //! | `oren-nayar` | [`OrenNayar`] (qualitative) |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
@@ -25,10 +26,14 @@
 //! Features only subtract: the default build has every family. A renderer
 //! that needs only some families turns the default off and names them.
 
+#[cfg(feature = "microfacet")]
+pub mod ashikhmin_shirley;
 #[cfg(feature = "phong")]
 pub mod blinn_phong;
 pub mod catalogue;
 pub mod combinators;
+#[cfg(feature = "microfacet")]
+pub mod cook_torrance;
 #[cfg(feature = "koenderink")]
 pub mod koenderink;
 #[cfg(feature = "polynomial")]
@@ -36,16 +41,26 @@ pub mod kurt_polynomial;
 #[cfg(feature = "lafortune")]
 pub mod lafortune;
 pub mod lambert;
+#[cfg(feature = "microfacet")]
+pub mod microfacet;
 #[cfg(feature = "oren-nayar")]
 pub mod oren_nayar;
 #[cfg(feature = "phong")]
 pub mod phong;
+#[cfg(feature = "microfacet")]
+pub mod torrance_sparrow;
 #[cfg(feature = "ward")]
 pub mod ward;
 
+#[cfg(feature = "microfacet")]
+pub use ashikhmin_shirley::{
+    AshikhminShirley, AshikhminShirleyAniso, AshikhminShirleyCoupled, AshikhminShirleyCoupledAniso,
+};
 #[cfg(feature = "phong")]
 pub use blinn_phong::BlinnPhong;
 pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
+#[cfg(feature = "microfacet")]
+pub use cook_torrance::CookTorrance;
 #[cfg(feature = "koenderink")]
 pub use koenderink::Koenderink;
 #[cfg(feature = "polynomial")]
@@ -57,5 +72,7 @@ pub use lambert::Lambert;
 pub use oren_nayar::OrenNayar;
 #[cfg(feature = "phong")]
 pub use phong::Phong;
+#[cfg(feature = "microfacet")]
+pub use torrance_sparrow::TorranceSparrow;
 #[cfg(feature = "ward")]
 pub use ward::{Ward, WardAniso, WardDuer, WardDuerAniso};

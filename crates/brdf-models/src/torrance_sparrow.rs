@@ -1,0 +1,83 @@
+//! Torrance-Sparrow (Torrance & Sparrow 1967, "Theory for off-specular
+//! reflection from roughened surfaces", JOSA 57(9)) with the Gaussian facet
+//! distribution normalised as Ramamoorthi & Hanrahan (2001):
+//!
+//! `f = kd/pi + ks D G F(V.H) / ((N.L)(N.V))`, `D = exp(-(delta/m)^2) / (pi m^2)`,
+//! `G = min(1, 2 (N.H)(N.V)/(V.H), 2 (N.H)(N.L)/(V.H))`, Schlick `F`.
+//!
+//! | parameter | meaning | default box | linear |
+//! | --- | --- | --- | --- |
+//! | `kd` (per channel) | diffuse albedo | `[0, 1]` | yes |
+//! | `ks` (per channel) | specular strength | `[0, 1]` | yes |
+//! | `m` | facet slope (radians) | `(0, 0.999]` | no |
+//! | `f0` | Fresnel reflectance at normal incidence | `[0, 0.999]` | no |
+//!
+//! Properties: reciprocal; non-negative; finite above the horizon (the
+//! `1/(N.L N.V)` is bounded by `G <= 2 NH min(NL, NV)/VH`, leaving
+//! `1/max(NL, NV)`). Not energy conserving towards grazing incidence for
+//! every `ks`: the domain where it is, is stated and tested in
+//! `tests/energy.rs`.
+//!
+//! ```
+//! use brdf_core::Brdf;
+//! use brdf_models::TorranceSparrow;
+//! use nalgebra::Vector3;
+//! // L = V = N: delta = 0, G = 1, F = F0: f = ks F0 / (pi m^2).
+//! let m = TorranceSparrow::new(&[0.0], &[1.0], &[0.3, 0.5]).unwrap();
+//! let mut f = [0.0];
+//! m.eval(&Vector3::z(), &Vector3::z(), &mut f);
+//! assert!((f[0] - 0.5 / (std::f64::consts::PI * 0.09)).abs() < 1e-12);
+//! ```
+
+use std::f64::consts::PI;
+
+use brdf_core::ParamSpec;
+use brdf_core::fresnel::{schlick, schlick_d_f0};
+use nalgebra::Vector3;
+
+use crate::ashikhmin_shirley::f0_spec;
+use crate::combinators::{DiffuseLobe, Lobe};
+use crate::microfacet::HalfGeometry;
+
+/// The Torrance-Sparrow lobe `D G F / (N.L N.V)`, parameters `m`, `f0`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TsLobe;
+
+impl Lobe for TsLobe {
+    const NAME: &'static str = "torrance-sparrow";
+    fn specs() -> Vec<ParamSpec> {
+        vec![
+            ParamSpec::new("m", "facet slope (radians)", 0.0, 0.999, 0.2, false).open_below(),
+            f0_spec(),
+        ]
+    }
+    fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
+        let (m, f0) = (q[0], q[1]);
+        let zero = |dq: Option<&mut [f64]>| {
+            if let Some(dq) = dq {
+                dq.fill(0.0);
+            }
+            0.0
+        };
+        let Some(g) = HalfGeometry::new(l, v) else {
+            return zero(dq);
+        };
+        let delta = g.nh.clamp(-1.0, 1.0).acos();
+        let t = delta / m;
+        let e = (-t * t).exp();
+        if e == 0.0 {
+            return zero(dq);
+        }
+        let d = e / (PI * m * m);
+        let common = d * g.shadowing() / (g.nl * g.nv);
+        let s = common * schlick(f0, g.vh);
+        if let Some(dq) = dq {
+            dq[0] = s * (2.0 * t * t - 2.0) / m;
+            dq[1] = common * schlick_d_f0(g.vh);
+        }
+        s
+    }
+}
+
+/// Torrance-Sparrow: `kd`, `ks` per channel, `m`, `f0`.
+pub type TorranceSparrow = DiffuseLobe<TsLobe>;
