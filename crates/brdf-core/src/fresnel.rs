@@ -37,3 +37,27 @@ pub fn fresnel_dielectric(cos_i: f64, eta: f64) -> f64 {
     let rp = (eta * ci - ct) / (eta * ci + ct);
     0.5 * (rs * rs + rp * rp)
 }
+
+/// Exact unpolarised Fresnel reflectance (as [`fresnel_dielectric`], light
+/// arriving from the side of index 1, `eta >= 1`) and its derivative with
+/// respect to `eta`. With `c_t = sqrt(1 - (1 - c_i^2)/eta^2)`:
+/// `dc_t/deta = (1 - c_i^2) / (eta^3 c_t)`, and `r_s`, `r_p` are
+/// differentiated as quotients.
+pub fn fresnel_dielectric_d_eta(cos_i: f64, eta: f64) -> (f64, f64) {
+    let ci = cos_i.clamp(0.0, 1.0);
+    let sin2 = (1.0 - ci * ci).max(0.0);
+    let s2t = sin2 / (eta * eta);
+    if s2t >= 1.0 {
+        return (1.0, 0.0);
+    }
+    let ct = (1.0 - s2t).sqrt();
+    let dct = if ct > 0.0 { sin2 / (eta * eta * eta * ct) } else { 0.0 };
+    let u = eta * ct;
+    let du = ct + eta * dct;
+    let rs = (ci - u) / (ci + u);
+    let drs = -2.0 * ci * du / ((ci + u) * (ci + u));
+    let (n, d) = (eta * ci - ct, eta * ci + ct);
+    let rp = n / d;
+    let drp = ((ci - dct) * d - n * (ci + dct)) / (d * d);
+    (0.5 * (rs * rs + rp * rp), rs * drs + rp * drp)
+}

@@ -203,6 +203,45 @@ pub fn catalogue() -> Vec<ModelEntry> {
         build: |c| Ok(Box::new(crate::OrenNayar::with_channels(c.channels)?)),
         build_for_data: None,
     });
+    #[cfg(feature = "oren-nayar")]
+    v.push(ModelEntry {
+        name: crate::OrenNayarFull::NAME,
+        family: "oren-nayar",
+        summary: "full Oren-Nayar with the interreflection term (kd enters squared), clamped at 0",
+        paper: "Oren & Nayar 1994, SIGGRAPH",
+        has_lobes: false,
+        build: |c| Ok(Box::new(crate::OrenNayarFull::with_channels(c.channels)?)),
+        build_for_data: None,
+    });
+    #[cfg(feature = "sopp")]
+    {
+        lobe_model!(
+            crate::PhongFresnel,
+            "sopp",
+            "cd/pi + (ns+2)/(2 pi) cs (R.V)^ns (1 - Fr(theta_i; eta)), not reciprocal",
+            "Sopp 2017, MSc thesis, THM Friedberg"
+        );
+        lobe_model!(
+            crate::AsPaint,
+            "sopp",
+            "Ashikhmin-Shirley paint shader, fitted form cd/pi + cs (ns+1)/(8 pi) (N.H)^ns / ((H.V) max(N.L, N.V)); Rs by conversion",
+            "Sopp 2017, MSc thesis, THM Friedberg"
+        );
+        v.push(ModelEntry {
+            name: crate::ClearCoat::NAME,
+            family: "sopp",
+            summary: "clear coat (eta 1.5) over the AS paint shader: Fr(theta_i) + (1 - Fr) f_base, not reciprocal",
+            paper: "Sopp 2017, MSc thesis, THM Friedberg",
+            has_lobes: false,
+            build: |c| {
+                Ok(Box::new(crate::ClearCoat::new(
+                    Box::new(crate::AsPaint::with_channels(c.channels)?),
+                    1.5,
+                )?))
+            },
+            build_for_data: None,
+        });
+    }
     #[cfg(feature = "koenderink")]
     v.push(ModelEntry {
         name: crate::Koenderink::NAME,

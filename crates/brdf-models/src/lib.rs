@@ -14,7 +14,8 @@
 //! | `ward` | [`Ward`], [`WardAniso`], [`WardDuer`], [`WardDuerAniso`] |
 //! | `lafortune` | [`Lafortune`] (isotropic and anisotropic, K lobes) |
 //! | `microfacet` | [`AshikhminShirley`] (+ anisotropic, coupled diffuse), [`TorranceSparrow`], [`CookTorrance`] (K lobes) |
-//! | `oren-nayar` | [`OrenNayar`] (qualitative) |
+//! | `oren-nayar` | [`OrenNayar`] (qualitative), [`OrenNayarFull`] (with interreflection) |
+//! | `sopp` | [`PhongFresnel`], [`AsPaint`] / [`PaintShader`] (with the `Rs` conversion), [`ClearCoat`] over any base |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
 //!
@@ -31,6 +32,8 @@ pub mod ashikhmin_shirley;
 #[cfg(feature = "phong")]
 pub mod blinn_phong;
 pub mod catalogue;
+#[cfg(feature = "sopp")]
+pub mod clear_coat;
 pub mod combinators;
 #[cfg(feature = "microfacet")]
 pub mod cook_torrance;
@@ -45,8 +48,12 @@ pub mod lambert;
 pub mod microfacet;
 #[cfg(feature = "oren-nayar")]
 pub mod oren_nayar;
+#[cfg(feature = "sopp")]
+pub mod paint_shader;
 #[cfg(feature = "phong")]
 pub mod phong;
+#[cfg(feature = "sopp")]
+pub mod phong_fresnel;
 #[cfg(feature = "microfacet")]
 pub mod torrance_sparrow;
 #[cfg(feature = "ward")]
@@ -59,6 +66,8 @@ pub use ashikhmin_shirley::{
 #[cfg(feature = "phong")]
 pub use blinn_phong::BlinnPhong;
 pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
+#[cfg(feature = "sopp")]
+pub use clear_coat::ClearCoat;
 #[cfg(feature = "microfacet")]
 pub use cook_torrance::CookTorrance;
 #[cfg(feature = "koenderink")]
@@ -69,9 +78,13 @@ pub use kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
 pub use lafortune::Lafortune;
 pub use lambert::Lambert;
 #[cfg(feature = "oren-nayar")]
-pub use oren_nayar::OrenNayar;
+pub use oren_nayar::{OrenNayar, OrenNayarFull};
+#[cfg(feature = "sopp")]
+pub use paint_shader::{AsPaint, PaintShader};
 #[cfg(feature = "phong")]
 pub use phong::Phong;
+#[cfg(feature = "sopp")]
+pub use phong_fresnel::PhongFresnel;
 #[cfg(feature = "microfacet")]
 pub use torrance_sparrow::TorranceSparrow;
 #[cfg(feature = "ward")]
