@@ -51,7 +51,11 @@ pub fn fresnel_dielectric_d_eta(cos_i: f64, eta: f64) -> (f64, f64) {
         return (1.0, 0.0);
     }
     let ct = (1.0 - s2t).sqrt();
-    let dct = if ct > 0.0 { sin2 / (eta * eta * eta * ct) } else { 0.0 };
+    let dct = if ct > 0.0 {
+        sin2 / (eta * eta * eta * ct)
+    } else {
+        0.0
+    };
     let u = eta * ct;
     let du = ct + eta * dct;
     let rs = (ci - u) / (ci + u);

@@ -20,9 +20,9 @@
 //!
 //! Properties: reciprocal (every factor is symmetric in `L`, `V`);
 //! non-negative; finite above the horizon (`V.H >= sqrt((1 + L.V)/2) > 0`
-//! and `max(N.L, N.V) >= 1e-6` within `1e-6` of the horizon). Energy: the
-//! coupled form was designed for `kd + ks <= 1`; `tests/energy.rs` checks
-//! the albedo bound on the domain stated there.
+//! and `max(N.L, N.V) >= 1e-6` within `1e-6` of the horizon). Energy:
+//! `kd + ks <= 1` keeps the albedo at most 1 at every incidence, for both
+//! diffuse forms, every exponent and `F0` (tested in `tests/energy.rs`).
 //!
 //! ```
 //! use brdf_core::Brdf;
@@ -50,7 +50,14 @@ pub(crate) fn exponent(name: &str) -> ParamSpec {
 }
 
 pub(crate) fn f0_spec() -> ParamSpec {
-    ParamSpec::new("f0", "Fresnel reflectance at normal incidence", 0.0, 0.999, 0.04, false)
+    ParamSpec::new(
+        "f0",
+        "Fresnel reflectance at normal incidence",
+        0.0,
+        0.999,
+        0.04,
+        false,
+    )
 }
 
 /// The AS specular lobe with exponents `nu`, `nv` (equal when isotropic),
@@ -107,7 +114,11 @@ macro_rules! as_model {
                 }
             }
             fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
-                let (nu, nv, f0) = if $aniso { (q[0], q[1], q[2]) } else { (q[0], q[0], q[1]) };
+                let (nu, nv, f0) = if $aniso {
+                    (q[0], q[1], q[2])
+                } else {
+                    (q[0], q[0], q[1])
+                };
                 let (s, d) = as_lobe(nu, nv, Some(f0), l, v);
                 if let Some(dq) = dq {
                     if $aniso {
@@ -119,7 +130,12 @@ macro_rules! as_model {
                 }
                 s
             }
-            fn diffuse(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
+            fn diffuse(
+                q: &[f64],
+                l: &Vector3<f64>,
+                v: &Vector3<f64>,
+                dq: Option<&mut [f64]>,
+            ) -> f64 {
                 if !$coupled {
                     return std::f64::consts::FRAC_1_PI;
                 }

@@ -51,7 +51,10 @@ impl Clone for ClearCoat {
 
 impl std::fmt::Debug for ClearCoat {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("ClearCoat").field("base", &self.base.name()).field("eta", &self.eta).finish()
+        f.debug_struct("ClearCoat")
+            .field("base", &self.base.name())
+            .field("eta", &self.eta)
+            .finish()
     }
 }
 
@@ -174,7 +177,11 @@ pub fn divide_by_transmission(samples: &SampleSet, eta: f64) -> Result<SampleSet
     let mut vals = vec![0.0; nc];
     for j in 0..samples.len() {
         let l = pairs.l(j);
-        let t = if l.z > 0.0 { 1.0 - fresnel_dielectric(l.z, eta) } else { 1.0 };
+        let t = if l.z > 0.0 {
+            1.0 - fresnel_dielectric(l.z, eta)
+        } else {
+            1.0
+        };
         for c in 0..nc {
             vals[c] = samples.channel(c)[j] / t;
         }

@@ -209,7 +209,11 @@ impl<S: Lobe> MultiLobe<S> {
                 0.2 / lobes as f64,
             ));
             for mut q in S::specs() {
-                let sep = if q.name.ends_with(|c: char| c.is_ascii_digit()) { "_" } else { "" };
+                let sep = if q.name.ends_with(|c: char| c.is_ascii_digit()) {
+                    "_"
+                } else {
+                    ""
+                };
                 q.name = format!("{}{sep}{k}", q.name);
                 q.meaning = format!("{} of lobe {k}", q.meaning);
                 specs.push(q);
@@ -251,7 +255,10 @@ impl<S: Lobe> Parametric for MultiLobe<S> {
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         let nc = self.channels;
-        out[..nc].iter_mut().enumerate().for_each(|(c, x)| *x = p[c] * FRAC_1_PI);
+        out[..nc]
+            .iter_mut()
+            .enumerate()
+            .for_each(|(c, x)| *x = p[c] * FRAC_1_PI);
         if !(l.z > 0.0 && v.z > 0.0) {
             out[..nc].iter_mut().for_each(|x| *x = 0.0);
             return;

@@ -14,8 +14,9 @@
 //!
 //! Properties: reciprocal; non-negative; finite above the horizon (`D` is
 //! evaluated as 0 once `exp(-tan^2/m^2)` underflows, before `cos^4` can
-//! vanish). Not energy conserving near grazing incidence for every `ks`:
-//! the tested domain is stated in `tests/energy.rs`. Fits with 1 and 2
+//! vanish). Not energy conserving for every `ks`: each lobe's albedo
+//! approaches `4 F0`, so the domain is `kd + 4 sum_k ks_k <= 1` (tested in
+//! `tests/energy.rs`). Fits with 1 and 2
 //! lobes (Ngan).
 //!
 //! ```

@@ -13,6 +13,10 @@
 //! | `kd` (per channel) | diffuse albedo | `[0, 1]` | yes |
 //! | `sigma` | facet slope standard deviation (radians) | `[0, 0.999]` | no |
 //!
+//! Energy: at `kd = 1` the albedo exceeds 1 near grazing incidence (the
+//! `tan(beta)` term), for the full model too; both conserve energy for
+//! `kd <= 0.95` (tested in `tests/energy.rs`).
+//!
 //! Properties: reciprocal (`alpha`, `beta` and `cos(dphi)` are symmetric);
 //! non-negative (`A >= 1/2`, the `B` term is `>= 0`); `sigma = 0` is
 //! Lambert. Finite above the horizon: `tan(beta) <= tan(pi/2 - 1e-6)`-ish

@@ -53,7 +53,14 @@ impl Lobe for PhongFresnelLobe {
     fn specs() -> Vec<ParamSpec> {
         vec![
             ParamSpec::new("ns", "Phong exponent", 0.0, 1e6, 20.0, false),
-            ParamSpec::new("eta", "refractive index of the clear coat", 1.0, 3.0, 1.5, false),
+            ParamSpec::new(
+                "eta",
+                "refractive index of the clear coat",
+                1.0,
+                3.0,
+                1.5,
+                false,
+            ),
         ]
     }
     fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {

@@ -15,8 +15,9 @@
 //! Properties: reciprocal; non-negative; finite above the horizon (the
 //! `1/(N.L N.V)` is bounded by `G <= 2 NH min(NL, NV)/VH`, leaving
 //! `1/max(NL, NV)`). Not energy conserving towards grazing incidence for
-//! every `ks`: the domain where it is, is stated and tested in
-//! `tests/energy.rs`.
+//! every `ks`: the lobe's albedo approaches `4 F0` for sharp lobes, so the
+//! domain is `kd + 4 ks <= 1` (at every incidence; tested in
+//! `tests/energy.rs`, with `ks = 0.3` shown to exceed 1).
 //!
 //! ```
 //! use brdf_core::Brdf;

@@ -72,3 +72,282 @@ fn blinn_phong_conserves_energy_for_kd_plus_4ks_at_most_one() {
     let (a, e) = max_albedo(&m, AlbedoFrame::Normal);
     assert!(a - e > 1.0, "{a} {e}");
 }
+
+/// Worst albedo (value + its error) over incident angles up to `max_deg`
+/// (the pole, 45 deg, the domain's limit and, for a full domain, 89.9 deg)
+/// at two azimuths (anisotropic models differ there).
+fn worst(m: &dyn Brdf, frame: AlbedoFrame, max_deg: f64) -> (f64, f64) {
+    let opts = QuadratureOptions {
+        rel_tol: 1e-6,
+        abs_tol: 1e-9,
+        max_intervals: 300,
+    };
+    let mut w = (f64::NEG_INFINITY, 0.0);
+    let limit = if max_deg >= 90.0 { 89.9 } else { max_deg };
+    for deg in [0.0f64, 45.0, 0.5 * (45.0 + limit), limit] {
+        for phi in [0.3, 1.2] {
+            let l = spherical_to_cartesian(deg.to_radians(), phi);
+            let a = directional_albedo(m, &l, frame, &opts);
+            for c in 0..a.value.len() {
+                if a.value[c] + a.error[c] > w.0 + w.1 {
+                    w = (a.value[c], a.error[c]);
+                }
+            }
+        }
+    }
+    w
+}
+
+fn model(name: &str, lobes: usize, p: &[f64]) -> Box<dyn brdf_core::Parametric> {
+    let mut m = brdf_models::build(
+        name,
+        &brdf_models::ModelConfig {
+            lobes,
+            ..brdf_models::ModelConfig::default()
+        },
+    )
+    .unwrap();
+    m.set_params(p).unwrap();
+    m
+}
+
+fn assert_within(name: &str, p: &[f64], lobes: usize, frame: AlbedoFrame, max_deg: f64) {
+    let m = model(name, lobes, p);
+    let (a, e) = worst(m.as_ref(), frame, max_deg);
+    assert!(
+        a + e <= 1.0 + 1e-9,
+        "{name} {p:?} up to {max_deg} deg: albedo {a} + {e}"
+    );
+}
+
+fn assert_exceeds(name: &str, p: &[f64], lobes: usize, frame: AlbedoFrame, max_deg: f64) {
+    let m = model(name, lobes, p);
+    let (a, e) = worst(m.as_ref(), frame, max_deg);
+    assert!(
+        a - e > 1.0,
+        "{name} {p:?}: albedo {a} - {e} should exceed 1"
+    );
+}
+
+/// Ward: `kd + ks <= 1` for incidence up to 85 deg (the `sqrt(cos_i cos_o)`
+/// denominator lets a rough lobe's albedo grow without bound at grazing).
+#[test]
+fn ward_domain() {
+    for a in [1e-3, 0.1, 0.5] {
+        assert_within("ward", &[0.0, 1.0, a], 1, AlbedoFrame::Mirror, 85.0);
+        assert_within(
+            "ward-aniso",
+            &[0.5, 0.5, a, 0.5 - 0.4 * a],
+            1,
+            AlbedoFrame::Mirror,
+            85.0,
+        );
+    }
+    assert_exceeds("ward", &[0.0, 1.0, 0.5], 1, AlbedoFrame::Mirror, 90.0);
+}
+
+/// Ward-Duer: `kd + ks <= 1` for incidence up to 70 deg (anisotropic lobes
+/// exceed 1 at 80 deg).
+#[test]
+fn ward_duer_domain() {
+    for a in [1e-3, 0.05, 0.5] {
+        assert_within("ward-duer", &[0.0, 1.0, a], 1, AlbedoFrame::Mirror, 70.0);
+        assert_within(
+            "ward-duer-aniso",
+            &[0.2, 0.8, a, 0.5 - 0.45 * a / 0.5],
+            1,
+            AlbedoFrame::Mirror,
+            70.0,
+        );
+    }
+    assert_exceeds(
+        "ward-duer-aniso",
+        &[0.2, 0.8, 0.05, 0.48],
+        1,
+        AlbedoFrame::Mirror,
+        80.0,
+    );
+}
+
+/// Ashikhmin-Shirley (both diffuse forms) and the paint shader:
+/// `kd + ks <= 1` at every incidence.
+#[test]
+fn ashikhmin_shirley_domain() {
+    for n in [0.0, 10.0, 1e4] {
+        assert_within(
+            "ashikhmin-shirley",
+            &[0.0, 1.0, n, 0.999],
+            1,
+            AlbedoFrame::Mirror,
+            90.0,
+        );
+        assert_within(
+            "ashikhmin-shirley-coupled",
+            &[0.5, 0.5, n, 0.5],
+            1,
+            AlbedoFrame::Mirror,
+            90.0,
+        );
+        assert_within(
+            "ashikhmin-shirley-coupled",
+            &[1.0, 0.0, n, 0.0],
+            1,
+            AlbedoFrame::Mirror,
+            90.0,
+        );
+        assert_within(
+            "ashikhmin-shirley-aniso",
+            &[0.3, 0.7, n, 10.0, 0.999],
+            1,
+            AlbedoFrame::Mirror,
+            90.0,
+        );
+        assert_within("as-paint", &[0.3, 0.7, n], 1, AlbedoFrame::Mirror, 90.0);
+    }
+    assert_exceeds(
+        "ashikhmin-shirley",
+        &[0.5, 1.0, 1e4, 0.999],
+        1,
+        AlbedoFrame::Mirror,
+        30.0,
+    );
+}
+
+/// Torrance-Sparrow and Cook-Torrance: the lobe's albedo approaches 4 ks F0
+/// for sharp lobes (the 1/(N.L N.V) with G and the normalisation of D), so
+/// the domain is `kd + 4 ks <= 1` (all lobes summed).
+#[test]
+fn torrance_sparrow_and_cook_torrance_domain() {
+    for m in [1e-3, 0.2, 0.999] {
+        assert_within(
+            "torrance-sparrow",
+            &[0.0, 0.25, m, 0.999],
+            1,
+            AlbedoFrame::Mirror,
+            90.0,
+        );
+        assert_within(
+            "cook-torrance",
+            &[0.2, 0.2, m, 0.999],
+            1,
+            AlbedoFrame::Mirror,
+            90.0,
+        );
+        assert_within(
+            "cook-torrance",
+            &[0.0, 0.125, m, 0.999, 0.125, 0.5, 0.999],
+            2,
+            AlbedoFrame::Mirror,
+            90.0,
+        );
+    }
+    assert_exceeds(
+        "torrance-sparrow",
+        &[0.0, 0.3, 0.05, 0.999],
+        1,
+        AlbedoFrame::Mirror,
+        30.0,
+    );
+    assert_exceeds(
+        "cook-torrance",
+        &[0.0, 0.3, 0.05, 0.999],
+        1,
+        AlbedoFrame::Mirror,
+        30.0,
+    );
+}
+
+/// Lafortune: with the `max|C|^n` normalisation each lobe is bounded by a
+/// Phong lobe, so `kd + sum ks <= 1` at every incidence, for any axis
+/// weights and exponents. As for Phong the bound is reached at normal
+/// incidence, so the sum is taken as 0.9999 where the quadrature would
+/// otherwise only show equality.
+#[test]
+fn lafortune_domain() {
+    for n in [0.0, 10.0, 1e3] {
+        for (cxy, cz) in [(-1.0, 1.0), (-0.5, 1.0), (0.3, -0.2)] {
+            assert_within(
+                "lafortune",
+                &[0.0, 0.9999, cxy, cz, n],
+                1,
+                AlbedoFrame::Normal,
+                90.0,
+            );
+        }
+        assert_within(
+            "lafortune",
+            &[0.2, 0.4, -1.0, 0.5, n, 0.3999, -1.0, 1.0, 5.0],
+            2,
+            AlbedoFrame::Normal,
+            90.0,
+        );
+        assert_within(
+            "lafortune-aniso",
+            &[0.1, 0.8999, -1.0, -0.5, 0.8, n],
+            1,
+            AlbedoFrame::Normal,
+            90.0,
+        );
+    }
+    assert_exceeds(
+        "lafortune",
+        &[0.3, 1.0, -1.0, 1.0, 50.0],
+        1,
+        AlbedoFrame::Mirror,
+        30.0,
+    );
+}
+
+/// Oren-Nayar: at `kd = 1` both forms exceed 1 near grazing incidence (the
+/// `tan(beta)` term; the full form also by its `kd^2` interreflection), so
+/// the domain of both is `kd <= 0.95`.
+#[test]
+fn oren_nayar_domain() {
+    for sigma in [0.0, 0.2, 0.5, 0.999] {
+        assert_within("oren-nayar", &[0.95, sigma], 1, AlbedoFrame::Normal, 90.0);
+        assert_within(
+            "oren-nayar-full",
+            &[0.95, sigma],
+            1,
+            AlbedoFrame::Normal,
+            90.0,
+        );
+    }
+    assert_exceeds("oren-nayar", &[1.0, 0.2], 1, AlbedoFrame::Normal, 90.0);
+    assert_exceeds("oren-nayar-full", &[1.0, 0.5], 1, AlbedoFrame::Normal, 90.0);
+}
+
+/// Sopp's variants: Phong with Fresnel as Phong (`cd + cs <= 1`); the clear
+/// coat over a base of albedo `a <= 0.5` while `Fr(theta_i) <= (1 - a)/(pi - a)`
+/// (up to 70 deg for eta = 1.5), and above 1 at grazing.
+#[test]
+fn sopp_variants_domain() {
+    for n in [0.0, 1e4] {
+        for eta in [1.0, 3.0] {
+            assert_within(
+                "phong-fresnel",
+                &[0.3, 0.6999, n, eta],
+                1,
+                AlbedoFrame::Mirror,
+                90.0,
+            );
+        }
+    }
+    // Fr(70 deg; 1.5) = 0.171 < (1 - 0.5)/(pi - 0.5) = 0.189.
+    let bound = 0.5 / (std::f64::consts::PI - 0.5);
+    assert!(brdf_core::fresnel::fresnel_dielectric(70f64.to_radians().cos(), 1.5) < bound);
+    assert_within(
+        "clear-coat",
+        &[0.25, 0.25, 20.0],
+        1,
+        AlbedoFrame::Normal,
+        70.0,
+    );
+    assert_exceeds(
+        "clear-coat",
+        &[0.25, 0.25, 20.0],
+        1,
+        AlbedoFrame::Normal,
+        90.0,
+    );
+}
