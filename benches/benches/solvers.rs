@@ -28,7 +28,10 @@ impl LeastSquaresProblem for Exps {
     }
     fn residuals(&self, p: &[f64], out: &mut [f64]) {
         for (i, x) in self.x.iter().enumerate() {
-            out[i] = (0..3).map(|k| p[2 * k] * (-p[2 * k + 1] * x).exp()).sum::<f64>() - self.y[i];
+            out[i] = (0..3)
+                .map(|k| p[2 * k] * (-p[2 * k + 1] * x).exp())
+                .sum::<f64>()
+                - self.y[i];
         }
     }
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
@@ -75,7 +78,9 @@ fn solvers(c: &mut Criterion) {
     });
 
     let (m, n) = (10_000, 15);
-    let a = Mat::from_fn(m, n, |i, j| ((i * 31 + j * 17) % 97) as f64 / 97.0 + if i % n == j { 1.0 } else { 0.0 });
+    let a = Mat::from_fn(m, n, |i, j| {
+        ((i * 31 + j * 17) % 97) as f64 / 97.0 + if i % n == j { 1.0 } else { 0.0 }
+    });
     let bv: Vec<f64> = (0..m).map(|i| ((i * 13) % 29) as f64 / 29.0).collect();
     let bm = Mat::from_fn(m, 1, |i, _| bv[i]);
     g.bench_function("lstsq-pivoted-qr/10000x15", |b| {

@@ -41,7 +41,9 @@
 //! **negative** in part of the domain: in back-scatter geometry
 //! (`cos dphi < 0`) near grazing the term `cos(dphi) C2 tan(beta)` exceeds
 //! `C1` (e.g. `sigma = 0.999`, `theta_i = theta_o = 89 deg`, `dphi = pi`:
-//! `C2 tan(beta) -> 0.45 s2/(s2+0.09) 6/pi ~ 0.79 > C1 ~ 0.62`). A BRDF cannot
+//! `C2 tan(beta) -> 0.45 s2/(s2+0.09) 6/pi ~ 0.79 > C1 ~ 0.62`), and for
+//! small `kd` the positive `kd^2` interreflection term cannot make up for it
+//! (`kd = 0.3` there gives `f1 + f2 ~ -0.007`). A BRDF cannot
 //! be negative, so the model clamps at 0 (derivatives 0 there);
 //! [`OrenNayarFull::unclamped`] gives the published value, and the tests
 //! check both that the clamp is active there and that it is inactive
