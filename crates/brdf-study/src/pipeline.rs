@@ -570,7 +570,7 @@ fn summarise(
     let mut fitted = vec![0.0; n * model.channels()];
     model.eval_batch_at(p, data.pairs(), &mut fitted);
     let err = opts.objective.error(data, &fitted)?;
-    let ngan = ngan_l2(&values.to_vec(), &fitted, &data.pairs().lz, data.weights())?;
+    let ngan = ngan_l2(values, &fitted, &data.pairs().lz, data.weights())?;
     let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
     let se = standard_errors(&mp, p).ok();
     let status = box_constraints(model)?.status(p);
