@@ -20,10 +20,12 @@ pub enum Command {
     Models(crate::commands::models::ModelsArgs),
     /// Evaluate a model at one direction pair.
     Eval(crate::commands::eval::EvalArgs),
-    /// Fit a model to a data set (all-linear models so far).
+    /// Fit any model to a data set (automatic starts, any objective).
     Fit(crate::commands::fit::FitArgs),
     /// Certify the solver on the NIST StRD non-linear regression problems.
     Nist(crate::commands::nist::NistArgs),
+    /// Fit the candidate models and choose the smallest adequate one.
+    Select(crate::commands::select::SelectArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
 }

@@ -21,6 +21,7 @@ pub mod plots;
 pub mod render;
 pub mod report;
 pub mod saved_model;
+pub mod select;
 pub mod synthetic;
 
 pub use error::StudyError;

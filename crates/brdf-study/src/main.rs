@@ -14,6 +14,7 @@ fn run() -> Result<(), StudyError> {
         Command::Eval(a) => commands::eval::run(&a),
         Command::Fit(a) => commands::fit::run(&a),
         Command::Nist(a) => commands::nist::run(&a),
+        Command::Select(a) => commands::select::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
     }
 }

@@ -119,6 +119,10 @@ impl Objective {
 /// Which solver fits the model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Solver {
+    /// The default for the model: Kurt's robust IRLS (bisquare) for his
+    /// polynomial, direct least squares (NNLS where the box starts at 0) for
+    /// the other all-linear models, [`Solver::Sqp`] for the rest.
+    Auto,
     /// Variable projection + bounded SQP-style solver + multi-start (default).
     Sqp,
     /// Bounded Levenberg-Marquardt on all parameters + multi-start.
@@ -132,9 +136,10 @@ pub enum Solver {
 }
 
 impl Solver {
-    /// Parse `sqp|lm|sopp|ols|irls[:weight]`.
+    /// Parse `auto|sqp|lm|sopp|ols|irls[:weight]`.
     pub fn parse(s: &str) -> Result<Self, StudyError> {
         Ok(match s {
+            "auto" => Solver::Auto,
             "sqp" => Solver::Sqp,
             "lm" => Solver::Lm,
             "sopp" => Solver::Sopp,
@@ -144,7 +149,7 @@ impl Solver {
                 Some(w) => Solver::Irls(w.parse().map_err(|e| StudyError::Usage(format!("{e}")))?),
                 None => {
                     return Err(StudyError::Usage(format!(
-                        "unknown solver `{other}`: sqp, lm, sopp, ols, irls or irls:WEIGHT"
+                        "unknown solver `{other}`: auto, sqp, lm, sopp, ols, irls or irls:WEIGHT"
                     )));
                 }
             },
@@ -157,7 +162,7 @@ impl Solver {
 pub struct FitOptions {
     /// Objective [Ngan].
     pub objective: Objective,
-    /// Solver [Sqp].
+    /// Solver [Auto].
     pub solver: Solver,
     /// Multi-start count [12].
     pub starts: usize,
@@ -169,7 +174,7 @@ impl Default for FitOptions {
     fn default() -> Self {
         Self {
             objective: Objective::Ngan,
-            solver: Solver::Sqp,
+            solver: Solver::Auto,
             starts: 12,
             lm: LmOptions {
                 max_iterations: 300,
@@ -259,6 +264,18 @@ pub fn fit(
     let all_linear = specs.iter().all(|s| s.linear);
     let scales = opts.objective.row_scales(data);
     let values = data.values_channel_major();
+    let solver_kind = match opts.solver {
+        Solver::Auto if all_linear && model.name().starts_with("polynomial") => {
+            Solver::Irls(RobustWeight::Bisquare)
+        }
+        Solver::Auto if all_linear => Solver::Ols,
+        Solver::Auto => Solver::Sqp,
+        s => s,
+    };
+    let opts = &FitOptions {
+        solver: solver_kind,
+        ..opts.clone()
+    };
     let (p, solver, rep, starts_info) = if all_linear && opts.objective != Objective::Log {
         let (p, how) = fit_all_linear(model, data, &scales, opts.solver)?;
         (p, how, None, (1, 1, 1))
@@ -279,7 +296,7 @@ pub fn fit(
                 "Sopp's two-stage procedure needs a one-channel model for stage 1: use fit_sopp"
                     .into(),
             )),
-            Solver::Sqp | Solver::Lm => {
+            Solver::Sqp | Solver::Lm | Solver::Auto => {
                 let (p, rep, info, how) = fit_nonlinear(model, data, &values, &scales, opts)?;
                 (p, how, Some(rep), info)
             }
@@ -426,7 +443,11 @@ fn fit_nonlinear(
         nonlinear.iter().map(|k| full.lower()[*k]).collect(),
         nonlinear.iter().map(|k| full.upper()[*k]).collect(),
     )?;
-    let use_varpro = opts.solver == Solver::Sqp && opts.objective != Objective::Log;
+    // Projection needs linear parameters (the full Oren-Nayar model has
+    // none: its kd enters squared).
+    let use_varpro = opts.solver == Solver::Sqp
+        && opts.objective != Objective::Log
+        && !mp.linear_indices().is_empty();
     let problem: &(dyn LeastSquaresProblem + Sync) = if opts.objective == Objective::Log {
         log_problem = LogProblem::new(&mp, data)?;
         &log_problem
@@ -435,8 +456,11 @@ fn fit_nonlinear(
     };
     // Full parameter vector from non-linear values: linear ones projected.
     let project = |a: &[f64]| -> Result<Vec<f64>, brdf_solve::SolveError> {
-        let vp = VarPro::new(&mp, true);
-        let c = vp.linear_coefficients(a)?;
+        let c = if mp.linear_indices().is_empty() {
+            Vec::new()
+        } else {
+            VarPro::new(&mp, true).linear_coefficients(a)?
+        };
         let mut p = mp.assemble(a, &c);
         full.clamp(&mut p);
         Ok(p)

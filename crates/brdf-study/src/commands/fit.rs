@@ -30,9 +30,11 @@ pub struct FitArgs {
     /// linear parameters) or per-channel (everything per channel).
     #[arg(long, default_value = "rgb")]
     pub channels_mode: String,
-    /// Solver: sqp (default; linear parameters projected out), lm, sopp
-    /// (Sopp's two stages), ols or irls[:WEIGHT] (all-linear models).
-    #[arg(long, default_value = "sqp")]
+    /// Solver: auto (default: IRLS bisquare for the polynomial, direct least
+    /// squares for other linear models, sqp otherwise), sqp (linear
+    /// parameters projected out), lm, sopp (Sopp's two stages), ols or
+    /// irls[:WEIGHT] (all-linear models).
+    #[arg(long, default_value = "auto")]
     pub solver: String,
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]

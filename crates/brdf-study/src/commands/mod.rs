@@ -5,3 +5,4 @@ pub mod fit;
 pub mod models;
 pub mod nist;
 pub mod reproduce;
+pub mod select;

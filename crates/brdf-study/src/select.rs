@@ -1,0 +1,167 @@
+//! Choosing what a material needs (`brdf select`): fit every candidate —
+//! each analytic model (with 1 and 2 lobes where it has lobes), Koenderink
+//! orders 2..8, polynomial degrees 1..12 — and pick the one with the fewest
+//! stored numbers whose Ngan L2 error is within a relative tolerance of the
+//! best. AIC and BIC are reported beside it (Gaussian residuals on Ngan's
+//! scaled rows: `AIC = n ln(SSR/n) + 2k`, `BIC = n ln(SSR/n) + k ln n`,
+//! `n` = samples x channels, `k` = stored numbers).
+//!
+//! Stored numbers are the model's parameters; for Kurt's polynomial they
+//! include its PCA transform as Kurt counts it (isotropic: the 2 means and
+//! 2 numbers of the axes, giving his `2p + 5` per grey fit).
+
+use brdf_core::SampleSet;
+use brdf_models::{ModelConfig, catalogue};
+use serde::Serialize;
+
+use crate::StudyError;
+use crate::pipeline::{FitOptions, fit};
+
+/// One candidate's outcome.
+#[derive(Clone, Debug, Serialize)]
+pub struct SelectRow {
+    /// Label (`lafortune (2 lobes)`, `koenderink order 4`, ...).
+    pub label: String,
+    /// Catalogue name.
+    pub model: String,
+    /// Stored numbers `k`.
+    pub stored_numbers: usize,
+    /// Ngan L2 error.
+    pub error: f64,
+    /// Residual sum of squares on Ngan's rows.
+    pub ssr: f64,
+    /// Akaike's information criterion.
+    pub aic: f64,
+    /// Bayes' information criterion.
+    pub bic: f64,
+    /// Fit time in seconds.
+    pub seconds: f64,
+    /// The solver's termination.
+    pub termination: String,
+}
+
+/// The candidates: `(label, model, config)`.
+pub fn candidates(channels: usize) -> Vec<(String, &'static str, ModelConfig)> {
+    let base = ModelConfig {
+        channels,
+        ..ModelConfig::default()
+    };
+    let mut v = Vec::new();
+    for e in catalogue() {
+        match e.name {
+            "koenderink" => {
+                for order in 2..=8 {
+                    v.push((
+                        format!("koenderink order {order}"),
+                        e.name,
+                        ModelConfig { order, ..base },
+                    ));
+                }
+            }
+            "polynomial" => {
+                for degree in 1..=12 {
+                    v.push((
+                        format!("polynomial degree {degree}"),
+                        e.name,
+                        ModelConfig { degree, ..base },
+                    ));
+                }
+            }
+            "polynomial-aniso" => {}
+            _ if e.has_lobes => {
+                for lobes in 1..=2 {
+                    v.push((
+                        format!(
+                            "{} ({lobes} lobe{})",
+                            e.name,
+                            if lobes > 1 { "s" } else { "" }
+                        ),
+                        e.name,
+                        ModelConfig { lobes, ..base },
+                    ));
+                }
+            }
+            _ => v.push((e.name.to_string(), e.name, base)),
+        }
+    }
+    v
+}
+
+/// Fit every candidate to `data` and return the rows and the index of the
+/// choice (fewest stored numbers with error `<= (1 + tolerance) best`).
+pub fn select(
+    data: &SampleSet,
+    tolerance: f64,
+    opts: &FitOptions,
+) -> Result<(Vec<SelectRow>, usize), StudyError> {
+    if !(tolerance >= 0.0 && tolerance.is_finite()) {
+        return Err(StudyError::Usage(format!(
+            "--tolerance {tolerance} must be >= 0"
+        )));
+    }
+    let n = (data.len() * data.channels()) as f64;
+    let mut rows = Vec::new();
+    for (label, name, config) in candidates(data.channels()) {
+        let Some(e) = brdf_models::entry(name) else {
+            continue;
+        };
+        let mut model = match e.build_for_data {
+            Some(f) => f(&config, data.pairs())?,
+            None => (e.build)(&config)?,
+        };
+        if model.n_params() >= data.len() * data.channels() {
+            continue;
+        }
+        let r = match fit(model.as_mut(), data, opts) {
+            Ok(r) => r,
+            Err(e) => {
+                rows.push(SelectRow {
+                    label,
+                    model: name.to_string(),
+                    stored_numbers: model.n_params(),
+                    error: f64::NAN,
+                    ssr: f64::NAN,
+                    aic: f64::NAN,
+                    bic: f64::NAN,
+                    seconds: 0.0,
+                    termination: format!("failed: {e}"),
+                });
+                continue;
+            }
+        };
+        let pca = if name == "polynomial" { 4 } else { 0 };
+        let k = model.n_params() + pca;
+        // SSR on Ngan's rows: E^2 times the weight sum (per channel averaged).
+        let wsum: f64 = data.weights().iter().sum();
+        let ssr = r.ngan_l2 * r.ngan_l2 * wsum * data.channels() as f64;
+        let ll = n * (ssr / n).max(f64::MIN_POSITIVE).ln();
+        rows.push(SelectRow {
+            label,
+            model: name.to_string(),
+            stored_numbers: k,
+            error: r.ngan_l2,
+            ssr,
+            aic: ll + 2.0 * k as f64,
+            bic: ll + k as f64 * n.ln(),
+            seconds: r.seconds,
+            termination: r.termination,
+        });
+    }
+    let best = rows
+        .iter()
+        .map(|r| r.error)
+        .filter(|e| e.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    let choice = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.error.is_finite() && r.error <= (1.0 + tolerance) * best)
+        .min_by(|a, b| {
+            a.1.stored_numbers
+                .cmp(&b.1.stored_numbers)
+                .then(a.1.error.total_cmp(&b.1.error))
+        })
+        .map(|(i, _)| i)
+        .ok_or_else(|| StudyError::Usage("no candidate could be fitted".into()))?;
+    Ok((rows, choice))
+}
