@@ -9,6 +9,7 @@
 //!
 //! - `plots` (default): SVG plots of the figures through plotters.
 
+pub mod bias;
 pub mod cli;
 pub mod commands;
 pub mod data;
