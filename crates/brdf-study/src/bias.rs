@@ -47,14 +47,18 @@ pub fn expected_bias(
     space: &DirPairs,
 ) -> Result<Bias, StudyError> {
     if truth.channels() != 1 {
-        return Err(StudyError::Usage("the bias analysis takes a one-channel true model".into()));
+        return Err(StudyError::Usage(
+            "the bias analysis takes a one-channel true model".into(),
+        ));
     }
     let pca = Pca::from_pairs(PolyVariant::Isotropic, design)?;
     let poly = KurtPolynomial::new(PolyVariant::Isotropic, degree, 1, pca)?;
     let k = poly.coefficients_per_channel();
     let n = design.len();
     if n <= k {
-        return Err(StudyError::Usage(format!("{n} design pairs for {k} coefficients")));
+        return Err(StudyError::Usage(format!(
+            "{n} design pairs for {k} coefficients"
+        )));
     }
     let mut row = vec![0.0; k];
     let mut x = Mat::<f64>::zeros(n, k);

@@ -15,6 +15,7 @@ pub mod commands;
 pub mod data;
 pub mod error;
 pub mod fit;
+pub mod kurt_tables;
 pub mod nist;
 pub mod pipeline;
 #[cfg(feature = "plots")]

@@ -626,14 +626,51 @@ fn summarise(
         ngan_l2_per_channel: ngan.per_channel,
         solver,
         iterations: rep.as_ref().map(|r| r.iterations).unwrap_or(0),
-        termination: rep
-            .as_ref()
-            .map(|r| r.termination.describe().to_string())
-            .unwrap_or_else(|| "direct solve".into()),
+        termination: describe_termination(&mp, p, rep.as_ref(), &status, specs),
         starts,
         seconds,
         stored_numbers: specs.len(),
     })
+}
+
+/// The termination in words. A plateau where a linear parameter sits at
+/// its lower bound 0 is a degenerate but genuine fit (the model's term has
+/// vanished, e.g. `ks = 0`, and the parameters only that term used have no
+/// influence): it is reported as such, naming them, rather than as a
+/// failure; any other plateau stays "not converged".
+fn describe_termination(
+    mp: &ModelProblem<'_>,
+    p: &[f64],
+    rep: Option<&SolverReport>,
+    status: &[BoundStatus],
+    specs: &[brdf_core::ParamSpec],
+) -> String {
+    let Some(rep) = rep else {
+        return "direct solve".into();
+    };
+    if rep.termination != Termination::SingularPlateau {
+        return rep.termination.describe().to_string();
+    }
+    let zero_term = specs
+        .iter()
+        .zip(status)
+        .any(|(s, b)| s.linear && s.lower == 0.0 && *b == BoundStatus::AtLower);
+    let (m, n) = (mp.n_residuals(), p.len());
+    let mut jac = vec![0.0; m * n];
+    mp.jacobian(p, &mut jac);
+    let lost: Vec<&str> = (0..n)
+        .filter(|k| status[*k] == BoundStatus::Free)
+        .filter(|k| (0..m).all(|i| jac[i * n + k] == 0.0))
+        .map(|k| specs[k].name.as_str())
+        .collect();
+    if zero_term && !lost.is_empty() {
+        format!(
+            "converged to a degenerate fit: a linear term is 0, so {} have no influence",
+            lost.join(", ")
+        )
+    } else {
+        rep.termination.describe().to_string()
+    }
 }
 
 /// The log objective as a least-squares problem over all parameters:

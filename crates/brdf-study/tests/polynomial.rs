@@ -34,15 +34,22 @@ fn normal_equations_lose_digits_at_high_degree_qr_does_not() {
     });
     // Known coefficients, exact data.
     let truth: Vec<f64> = (0..k).map(|c| 1.0 / (1.0 + c as f64)).collect();
-    let y = Mat::from_fn(dp.len(), 1, |j, _| (0..k).map(|c| x[(j, c)] * truth[c]).sum());
+    let y = Mat::from_fn(dp.len(), 1, |j, _| {
+        (0..k).map(|c| x[(j, c)] * truth[c]).sum()
+    });
     let err = |m: LstsqMethod| {
         let s = lstsq(x.as_ref(), y.as_ref(), None, m).unwrap();
-        (0..k).map(|c| (s.x[(c, 0)] - truth[c]).abs()).fold(0.0f64, f64::max)
+        (0..k)
+            .map(|c| (s.x[(c, 0)] - truth[c]).abs())
+            .fold(0.0f64, f64::max)
     };
     let qr = err(LstsqMethod::PivotedQr);
     let ne = err(LstsqMethod::NormalEquations);
     assert!(qr < 1e-6, "QR error {qr}");
-    assert!(ne > 1e3 * qr, "normal equations {ne} vs QR {qr}: the squared condition number must show");
+    assert!(
+        ne > 1e3 * qr,
+        "normal equations {ne} vs QR {qr}: the squared condition number must show"
+    );
 }
 
 #[test]
@@ -54,7 +61,9 @@ fn irls_resists_outliers_ols_does_not() {
     };
     let e = brdf_models::entry("polynomial").unwrap();
     let mut truth = (e.build_for_data.unwrap())(&config, &dp).unwrap();
-    let p: Vec<f64> = (0..truth.n_params()).map(|c| 0.3 / (1.0 + c as f64)).collect();
+    let p: Vec<f64> = (0..truth.n_params())
+        .map(|c| 0.3 / (1.0 + c as f64))
+        .collect();
     truth.set_params(&p).unwrap();
     let mut s = SampleSet::new("outliers", "test", vec!["grey".into()]);
     let mut f = [0.0];
@@ -71,7 +80,11 @@ fn irls_resists_outliers_ols_does_not() {
     }
     let mut m = (e.build_for_data.unwrap())(&config, &dp).unwrap();
     let robust = fit(m.as_mut(), &s, &FitOptions::default()).unwrap();
-    assert!(robust.solver.starts_with("IRLS (bisquare"), "{}", robust.solver);
+    assert!(
+        robust.solver.starts_with("IRLS (bisquare"),
+        "{}",
+        robust.solver
+    );
     let rob: Vec<f64> = robust.parameters.iter().map(|q| q.value).collect();
     let ols = fit(
         m.as_mut(),
@@ -83,9 +96,22 @@ fn irls_resists_outliers_ols_does_not() {
     )
     .unwrap();
     let ols: Vec<f64> = ols.parameters.iter().map(|q| q.value).collect();
-    let dev = |v: &[f64]| v.iter().zip(&p).map(|(a, b)| (a - b).abs()).fold(0.0f64, f64::max);
-    assert!(dev(&rob) < 1e-8, "IRLS recovers the truth despite outliers: {}", dev(&rob));
-    assert!(dev(&ols) > 1e-2, "OLS is pulled by the outliers: {}", dev(&ols));
+    let dev = |v: &[f64]| {
+        v.iter()
+            .zip(&p)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f64, f64::max)
+    };
+    assert!(
+        dev(&rob) < 1e-8,
+        "IRLS recovers the truth despite outliers: {}",
+        dev(&rob)
+    );
+    assert!(
+        dev(&ols) > 1e-2,
+        "OLS is pulled by the outliers: {}",
+        dev(&ols)
+    );
 }
 
 #[test]
@@ -95,7 +121,14 @@ fn expected_bias_vanishes_when_representable_and_shrinks_with_degree() {
     // A degree-2 polynomial truth (in the same PCA scores) is represented
     // exactly by degrees >= 2.
     let e = brdf_models::entry("polynomial").unwrap();
-    let mut truth = (e.build_for_data.unwrap())(&ModelConfig { degree: 2, ..ModelConfig::default() }, &design).unwrap();
+    let mut truth = (e.build_for_data.unwrap())(
+        &ModelConfig {
+            degree: 2,
+            ..ModelConfig::default()
+        },
+        &design,
+    )
+    .unwrap();
     truth.set_params(&[0.3, 0.1, -0.05, 0.02, 0.04]).unwrap();
     // Clamping at 0 would make it non-polynomial: keep it positive.
     let b = expected_bias(truth.as_ref(), 2, &design, &space).unwrap();
@@ -109,7 +142,11 @@ fn expected_bias_vanishes_when_representable_and_shrinks_with_degree() {
     ward.set_params(&[0.3, 0.2, 0.3]).unwrap();
     let r: Vec<f64> = [1, 3, 6, 10]
         .iter()
-        .map(|p| expected_bias(ward.as_ref(), *p, &design, &space).unwrap().rms)
+        .map(|p| {
+            expected_bias(ward.as_ref(), *p, &design, &space)
+                .unwrap()
+                .rms
+        })
         .collect();
     assert!(r[0] > r[1] && r[1] > r[2] && r[2] > r[3], "{r:?}");
 }
