@@ -9,10 +9,19 @@
 //! | module | format | source | units | invalid marker |
 //! | --- | --- | --- | --- | --- |
 //! | [`curet`] | CUReT `abrdf.dat` + `table.txt` (and `r/g/bbrdf.dat`) | Dana et al. 1999 | 1/sr, radians | none (negative values are noise, kept) |
+//! | [`cornell`] | Cornell `.brdf` (31 spectral samples) to linear sRGB / Y via [`colour`] | Cornell PCG | 1/sr, radians | none |
+//! | [`merl`] | MERL `.binary` (read, write, lookup, resample, bin weights) | Matusik et al. 2003 | 1/sr after channel scales | negative bins |
+//! | [`sopp_grid`] | Sopp's goniometric grid (resample, CSV, cell weights) | Sopp 2017 | 1/sr, degrees | none |
+//! | [`csv_samples`] | generic CSV samples in and out | users | 1/sr, radians | NaN values kept, counted by filters |
 //! | [`nist`] | NIST StRD non-linear regression `.dat` | NIST ITL | - | - |
 
+pub mod colour;
+pub mod cornell;
+pub mod csv_samples;
 pub mod curet;
 pub mod error;
+pub mod merl;
 pub mod nist;
+pub mod sopp_grid;
 
 pub use error::IoError;

@@ -1,0 +1,129 @@
+//! Generic CSV samples, so users can bring their own measurements: a header
+//! `theta_i,phi_i,theta_o,phi_o,<one column per channel>,weight` (angles in
+//! radians, values in 1/sr), then one sample per row. Written with the
+//! shortest representation that reads back to the same `f64`, so a
+//! write/read round trip is exact.
+
+use std::path::Path;
+
+use brdf_core::{Direction, SampleSet, cartesian_to_spherical};
+
+use crate::IoError;
+
+/// Read a CSV sample file.
+pub fn read(path: &Path) -> Result<SampleSet, IoError> {
+    let text = std::fs::read_to_string(path).map_err(|source| IoError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse(path, &text)
+}
+
+/// Parse CSV text (`path` only names it in errors).
+pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
+    let mut rdr = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
+    let header: Vec<String> = rdr
+        .headers()
+        .map_err(|e| IoError::Format {
+            path: path.to_path_buf(),
+            line: 1,
+            reason: e.to_string(),
+        })?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let n = header.len();
+    if n < 6
+        || header[..4] != ["theta_i", "phi_i", "theta_o", "phi_o"]
+        || header[n - 1] != "weight"
+    {
+        return Err(IoError::Format {
+            path: path.to_path_buf(),
+            line: 1,
+            reason: format!(
+                "header must be theta_i,phi_i,theta_o,phi_o,<channels...>,weight; found {}",
+                header.join(",")
+            ),
+        });
+    }
+    let channels: Vec<String> = header[4..n - 1].to_vec();
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut set = SampleSet::new(format!("csv#{name}"), path.display().to_string(), channels);
+    for (i, rec) in rdr.records().enumerate() {
+        let line = i + 2;
+        let rec = rec.map_err(|e| IoError::Format {
+            path: path.to_path_buf(),
+            line,
+            reason: e.to_string(),
+        })?;
+        if rec.len() != n {
+            return Err(IoError::Count {
+                path: path.to_path_buf(),
+                line,
+                expected: format!("{n} fields"),
+                found: rec.len().to_string(),
+            });
+        }
+        let mut v = Vec::with_capacity(n);
+        for (k, t) in rec.iter().enumerate() {
+            let x: f64 = t.parse().map_err(|_| IoError::NotANumber {
+                path: path.to_path_buf(),
+                line,
+                field: k + 1,
+                text: t.to_string(),
+            })?;
+            // NaN values are data to be counted and filtered; NaN angles
+            // and weights are errors.
+            if !x.is_finite() && (k < 4 || k == n - 1) {
+                return Err(IoError::NotFinite {
+                    path: path.to_path_buf(),
+                    line,
+                    field: k + 1,
+                    value: x,
+                });
+            }
+            v.push(x);
+        }
+        let bad = |what: &str, e: String| IoError::Format {
+            path: path.to_path_buf(),
+            line,
+            reason: format!("{what}: {e}"),
+        };
+        let l = Direction::from_spherical(v[0], v[1]).map_err(|e| bad("incident direction", e.to_string()))?;
+        let o = Direction::from_spherical(v[2], v[3]).map_err(|e| bad("outgoing direction", e.to_string()))?;
+        set.push(&l, &o, &v[4..n - 1], v[n - 1]).map_err(|e| bad("sample", e.to_string()))?;
+    }
+    if set.is_empty() {
+        return Err(IoError::Format {
+            path: path.to_path_buf(),
+            line: 1,
+            reason: "no samples".into(),
+        });
+    }
+    Ok(set)
+}
+
+/// Write a sample set as CSV.
+pub fn write(path: &Path, set: &SampleSet) -> Result<(), IoError> {
+    let io = |e: std::io::Error| IoError::Io {
+        path: path.to_path_buf(),
+        source: e,
+    };
+    let mut w = csv::Writer::from_path(path).map_err(|e| io(std::io::Error::other(e.to_string())))?;
+    let mut header = vec!["theta_i".to_string(), "phi_i".into(), "theta_o".into(), "phi_o".into()];
+    header.extend(set.channel_names.iter().cloned());
+    header.push("weight".into());
+    w.write_record(&header).map_err(|e| io(std::io::Error::other(e.to_string())))?;
+    let p = set.pairs();
+    for j in 0..set.len() {
+        let (ti, pi) = cartesian_to_spherical(&p.l(j));
+        let (to, po) = cartesian_to_spherical(&p.v(j));
+        let mut rec = vec![ti.to_string(), pi.to_string(), to.to_string(), po.to_string()];
+        for c in 0..set.channels() {
+            rec.push(set.channel(c)[j].to_string());
+        }
+        rec.push(set.weights()[j].to_string());
+        w.write_record(&rec).map_err(|e| io(std::io::Error::other(e.to_string())))?;
+    }
+    w.flush().map_err(io)
+}
