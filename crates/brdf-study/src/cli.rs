@@ -26,6 +26,10 @@ pub enum Command {
     Nist(crate::commands::nist::NistArgs),
     /// Fit the candidate models and choose the smallest adequate one.
     Select(crate::commands::select::SelectArgs),
+    /// Describe a data file: format, samples, channels, invalid values, ranges.
+    Info(crate::commands::info::InfoArgs),
+    /// Convert data or a saved model to MERL, Sopp's grid or CSV samples.
+    Resample(crate::commands::resample::ResampleArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
 }

@@ -1,9 +1,18 @@
 //! Loading a data set named on the command line: `PATH` or `PATH#SAMPLE`
-//! (a material inside a multi-material file, e.g. `curet/abrdf.dat#25`).
+//! (a material inside a multi-material file, e.g. `curet/abrdf.dat#25`),
+//! with the format chosen by the file name:
+//!
+//! | file | format | channels |
+//! | --- | --- | --- |
+//! | `abrdf.dat#N` (with `table.txt` beside it) | CUReT | grey |
+//! | `*.brdf` | Cornell (`#y` for luminance) | linear sRGB |
+//! | `*.binary` | MERL (valid bins, solid-angle weights; `#STRIDE` keeps every STRIDE-th bin, default 50) | RGB |
+//! | `*.csv` with a `light_theta_deg` header | Sopp's goniometric grid (cell weights) | RGB |
+//! | other `*.csv` | generic samples | as in the header |
 
 use std::path::{Path, PathBuf};
 
-use brdf_core::SampleSet;
+use brdf_core::{Brdf, SampleSet};
 
 use crate::StudyError;
 
@@ -15,31 +24,99 @@ pub fn split_sample(spec: &str) -> (PathBuf, Option<String>) {
     }
 }
 
-/// Load the sample set named by `spec`. Supported so far: CUReT
-/// `abrdf.dat#N` (with `table.txt` beside it).
-pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
-    let (path, sample) = split_sample(spec);
-    let file = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
-    if file == "abrdf.dat" {
-        let table = path.parent().unwrap_or(Path::new(".")).join("table.txt");
-        let sets = brdf_io::curet::read_grey(&path, &table)?;
-        let Some(s) = sample else {
+/// The format of a path, by name (and, for CSV, its header).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Format {
+    /// CUReT `abrdf.dat`.
+    Curet,
+    /// Cornell `.brdf`.
+    Cornell,
+    /// MERL `.binary`.
+    Merl,
+    /// Sopp's grid CSV.
+    SoppGrid,
+    /// Generic sample CSV.
+    Csv,
+}
+
+/// Detect the format of `path`.
+pub fn format_of(path: &Path) -> Result<Format, StudyError> {
+    let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    Ok(match (name, ext) {
+        ("abrdf.dat", _) => Format::Curet,
+        (_, "brdf") => Format::Cornell,
+        (_, "binary") => Format::Merl,
+        (_, "csv") => {
+            let text = std::fs::read_to_string(path).map_err(|e| StudyError::Io {
+                path: path.display().to_string(),
+                source: e,
+            })?;
+            if text.starts_with("light_theta_deg") { Format::SoppGrid } else { Format::Csv }
+        }
+        _ => {
             return Err(StudyError::Usage(format!(
-                "{}: name a sample, e.g. {}#25 (CUReT samples 1-61)",
-                path.display(),
+                "{}: unknown data format (CUReT abrdf.dat#N, Cornell .brdf, MERL .binary, grid or sample .csv)",
                 path.display()
             )));
-        };
-        let prefix = format!("curet#{s} ");
-        return sets
-            .into_iter()
-            .find(|set| set.name.starts_with(&prefix))
-            .ok_or_else(|| {
-                StudyError::Usage(format!("{}: no CUReT sample `{s}`", path.display()))
-            });
+        }
+    })
+}
+
+/// A dense data set that can be evaluated at any direction pair (for
+/// resampling and rendering): MERL tables and Sopp grids are, scattered
+/// sets are not.
+pub fn load_dense(spec: &str) -> Result<Option<Box<dyn Brdf>>, StudyError> {
+    let (path, _) = split_sample(spec);
+    Ok(match format_of(&path)? {
+        Format::Merl => Some(Box::new(brdf_io::merl::read(&path)?)),
+        _ => None,
+    })
+}
+
+/// Load the sample set named by `spec`.
+pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
+    let (path, sample) = split_sample(spec);
+    match format_of(&path)? {
+        Format::Curet => {
+            let table = path.parent().unwrap_or(Path::new(".")).join("table.txt");
+            let sets = brdf_io::curet::read_grey(&path, &table)?;
+            let Some(s) = sample else {
+                return Err(StudyError::Usage(format!(
+                    "{}: name a sample, e.g. {}#25 (CUReT samples 1-61)",
+                    path.display(),
+                    path.display()
+                )));
+            };
+            let prefix = format!("curet#{s} ");
+            sets.into_iter()
+                .find(|set| set.name.starts_with(&prefix))
+                .ok_or_else(|| StudyError::Usage(format!("{}: no CUReT sample `{s}`", path.display())))
+        }
+        Format::Cornell => {
+            let colour = match sample.as_deref() {
+                Some("y") | Some("Y") => brdf_io::cornell::CornellColour::Luminance,
+                None | Some("rgb") => brdf_io::cornell::CornellColour::Rgb,
+                Some(other) => {
+                    return Err(StudyError::Usage(format!("{}: `#{other}`: use #rgb or #y", path.display())));
+                }
+            };
+            Ok(brdf_io::cornell::read(&path, colour)?)
+        }
+        Format::Merl => {
+            let stride = match sample.as_deref() {
+                None => 50,
+                Some(s) => s.parse().map_err(|_| StudyError::Usage(format!("{}: `#{s}` is not a stride", path.display())))?,
+            };
+            let m = brdf_io::merl::read(&path)?;
+            let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            Ok(m.to_samples(&format!("merl#{name}"), stride).0)
+        }
+        Format::SoppGrid => {
+            let g = brdf_io::sopp_grid::read(&path)?;
+            let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            Ok(g.to_samples(&format!("grid#{name}"), 90.0, true))
+        }
+        Format::Csv => Ok(brdf_io::csv_samples::read(&path)?),
     }
-    Err(StudyError::Usage(format!(
-        "{}: unsupported data format (supported so far: CUReT abrdf.dat#N)",
-        path.display()
-    )))
 }

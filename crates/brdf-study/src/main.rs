@@ -15,6 +15,8 @@ fn run() -> Result<(), StudyError> {
         Command::Fit(a) => commands::fit::run(&a),
         Command::Nist(a) => commands::nist::run(&a),
         Command::Select(a) => commands::select::run(&a),
+        Command::Info(a) => commands::info::run(&a),
+        Command::Resample(a) => commands::resample::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
     }
 }

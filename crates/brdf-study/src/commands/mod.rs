@@ -2,7 +2,9 @@
 
 pub mod eval;
 pub mod fit;
+pub mod info;
 pub mod models;
 pub mod nist;
 pub mod reproduce;
+pub mod resample;
 pub mod select;
