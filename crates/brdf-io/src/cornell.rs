@@ -30,7 +30,10 @@ pub fn read(path: &Path, colour: CornellColour) -> Result<SampleSet, IoError> {
     let text = String::from_utf8(bytes).map_err(|e| IoError::Format {
         path: path.to_path_buf(),
         line: 0,
-        reason: format!("not UTF-8 text (byte offset {})", e.utf8_error().valid_up_to()),
+        reason: format!(
+            "not UTF-8 text (byte offset {})",
+            e.utf8_error().valid_up_to()
+        ),
     })?;
     parse(path, &text, colour)
 }
@@ -96,7 +99,10 @@ pub fn parse(path: &Path, text: &str, colour: CornellColour) -> Result<SampleSet
         CornellColour::Rgb => vec!["r".into(), "g".into(), "b".into()],
         CornellColour::Luminance => vec!["Y".into()],
     };
-    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let mut set = SampleSet::new(
         format!("cornell#{name}"),
         format!("{} (CIE 1931 2-deg, D65, linear sRGB)", path.display()),

@@ -21,7 +21,9 @@ pub fn read(path: &Path) -> Result<SampleSet, IoError> {
 
 /// Parse CSV text (`path` only names it in errors).
 pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
-    let mut rdr = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
+    let mut rdr = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
     let header: Vec<String> = rdr
         .headers()
         .map_err(|e| IoError::Format {
@@ -33,9 +35,7 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
         .map(str::to_string)
         .collect();
     let n = header.len();
-    if n < 6
-        || header[..4] != ["theta_i", "phi_i", "theta_o", "phi_o"]
-        || header[n - 1] != "weight"
+    if n < 6 || header[..4] != ["theta_i", "phi_i", "theta_o", "phi_o"] || header[n - 1] != "weight"
     {
         return Err(IoError::Format {
             path: path.to_path_buf(),
@@ -47,7 +47,10 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
         });
     }
     let channels: Vec<String> = header[4..n - 1].to_vec();
-    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let mut set = SampleSet::new(format!("csv#{name}"), path.display().to_string(), channels);
     for (i, rec) in rdr.records().enumerate() {
         let line = i + 2;
@@ -89,9 +92,12 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             line,
             reason: format!("{what}: {e}"),
         };
-        let l = Direction::from_spherical(v[0], v[1]).map_err(|e| bad("incident direction", e.to_string()))?;
-        let o = Direction::from_spherical(v[2], v[3]).map_err(|e| bad("outgoing direction", e.to_string()))?;
-        set.push(&l, &o, &v[4..n - 1], v[n - 1]).map_err(|e| bad("sample", e.to_string()))?;
+        let l = Direction::from_spherical(v[0], v[1])
+            .map_err(|e| bad("incident direction", e.to_string()))?;
+        let o = Direction::from_spherical(v[2], v[3])
+            .map_err(|e| bad("outgoing direction", e.to_string()))?;
+        set.push(&l, &o, &v[4..n - 1], v[n - 1])
+            .map_err(|e| bad("sample", e.to_string()))?;
     }
     if set.is_empty() {
         return Err(IoError::Format {
@@ -109,21 +115,34 @@ pub fn write(path: &Path, set: &SampleSet) -> Result<(), IoError> {
         path: path.to_path_buf(),
         source: e,
     };
-    let mut w = csv::Writer::from_path(path).map_err(|e| io(std::io::Error::other(e.to_string())))?;
-    let mut header = vec!["theta_i".to_string(), "phi_i".into(), "theta_o".into(), "phi_o".into()];
+    let mut w =
+        csv::Writer::from_path(path).map_err(|e| io(std::io::Error::other(e.to_string())))?;
+    let mut header = vec![
+        "theta_i".to_string(),
+        "phi_i".into(),
+        "theta_o".into(),
+        "phi_o".into(),
+    ];
     header.extend(set.channel_names.iter().cloned());
     header.push("weight".into());
-    w.write_record(&header).map_err(|e| io(std::io::Error::other(e.to_string())))?;
+    w.write_record(&header)
+        .map_err(|e| io(std::io::Error::other(e.to_string())))?;
     let p = set.pairs();
     for j in 0..set.len() {
         let (ti, pi) = cartesian_to_spherical(&p.l(j));
         let (to, po) = cartesian_to_spherical(&p.v(j));
-        let mut rec = vec![ti.to_string(), pi.to_string(), to.to_string(), po.to_string()];
+        let mut rec = vec![
+            ti.to_string(),
+            pi.to_string(),
+            to.to_string(),
+            po.to_string(),
+        ];
         for c in 0..set.channels() {
             rec.push(set.channel(c)[j].to_string());
         }
         rec.push(set.weights()[j].to_string());
-        w.write_record(&rec).map_err(|e| io(std::io::Error::other(e.to_string())))?;
+        w.write_record(&rec)
+            .map_err(|e| io(std::io::Error::other(e.to_string())))?;
     }
     w.flush().map_err(io)
 }

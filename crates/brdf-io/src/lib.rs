@@ -13,6 +13,7 @@
 //! | [`merl`] | MERL `.binary` (read, write, lookup, resample, bin weights) | Matusik et al. 2003 | 1/sr after channel scales | negative bins |
 //! | [`sopp_grid`] | Sopp's goniometric grid (resample, CSV, cell weights) | Sopp 2017 | 1/sr, degrees | none |
 //! | [`csv_samples`] | generic CSV samples in and out | users | 1/sr, radians | NaN values kept, counted by filters |
+//! | [`rgl`] | RGL `.bsdf` tensor files, evaluated through the inverse VNDF warp | Dupuy & Jakob 2018 | 1/sr | out-of-gamut values clamped at 0 (as the authors) |
 //! | [`nist`] | NIST StRD non-linear regression `.dat` | NIST ITL | - | - |
 
 pub mod colour;
@@ -22,6 +23,7 @@ pub mod curet;
 pub mod error;
 pub mod merl;
 pub mod nist;
+pub mod rgl;
 pub mod sopp_grid;
 
 pub use error::IoError;

@@ -97,8 +97,16 @@ impl Merl {
     /// RGB of a direction pair; `None` below the horizon or in an invalid bin.
     pub fn lookup(&self, l: &Vector3<f64>, v: &Vector3<f64>) -> Option<[f64; 3]> {
         let b = bin_of(l, v)?;
-        let rgb = [self.values[b], self.values[BINS + b], self.values[2 * BINS + b]];
-        if rgb.iter().any(|x| *x < 0.0) { None } else { Some(rgb) }
+        let rgb = [
+            self.values[b],
+            self.values[BINS + b],
+            self.values[2 * BINS + b],
+        ];
+        if rgb.iter().any(|x| *x < 0.0) {
+            None
+        } else {
+            Some(rgb)
+        }
     }
 
     /// Sample any BRDF (3 channels, or 1 channel copied to all three) at the
@@ -131,7 +139,11 @@ impl Merl {
     /// angle measure; `stride` keeps every `stride`-th bin (1 = all).
     /// Returns the set and the number of invalid bins left out.
     pub fn to_samples(&self, name: &str, stride: usize) -> (SampleSet, usize) {
-        let mut s = SampleSet::new(name, "MERL binary", vec!["r".into(), "g".into(), "b".into()]);
+        let mut s = SampleSet::new(
+            name,
+            "MERL binary",
+            vec!["r".into(), "g".into(), "b".into()],
+        );
         let (nh, nd, np) = DIMS;
         let mut invalid = 0;
         let mut k = 0usize;
@@ -144,7 +156,11 @@ impl Merl {
                         continue;
                     }
                     let b = ih * nd * np + id * np + ip;
-                    let rgb = [self.values[b], self.values[BINS + b], self.values[2 * BINS + b]];
+                    let rgb = [
+                        self.values[b],
+                        self.values[BINS + b],
+                        self.values[2 * BINS + b],
+                    ];
                     let (l, v) = bin_centre(ih, id, ip);
                     if rgb.iter().any(|x| *x < 0.0 || !x.is_finite()) || !(l.z > 0.0 && v.z > 0.0) {
                         invalid += 1;
@@ -192,16 +208,29 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<Merl, IoError> {
         return Err(fmt(bytes.len(), "truncated header (needs 12 bytes)".into()));
     }
     let dims: Vec<i32> = (0..3)
-        .map(|k| i32::from_le_bytes([bytes[4 * k], bytes[4 * k + 1], bytes[4 * k + 2], bytes[4 * k + 3]]))
+        .map(|k| {
+            i32::from_le_bytes([
+                bytes[4 * k],
+                bytes[4 * k + 1],
+                bytes[4 * k + 2],
+                bytes[4 * k + 3],
+            ])
+        })
         .collect();
     if dims != [90, 90, 180] {
-        return Err(fmt(0, format!("dimensions {dims:?}, expected [90, 90, 180]")));
+        return Err(fmt(
+            0,
+            format!("dimensions {dims:?}, expected [90, 90, 180]"),
+        ));
     }
     let need = 12 + 3 * BINS * 8;
     if bytes.len() != need {
         return Err(fmt(
             bytes.len().min(need),
-            format!("file has {} bytes, a MERL table has {need} (truncated or trailing data)", bytes.len()),
+            format!(
+                "file has {} bytes, a MERL table has {need} (truncated or trailing data)",
+                bytes.len()
+            ),
         ));
     }
     let mut values = Vec::with_capacity(3 * BINS);

@@ -53,9 +53,16 @@ impl SoppGrid {
     pub const NODES: usize = LIGHTS * CAM_THETAS * CAM_PHIS;
 
     /// The light and camera directions of node `(il, it, ip)`.
-    pub fn directions(il: usize, it: usize, ip: usize) -> (nalgebra::Vector3<f64>, nalgebra::Vector3<f64>) {
+    pub fn directions(
+        il: usize,
+        it: usize,
+        ip: usize,
+    ) -> (nalgebra::Vector3<f64>, nalgebra::Vector3<f64>) {
         let l = spherical_to_cartesian(light_theta_deg(il).to_radians(), std::f64::consts::PI);
-        let v = spherical_to_cartesian(camera_theta_deg(it).to_radians(), camera_phi_deg(ip).to_radians());
+        let v = spherical_to_cartesian(
+            camera_theta_deg(it).to_radians(),
+            camera_phi_deg(ip).to_radians(),
+        );
         (l, v)
     }
 
@@ -92,8 +99,12 @@ impl SoppGrid {
     /// Solid angle of each camera cell, `[it * CAM_PHIS + ip]` (the camera
     /// covers half the hemisphere, `phi` in `[0, pi]`).
     pub fn weights() -> Vec<f64> {
-        let th: Vec<f64> = (0..CAM_THETAS).map(|k| camera_theta_deg(k).to_radians()).collect();
-        let ph: Vec<f64> = (0..CAM_PHIS).map(|k| camera_phi_deg(k).to_radians()).collect();
+        let th: Vec<f64> = (0..CAM_THETAS)
+            .map(|k| camera_theta_deg(k).to_radians())
+            .collect();
+        let ph: Vec<f64> = (0..CAM_PHIS)
+            .map(|k| camera_phi_deg(k).to_radians())
+            .collect();
         // Node grids are strictly increasing, so this cannot fail.
         grid_solid_angles(&th, &ph).unwrap_or_else(|_| vec![0.0; CAM_THETAS * CAM_PHIS])
     }
@@ -102,7 +113,11 @@ impl SoppGrid {
     /// weighted by the camera cells' solid angles (`weighted`) or 1.
     pub fn to_samples(&self, name: &str, limit_deg: f64, weighted: bool) -> SampleSet {
         let w = Self::weights();
-        let mut s = SampleSet::new(name, "Sopp goniometric grid", vec!["r".into(), "g".into(), "b".into()]);
+        let mut s = SampleSet::new(
+            name,
+            "Sopp goniometric grid",
+            vec!["r".into(), "g".into(), "b".into()],
+        );
         for il in 0..LIGHTS {
             for it in 0..CAM_THETAS {
                 if light_theta_deg(il) > limit_deg || camera_theta_deg(it) > limit_deg {
@@ -167,7 +182,8 @@ pub fn parse(path: &Path, text: &str) -> Result<SoppGrid, IoError> {
             return Err(IoError::Format {
                 path: path.to_path_buf(),
                 line: 1,
-                reason: "header must be light_theta_deg,camera_theta_deg,camera_phi_deg,r,g,b".into(),
+                reason: "header must be light_theta_deg,camera_theta_deg,camera_phi_deg,r,g,b"
+                    .into(),
             });
         }
     }
@@ -208,7 +224,10 @@ pub fn parse(path: &Path, text: &str) -> Result<SoppGrid, IoError> {
             return Err(IoError::Format {
                 path: path.to_path_buf(),
                 line: line_no,
-                reason: format!("({}, {}, {}) is not a node of Sopp's grid", v[0], v[1], v[2]),
+                reason: format!(
+                    "({}, {}, {}) is not a node of Sopp's grid",
+                    v[0], v[1], v[2]
+                ),
             });
         };
         let k = index(il, it, ip);

@@ -10,7 +10,9 @@ use brdf_io::{IoError, csv_samples, merl, sopp_grid};
 use nalgebra::Vector3;
 
 fn fixture(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(p)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(p)
 }
 
 fn tmp(name: &str) -> PathBuf {
@@ -42,10 +44,18 @@ impl Brdf for Glossy {
 fn cornell_fixture_flat_spectrum_is_grey_with_exact_luminance() {
     let y = cornell::read(&fixture("cornell/two.brdf"), CornellColour::Luminance).unwrap();
     assert_eq!(y.len(), 2);
-    assert!((y.channel(0)[0] - 0.25).abs() < 1e-12, "Y of a flat 0.25 spectrum: {}", y.channel(0)[0]);
+    assert!(
+        (y.channel(0)[0] - 0.25).abs() < 1e-12,
+        "Y of a flat 0.25 spectrum: {}",
+        y.channel(0)[0]
+    );
     let rgb = cornell::read(&fixture("cornell/two.brdf"), CornellColour::Rgb).unwrap();
     for c in 0..3 {
-        assert!((rgb.channel(c)[0] / 0.25 - 1.0).abs() < 0.02, "channel {c}: {}", rgb.channel(c)[0]);
+        assert!(
+            (rgb.channel(c)[0] / 0.25 - 1.0).abs() < 0.02,
+            "channel {c}: {}",
+            rgb.channel(c)[0]
+        );
     }
     // The ramp (red-heavy) spectrum is redder than blue.
     assert!(rgb.channel(0)[1] > rgb.channel(2)[1]);
@@ -58,11 +68,20 @@ fn cornell_bad_input() {
     let good = std::fs::read_to_string(fixture("cornell/two.brdf")).unwrap();
     let p = Path::new("bad.brdf");
     let truncated = &good[..good.len() - 20];
-    assert!(matches!(cornell::parse(p, truncated, CornellColour::Rgb), Err(IoError::Count { .. })));
+    assert!(matches!(
+        cornell::parse(p, truncated, CornellColour::Rgb),
+        Err(IoError::Count { .. })
+    ));
     let bad = good.replace("0.250000", "0.2x0000");
-    assert!(matches!(cornell::parse(p, &bad, CornellColour::Rgb), Err(IoError::NotANumber { line: 11, .. })));
+    assert!(matches!(
+        cornell::parse(p, &bad, CornellColour::Rgb),
+        Err(IoError::NotANumber { line: 11, .. })
+    ));
     let bad = good.replacen("31\r\n", "30\r\n", 1);
-    assert!(matches!(cornell::parse(p, &bad, CornellColour::Rgb), Err(IoError::Format { .. })));
+    assert!(matches!(
+        cornell::parse(p, &bad, CornellColour::Rgb),
+        Err(IoError::Format { .. })
+    ));
     assert!(cornell::parse(p, "", CornellColour::Rgb).is_err());
     assert!(cornell::read(Path::new("/nonexistent.brdf"), CornellColour::Rgb).is_err());
 }
@@ -75,12 +94,18 @@ fn cornell_real_files() {
     };
     for name in ["cayman", "mystique", "krylon_blue", "acryl_blue"] {
         let p = PathBuf::from(&root).join(format!("cornell/{name}.brdf"));
-        assert!(p.exists(), "BRDF_DATA is set but {} is missing", p.display());
+        assert!(
+            p.exists(),
+            "BRDF_DATA is set but {} is missing",
+            p.display()
+        );
         let s = cornell::read(&p, CornellColour::Rgb).unwrap();
         assert_eq!(s.len(), 1439, "{name}");
         assert_eq!(s.count_non_finite(), 0);
         // theta_i takes 8 values, 10..80 degrees; phi_i is 0.
-        let mut ti: Vec<i64> = (0..s.len()).map(|j| (s.pairs().lz[j].acos().to_degrees()).round() as i64).collect();
+        let mut ti: Vec<i64> = (0..s.len())
+            .map(|j| (s.pairs().lz[j].acos().to_degrees()).round() as i64)
+            .collect();
         ti.sort();
         ti.dedup();
         assert_eq!(ti, vec![10, 20, 30, 40, 50, 60, 70, 80], "{name}");
@@ -95,7 +120,13 @@ fn csv_round_trip_is_exact_and_bad_rows_are_named() {
     for k in 0..20 {
         let l = Direction::from_spherical(0.05 * k as f64, 0.3 * k as f64 - 2.0).unwrap();
         let v = Direction::from_spherical(1.2 - 0.05 * k as f64, 0.1 * k as f64).unwrap();
-        s.push(&l, &v, &[0.1 * k as f64 + 1e-17, -0.001 * k as f64], 0.5 + k as f64).unwrap();
+        s.push(
+            &l,
+            &v,
+            &[0.1 * k as f64 + 1e-17, -0.001 * k as f64],
+            0.5 + k as f64,
+        )
+        .unwrap();
     }
     let p = tmp("round.csv");
     csv_samples::write(&p, &s).unwrap();
@@ -110,11 +141,27 @@ fn csv_round_trip_is_exact_and_bad_rows_are_named() {
         assert!((r.pairs().l(j) - s.pairs().l(j)).norm() < 1e-15);
     }
     let q = Path::new("x.csv");
-    assert!(matches!(csv_samples::parse(q, "a,b\n1,2\n"), Err(IoError::Format { line: 1, .. })));
+    assert!(matches!(
+        csv_samples::parse(q, "a,b\n1,2\n"),
+        Err(IoError::Format { line: 1, .. })
+    ));
     let h = "theta_i,phi_i,theta_o,phi_o,grey,weight\n";
-    assert!(matches!(csv_samples::parse(q, &format!("{h}0,0,0,0,zero,1\n")), Err(IoError::NotANumber { line: 2, field: 5, .. })));
-    assert!(matches!(csv_samples::parse(q, &format!("{h}0,0,0,0,1,1\n0,0,0\n")), Err(IoError::Format { line: 3, .. }) | Err(IoError::Count { line: 3, .. })));
-    assert!(matches!(csv_samples::parse(q, &format!("{h}NaN,0,0,0,1,1\n")), Err(IoError::NotFinite { .. })));
+    assert!(matches!(
+        csv_samples::parse(q, &format!("{h}0,0,0,0,zero,1\n")),
+        Err(IoError::NotANumber {
+            line: 2,
+            field: 5,
+            ..
+        })
+    ));
+    assert!(matches!(
+        csv_samples::parse(q, &format!("{h}0,0,0,0,1,1\n0,0,0\n")),
+        Err(IoError::Format { line: 3, .. }) | Err(IoError::Count { line: 3, .. })
+    ));
+    assert!(matches!(
+        csv_samples::parse(q, &format!("{h}NaN,0,0,0,1,1\n")),
+        Err(IoError::NotFinite { .. })
+    ));
     assert!(csv_samples::parse(q, &format!("{h}0,0,0,0,1,-1\n")).is_err());
     assert!(csv_samples::parse(q, h).is_err());
     // A NaN value is data (kept and counted), not an error.
@@ -126,7 +173,13 @@ fn csv_round_trip_is_exact_and_bad_rows_are_named() {
 fn merl_round_trip_lookup_and_weights() {
     let m = merl::Merl::resample(&Glossy);
     // At bin centres the lookup gives the resampled model exactly.
-    for (ih, id, ip) in [(0, 0, 0), (10, 20, 30), (45, 60, 90), (89, 5, 179), (70, 85, 10)] {
+    for (ih, id, ip) in [
+        (0, 0, 0),
+        (10, 20, 30),
+        (45, 60, 90),
+        (89, 5, 179),
+        (70, 85, 10),
+    ] {
         let (l, v) = merl::bin_centre(ih, id, ip);
         if !(l.z > 0.0 && v.z > 0.0) {
             continue;
@@ -188,8 +241,14 @@ fn sopp_grid_round_trip_weights_and_samples() {
     let text = std::fs::read_to_string(&p).unwrap();
     let q = Path::new("g.csv");
     let truncated: String = text.lines().take(100).collect::<Vec<_>>().join("\n");
-    assert!(matches!(sopp_grid::parse(q, &truncated), Err(IoError::Count { .. })));
+    assert!(matches!(
+        sopp_grid::parse(q, &truncated),
+        Err(IoError::Count { .. })
+    ));
     let off = text.replacen("\n0,0,0,", "\n0,1,0,", 1);
-    assert!(matches!(sopp_grid::parse(q, &off), Err(IoError::Format { line: 2, .. })));
+    assert!(matches!(
+        sopp_grid::parse(q, &off),
+        Err(IoError::Format { line: 2, .. })
+    ));
     assert!(sopp_grid::parse(q, "nonsense").is_err());
 }

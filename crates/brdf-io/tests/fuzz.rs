@@ -12,14 +12,23 @@ use brdf_io::{csv_samples, curet, merl, nist, sopp_grid};
 use proptest::prelude::*;
 
 fn cornell_text() -> String {
-    std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/cornell/two.brdf")).unwrap()
+    std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/cornell/two.brdf"
+    ))
+    .unwrap()
 }
 
 fn nist_text() -> String {
-    std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/nist/Line3.dat")).unwrap()
+    std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/nist/Line3.dat"
+    ))
+    .unwrap()
 }
 
-const CSV: &str = "theta_i,phi_i,theta_o,phi_o,r,g,weight\n0.1,0,0.2,3,0.5,0.25,1\n0.3,1,0.4,2,0.1,0.2,0.5\n";
+const CSV: &str =
+    "theta_i,phi_i,theta_o,phi_o,r,g,weight\n0.1,0,0.2,3,0.5,0.25,1\n0.3,1,0.4,2,0.1,0.2,0.5\n";
 
 /// Corrupt `base`: truncate at `cut`, flip the byte at `flip`, insert
 /// `junk` at `at` (positions taken modulo the length).

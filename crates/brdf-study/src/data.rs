@@ -52,7 +52,11 @@ pub fn format_of(path: &Path) -> Result<Format, StudyError> {
                 path: path.display().to_string(),
                 source: e,
             })?;
-            if text.starts_with("light_theta_deg") { Format::SoppGrid } else { Format::Csv }
+            if text.starts_with("light_theta_deg") {
+                Format::SoppGrid
+            } else {
+                Format::Csv
+            }
         }
         _ => {
             return Err(StudyError::Usage(format!(
@@ -91,14 +95,19 @@ pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
             let prefix = format!("curet#{s} ");
             sets.into_iter()
                 .find(|set| set.name.starts_with(&prefix))
-                .ok_or_else(|| StudyError::Usage(format!("{}: no CUReT sample `{s}`", path.display())))
+                .ok_or_else(|| {
+                    StudyError::Usage(format!("{}: no CUReT sample `{s}`", path.display()))
+                })
         }
         Format::Cornell => {
             let colour = match sample.as_deref() {
                 Some("y") | Some("Y") => brdf_io::cornell::CornellColour::Luminance,
                 None | Some("rgb") => brdf_io::cornell::CornellColour::Rgb,
                 Some(other) => {
-                    return Err(StudyError::Usage(format!("{}: `#{other}`: use #rgb or #y", path.display())));
+                    return Err(StudyError::Usage(format!(
+                        "{}: `#{other}`: use #rgb or #y",
+                        path.display()
+                    )));
                 }
             };
             Ok(brdf_io::cornell::read(&path, colour)?)
@@ -106,15 +115,23 @@ pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
         Format::Merl => {
             let stride = match sample.as_deref() {
                 None => 50,
-                Some(s) => s.parse().map_err(|_| StudyError::Usage(format!("{}: `#{s}` is not a stride", path.display())))?,
+                Some(s) => s.parse().map_err(|_| {
+                    StudyError::Usage(format!("{}: `#{s}` is not a stride", path.display()))
+                })?,
             };
             let m = brdf_io::merl::read(&path)?;
-            let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            let name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
             Ok(m.to_samples(&format!("merl#{name}"), stride).0)
         }
         Format::SoppGrid => {
             let g = brdf_io::sopp_grid::read(&path)?;
-            let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            let name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
             Ok(g.to_samples(&format!("grid#{name}"), 90.0, true))
         }
         Format::Csv => Ok(brdf_io::csv_samples::read(&path)?),

@@ -32,7 +32,9 @@ struct Info {
 }
 
 fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
-    v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)))
+    v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    })
 }
 
 /// Run `brdf info`.
@@ -47,7 +49,12 @@ pub fn run(args: &InfoArgs) -> Result<(), StudyError> {
     let s = crate::data::load(&spec)?;
     let p = s.pairs();
     let sph: Vec<((f64, f64), (f64, f64))> = (0..s.len())
-        .map(|j| (cartesian_to_spherical(&p.l(j)), cartesian_to_spherical(&p.v(j))))
+        .map(|j| {
+            (
+                cartesian_to_spherical(&p.l(j)),
+                cartesian_to_spherical(&p.v(j)),
+            )
+        })
         .collect();
     let info = Info {
         name: s.name.clone(),
@@ -65,15 +72,30 @@ pub fn run(args: &InfoArgs) -> Result<(), StudyError> {
     if args.json {
         println!("{}", serde_json::to_string_pretty(&info)?);
     } else {
-        println!("{} ({:?}): {} samples, channels {}", info.name, info.format, info.samples, info.channels.join(","));
-        println!("  negative values {}, non-finite {}", info.negative, info.non_finite);
+        println!(
+            "{} ({:?}): {} samples, channels {}",
+            info.name,
+            info.format,
+            info.samples,
+            info.channels.join(",")
+        );
+        println!(
+            "  negative values {}, non-finite {}",
+            info.negative, info.non_finite
+        );
         if let Some((a, b)) = info.value_range {
             println!("  values [{a:.6e}, {b:.6e}] 1/sr");
         }
         println!(
             "  theta_i [{:.2}, {:.2}] deg, theta_o [{:.2}, {:.2}] deg, phi_i [{:.2}, {:.2}], phi_o [{:.2}, {:.2}]",
-            info.theta_i_deg.0, info.theta_i_deg.1, info.theta_o_deg.0, info.theta_o_deg.1,
-            info.phi_i_deg.0, info.phi_i_deg.1, info.phi_o_deg.0, info.phi_o_deg.1
+            info.theta_i_deg.0,
+            info.theta_i_deg.1,
+            info.theta_o_deg.0,
+            info.theta_o_deg.1,
+            info.phi_i_deg.0,
+            info.phi_i_deg.1,
+            info.phi_o_deg.0,
+            info.phi_o_deg.1
         );
         if format == crate::data::Format::Curet && !args.path.contains('#') {
             println!("  (CUReT holds 61 samples; shown: sample 1; name one as PATH#N)");

@@ -32,10 +32,13 @@ pub fn run(args: &ResampleArgs) -> Result<(), StudyError> {
         crate::data::load_dense(&args.from)?
     };
     match (args.to.as_str(), dense) {
-        ("merl", Some(b)) => brdf_io::merl::write(&args.out, &brdf_io::merl::Merl::resample(b.as_ref()))?,
-        ("sopp-grid", Some(b)) => {
-            brdf_io::sopp_grid::write(&args.out, &brdf_io::sopp_grid::SoppGrid::resample(b.as_ref()))?
+        ("merl", Some(b)) => {
+            brdf_io::merl::write(&args.out, &brdf_io::merl::Merl::resample(b.as_ref()))?
         }
+        ("sopp-grid", Some(b)) => brdf_io::sopp_grid::write(
+            &args.out,
+            &brdf_io::sopp_grid::SoppGrid::resample(b.as_ref()),
+        )?,
         ("csv", _) => {
             let s = crate::data::load(&args.from)?;
             brdf_io::csv_samples::write(&args.out, &s)?
@@ -46,7 +49,11 @@ pub fn run(args: &ResampleArgs) -> Result<(), StudyError> {
                 args.from
             )));
         }
-        (other, _) => return Err(StudyError::Usage(format!("--to {other}: expected merl, sopp-grid or csv"))),
+        (other, _) => {
+            return Err(StudyError::Usage(format!(
+                "--to {other}: expected merl, sopp-grid or csv"
+            )));
+        }
     }
     println!("wrote {}", args.out.display());
     Ok(())

@@ -1,0 +1,556 @@
+//! RGL material database `.bsdf` files (Dupuy & Jakob 2018, "An Adaptive
+//! Parameterization for Efficient Material Acquisition and Rendering", ACM
+//! TOG 37(6)), isotropic RGB variant.
+//!
+//! ## Container ("tensor file", little-endian)
+//!
+//! 12-byte magic `tensor_file\0`, `u8` major (1), `u8` minor (0), `u32` field
+//! count; per field: `u16` name length, name, `u16` rank, `u8` dtype (1 =
+//! u8, 5 = u32, 10 = f32, ...), `u64` absolute byte offset of the data, one
+//! `u64` per dimension. [`TensorFile`] reads any such file; every offset
+//! and size is checked against the file length.
+//!
+//! ## Evaluation
+//!
+//! The values are stored on the warped domain of the adaptive
+//! parameterisation. With `theta2u(t) = sqrt(2 t / pi)`,
+//! `phi2u(p) = (p + pi) / (2 pi)` and the half vector `M` of `(L, V)`:
+//!
+//! 1. `u_m = (theta2u(theta_m), phi2u(phi_m - phi_i) mod 1)` (isotropic);
+//! 2. the VNDF warp (a piecewise-bilinear 2D distribution conditioned on
+//!    `(phi_i, theta_i)`, sampled by marginal-then-conditional inversion of
+//!    its CDFs) is **inverted** at `u_m` to the sample-space point `s`;
+//! 3. `f_c = max(0, rgb_c(s; phi_i, theta_i)) ndf(u_m) / (4 sigma(u_i))`,
+//!    with `u_i = (theta2u(theta_i), phi2u(phi_i))`, where `rgb`, `ndf` and
+//!    `sigma` are bilinear interpolants (linear across the conditioning
+//!    parameters).
+//!
+//! [`Rgl`] implements [`Brdf`] with this evaluation, and
+//! [`Rgl::direction_of_sample`] maps a sample-space point forward (the
+//! inverse of step 2), which the tests use to check that evaluation at grid
+//! nodes reproduces the stored values.
+
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+use brdf_core::Brdf;
+use nalgebra::Vector3;
+
+use crate::IoError;
+
+/// One field of a tensor file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Field {
+    /// dtype code.
+    pub dtype: u8,
+    /// Shape.
+    pub shape: Vec<usize>,
+    /// Raw little-endian bytes.
+    pub bytes: Vec<u8>,
+}
+
+impl Field {
+    /// The values as `f64` (f32 or u8 fields).
+    pub fn to_f64(&self) -> Option<Vec<f64>> {
+        match self.dtype {
+            10 => Some(
+                self.bytes
+                    .chunks_exact(4)
+                    .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
+                    .collect(),
+            ),
+            1 => Some(self.bytes.iter().map(|b| *b as f64).collect()),
+            _ => None,
+        }
+    }
+}
+
+/// A parsed tensor file: named fields.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TensorFile {
+    /// Fields in file order.
+    pub fields: Vec<(String, Field)>,
+}
+
+fn dtype_size(d: u8) -> Option<usize> {
+    Some(match d {
+        1 | 2 => 1,
+        3 | 4 | 9 => 2,
+        5 | 6 | 10 => 4,
+        7 | 8 | 11 => 8,
+        _ => return None,
+    })
+}
+
+impl TensorFile {
+    /// Parse the bytes of a tensor file (`path` only names it in errors).
+    pub fn parse(path: &Path, b: &[u8]) -> Result<Self, IoError> {
+        let err = |at: usize, reason: String| IoError::Format {
+            path: path.to_path_buf(),
+            line: 0,
+            reason: format!("byte {at}: {reason}"),
+        };
+        let take = |at: usize, n: usize| -> Result<&[u8], IoError> {
+            b.get(at..at.checked_add(n).unwrap_or(usize::MAX))
+                .ok_or_else(|| {
+                    err(
+                        at,
+                        format!(
+                            "needs {n} more bytes; the file has {} (truncated?)",
+                            b.len()
+                        ),
+                    )
+                })
+        };
+        if take(0, 12)? != b"tensor_file\0" {
+            return Err(err(
+                0,
+                "not a tensor file (magic `tensor_file` missing)".into(),
+            ));
+        }
+        let v = take(12, 2)?;
+        if v != [1, 0] {
+            return Err(err(12, format!("version {}.{}, expected 1.0", v[0], v[1])));
+        }
+        let n = u32::from_le_bytes(take(14, 4)?.try_into().unwrap_or([0; 4])) as usize;
+        let mut at = 18;
+        let mut fields = Vec::new();
+        for _ in 0..n {
+            let nl = u16::from_le_bytes(take(at, 2)?.try_into().unwrap_or([0; 2])) as usize;
+            let name = String::from_utf8_lossy(take(at + 2, nl)?).into_owned();
+            at += 2 + nl;
+            let rank = u16::from_le_bytes(take(at, 2)?.try_into().unwrap_or([0; 2])) as usize;
+            let dtype = take(at + 2, 1)?[0];
+            let offset = u64::from_le_bytes(take(at + 3, 8)?.try_into().unwrap_or([0; 8]));
+            at += 11;
+            let mut shape = Vec::with_capacity(rank);
+            for _ in 0..rank {
+                shape.push(u64::from_le_bytes(take(at, 8)?.try_into().unwrap_or([0; 8])) as usize);
+                at += 8;
+            }
+            let size = dtype_size(dtype)
+                .ok_or_else(|| err(at, format!("field `{name}`: unknown dtype {dtype}")))?;
+            let count = shape
+                .iter()
+                .try_fold(size, |acc, s| acc.checked_mul(*s))
+                .ok_or_else(|| err(at, format!("field `{name}`: size overflows")))?;
+            let offset = usize::try_from(offset)
+                .map_err(|_| err(at, format!("field `{name}`: offset too large")))?;
+            let bytes = take(offset, count)
+                .map_err(|_| {
+                    err(
+                        offset,
+                        format!("field `{name}`: data ({count} bytes) beyond the end of the file"),
+                    )
+                })?
+                .to_vec();
+            fields.push((
+                name,
+                Field {
+                    dtype,
+                    shape,
+                    bytes,
+                },
+            ));
+        }
+        Ok(Self { fields })
+    }
+
+    /// A field by name.
+    pub fn field(&self, name: &str) -> Option<&Field> {
+        self.fields.iter().find(|(n, _)| n == name).map(|(_, f)| f)
+    }
+}
+
+/// Piecewise-bilinear 2D function on `[0, 1]^2` (`nx` columns contiguous),
+/// conditioned on up to three parameters with linear interpolation between
+/// their tabulated values; optionally normalised to a density with its
+/// marginal and conditional CDFs for inversion.
+#[derive(Clone, Debug)]
+struct Interp2D {
+    nx: usize,
+    ny: usize,
+    params: Vec<Vec<f64>>,
+    strides: Vec<usize>,
+    data: Vec<f64>,
+    marginal: Vec<f64>,
+    conditional: Vec<f64>,
+}
+
+/// Interval `i` with `values[i] <= x`, clamped to `[0, n - 2]`, and the
+/// weight of `values[i + 1]`.
+fn locate(values: &[f64], x: f64) -> (usize, f64) {
+    let n = values.len();
+    if n < 2 {
+        return (0, 0.0);
+    }
+    let i = values
+        .partition_point(|v| *v <= x)
+        .saturating_sub(1)
+        .min(n - 2);
+    let (a, b) = (values[i], values[i + 1]);
+    (i, ((x - a) / (b - a)).clamp(0.0, 1.0))
+}
+
+impl Interp2D {
+    fn new(
+        nx: usize,
+        ny: usize,
+        raw: &[f64],
+        params: Vec<Vec<f64>>,
+        density: bool,
+    ) -> Option<Self> {
+        if nx < 2 || ny < 2 {
+            return None;
+        }
+        let mut strides = vec![0; params.len()];
+        let mut slices = 1;
+        for i in (0..params.len()).rev() {
+            strides[i] = if params[i].len() > 1 { slices } else { 0 };
+            slices *= params[i].len().max(1);
+        }
+        let n = nx * ny;
+        if raw.len() != slices * n {
+            return None;
+        }
+        let mut s = Self {
+            nx,
+            ny,
+            params,
+            strides,
+            data: raw.to_vec(),
+            marginal: Vec::new(),
+            conditional: Vec::new(),
+        };
+        if density {
+            s.marginal = vec![0.0; slices * ny];
+            s.conditional = vec![0.0; slices * n];
+            for sl in 0..slices {
+                let d = &raw[sl * n..(sl + 1) * n];
+                let cc = &mut s.conditional[sl * n..(sl + 1) * n];
+                for y in 0..ny {
+                    for x in 0..nx - 1 {
+                        cc[y * nx + x + 1] =
+                            cc[y * nx + x] + 0.5 * (d[y * nx + x] + d[y * nx + x + 1]);
+                    }
+                }
+                let mc = &mut s.marginal[sl * ny..(sl + 1) * ny];
+                for y in 0..ny - 1 {
+                    mc[y + 1] = mc[y] + 0.5 * (cc[y * nx + nx - 1] + cc[(y + 1) * nx + nx - 1]);
+                }
+                let total = mc[ny - 1];
+                if !(total > 0.0 && total.is_finite()) {
+                    return None;
+                }
+                mc.iter_mut().for_each(|v| *v /= total);
+                cc.iter_mut().for_each(|v| *v /= total);
+                s.data[sl * n..(sl + 1) * n]
+                    .iter_mut()
+                    .for_each(|v| *v /= total);
+            }
+        }
+        Some(s)
+    }
+
+    /// Corner offsets and weights of the parameter cell of `p`.
+    fn weights(&self, p: &[f64]) -> (usize, Vec<(usize, f64)>) {
+        let mut base = 0;
+        let mut corners = vec![(0usize, 1.0f64)];
+        for (d, vals) in self.params.iter().enumerate() {
+            let (i, w) = locate(vals, p[d]);
+            base += self.strides[d] * i;
+            if self.strides[d] == 0 {
+                continue;
+            }
+            let mut next = Vec::with_capacity(corners.len() * 2);
+            for (o, cw) in corners {
+                next.push((o, cw * (1.0 - w)));
+                next.push((o + self.strides[d], cw * w));
+            }
+            corners = next;
+        }
+        (base, corners)
+    }
+
+    fn look(table: &[f64], i: usize, size: usize, base: usize, corners: &[(usize, f64)]) -> f64 {
+        corners
+            .iter()
+            .map(|(o, w)| w * table[(base + o) * size + i])
+            .sum()
+    }
+
+    fn cell(&self, u: [f64; 2]) -> (usize, usize, f64, f64) {
+        let sx = (u[0].clamp(0.0, 1.0)) * (self.nx - 1) as f64;
+        let sy = (u[1].clamp(0.0, 1.0)) * (self.ny - 1) as f64;
+        let ix = (sx.floor() as usize).min(self.nx - 2);
+        let iy = (sy.floor() as usize).min(self.ny - 2);
+        (ix, iy, sx - ix as f64, sy - iy as f64)
+    }
+
+    /// Bilinear value at `u` (density scale for normalised tables).
+    fn eval(&self, u: [f64; 2], p: &[f64]) -> f64 {
+        let (base, corners) = self.weights(p);
+        let (ix, iy, fx, fy) = self.cell(u);
+        let n = self.nx * self.ny;
+        let i = iy * self.nx + ix;
+        let v = |k: usize| Self::look(&self.data, k, n, base, &corners);
+        let (v00, v10, v01, v11) = (v(i), v(i + 1), v(i + self.nx), v(i + self.nx + 1));
+        let val = (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
+        if self.marginal.is_empty() {
+            val
+        } else {
+            val * ((self.nx - 1) * (self.ny - 1)) as f64
+        }
+    }
+
+    /// Map a point of the warped domain back to the sample space (the
+    /// inverse of [`Interp2D::sample`]).
+    fn invert(&self, u: [f64; 2], p: &[f64]) -> [f64; 2] {
+        let (base, corners) = self.weights(p);
+        let (ix, iy, fx, fy) = self.cell(u);
+        let n = self.nx * self.ny;
+        let i = iy * self.nx + ix;
+        let d = |k: usize| Self::look(&self.data, k, n, base, &corners);
+        let cc = |k: usize| Self::look(&self.conditional, k, n, base, &corners);
+        let c0 = (1.0 - fy) * d(i) + fy * d(i + self.nx);
+        let c1 = (1.0 - fy) * d(i + 1) + fy * d(i + self.nx + 1);
+        let mut x = fx * (c0 + 0.5 * fx * (c1 - c0));
+        x += (1.0 - fy) * cc(i) + fy * cc(i + self.nx);
+        let r0 = cc(iy * self.nx + self.nx - 1);
+        let r1 = cc((iy + 1) * self.nx + self.nx - 1);
+        x /= (1.0 - fy) * r0 + fy * r1;
+        let y = fy * (r0 + 0.5 * fy * (r1 - r0))
+            + Self::look(&self.marginal, iy, self.ny, base, &corners);
+        [x.clamp(0.0, 1.0), y.clamp(0.0, 1.0)]
+    }
+
+    /// Map a sample-space point into the warped domain (marginal row, then
+    /// conditional column, each by inverting a piecewise-quadratic CDF).
+    fn sample(&self, s: [f64; 2], p: &[f64]) -> [f64; 2] {
+        let (base, corners) = self.weights(p);
+        let n = self.nx * self.ny;
+        let eps = 1e-12;
+        let (mut sx, mut sy) = (s[0].clamp(eps, 1.0 - eps), s[1].clamp(eps, 1.0 - eps));
+        let mc = |k: usize| Self::look(&self.marginal, k, self.ny, base, &corners);
+        let cc = |k: usize| Self::look(&self.conditional, k, n, base, &corners);
+        let d = |k: usize| Self::look(&self.data, k, n, base, &corners);
+        let row = (0..self.ny - 1).rev().find(|r| mc(*r) <= sy).unwrap_or(0);
+        sy -= mc(row);
+        let (r0, r1) = (
+            cc(row * self.nx + self.nx - 1),
+            cc((row + 1) * self.nx + self.nx - 1),
+        );
+        let ty = solve_quadratic(r0, r1, sy);
+        sx *= (1.0 - ty) * r0 + ty * r1;
+        let fc = |k: usize| (1.0 - ty) * cc(row * self.nx + k) + ty * cc((row + 1) * self.nx + k);
+        let col = (0..self.nx - 1).rev().find(|c| fc(*c) <= sx).unwrap_or(0);
+        sx -= fc(col);
+        let i = row * self.nx + col;
+        let c0 = (1.0 - ty) * d(i) + ty * d(i + self.nx);
+        let c1 = (1.0 - ty) * d(i + 1) + ty * d(i + self.nx + 1);
+        let tx = solve_quadratic(c0, c1, sx);
+        [
+            (col as f64 + tx) / (self.nx - 1) as f64,
+            (row as f64 + ty) / (self.ny - 1) as f64,
+        ]
+    }
+}
+
+/// `t` in `[0, 1]` with `t (a + t (b - a) / 2) = s` (the integral of the
+/// linear density from `a` to `b`).
+fn solve_quadratic(a: f64, b: f64, s: f64) -> f64 {
+    let t = if (a - b).abs() < 1e-9 * (a + b).abs().max(f64::MIN_POSITIVE) {
+        2.0 * s / (a + b)
+    } else {
+        (a - (a * a - 2.0 * s * (a - b)).max(0.0).sqrt()) / (a - b)
+    };
+    if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
+/// An RGL isotropic RGB material, evaluable at any direction pair.
+#[derive(Clone, Debug)]
+pub struct Rgl {
+    /// File read.
+    pub path: PathBuf,
+    /// The file's description text.
+    pub description: String,
+    ndf: Interp2D,
+    sigma: Interp2D,
+    vndf: Interp2D,
+    rgb: Interp2D,
+    isotropic: bool,
+}
+
+fn theta2u(t: f64) -> f64 {
+    (t * 2.0 / PI).max(0.0).sqrt()
+}
+
+fn phi2u(p: f64) -> f64 {
+    (p + PI) / (2.0 * PI)
+}
+
+impl Rgl {
+    /// Read an RGL `.bsdf` file (RGB variant).
+    pub fn read(path: &Path) -> Result<Self, IoError> {
+        let bytes = std::fs::read(path).map_err(|source| IoError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(path, &bytes)
+    }
+
+    /// Parse the bytes of an RGL file.
+    pub fn parse(path: &Path, bytes: &[u8]) -> Result<Self, IoError> {
+        let tf = TensorFile::parse(path, bytes)?;
+        let bad = |reason: String| IoError::Format {
+            path: path.to_path_buf(),
+            line: 0,
+            reason,
+        };
+        let get = |name: &str, rank: usize| -> Result<(Vec<usize>, Vec<f64>), IoError> {
+            let f = tf
+                .field(name)
+                .ok_or_else(|| bad(format!("field `{name}` missing")))?;
+            if f.shape.len() != rank {
+                return Err(bad(format!(
+                    "field `{name}` has rank {}, expected {rank}",
+                    f.shape.len()
+                )));
+            }
+            let v = f.to_f64().ok_or_else(|| {
+                bad(format!(
+                    "field `{name}` has dtype {}, expected f32",
+                    f.dtype
+                ))
+            })?;
+            if let Some(k) = v.iter().position(|x| !x.is_finite()) {
+                return Err(bad(format!("field `{name}` value {k} is not finite")));
+            }
+            Ok((f.shape.clone(), v))
+        };
+        let (_, theta_i) = get("theta_i", 1)?;
+        let (_, phi_i) = get("phi_i", 1)?;
+        let (ns, ndf) = get("ndf", 2)?;
+        let (ss, sigma) = get("sigma", 2)?;
+        let (vs, vndf) = get("vndf", 4)?;
+        let (rs, rgb) = get("rgb", 5)?;
+        if vs[0] != phi_i.len()
+            || vs[1] != theta_i.len()
+            || rs[0] != phi_i.len()
+            || rs[1] != theta_i.len()
+            || rs[2] != 3
+        {
+            return Err(bad(format!(
+                "inconsistent shapes: vndf {vs:?}, rgb {rs:?}, {} phi_i, {} theta_i",
+                phi_i.len(),
+                theta_i.len()
+            )));
+        }
+        let description = tf
+            .field("description")
+            .map(|f| String::from_utf8_lossy(&f.bytes).into_owned())
+            .unwrap_or_default();
+        let err = |what: &str| bad(format!("field `{what}`: degenerate table"));
+        let isotropic = phi_i.len() <= 2;
+        Ok(Self {
+            path: path.to_path_buf(),
+            description,
+            ndf: Interp2D::new(ns[1], ns[0], &ndf, vec![], false).ok_or_else(|| err("ndf"))?,
+            sigma: Interp2D::new(ss[1], ss[0], &sigma, vec![], false)
+                .ok_or_else(|| err("sigma"))?,
+            vndf: Interp2D::new(
+                vs[3],
+                vs[2],
+                &vndf,
+                vec![phi_i.clone(), theta_i.clone()],
+                true,
+            )
+            .ok_or_else(|| err("vndf"))?,
+            rgb: Interp2D::new(
+                rs[4],
+                rs[3],
+                &rgb,
+                vec![phi_i, theta_i, vec![0.0, 1.0, 2.0]],
+                false,
+            )
+            .ok_or_else(|| err("rgb"))?,
+            isotropic,
+        })
+    }
+
+    fn params(l: &Vector3<f64>) -> (f64, f64) {
+        (l.y.atan2(l.x), l.z.clamp(-1.0, 1.0).acos())
+    }
+
+    /// The outgoing direction of sample-space point `s` for incident `l`,
+    /// and the RGB value stored there (before the `ndf / (4 sigma)` factor).
+    pub fn direction_of_sample(&self, l: &Vector3<f64>, s: [f64; 2]) -> (Vector3<f64>, [f64; 3]) {
+        let (phi_i, theta_i) = Self::params(l);
+        let u = self.vndf.sample(s, &[phi_i, theta_i]);
+        let theta_m = u[0] * u[0] * PI / 2.0;
+        let mut phi_m = (2.0 * u[1] - 1.0) * PI;
+        if self.isotropic {
+            phi_m += phi_i;
+        }
+        let m = Vector3::new(
+            phi_m.cos() * theta_m.sin(),
+            phi_m.sin() * theta_m.sin(),
+            theta_m.cos(),
+        );
+        let v = 2.0 * m.dot(l) * m - l;
+        let rgb = [0, 1, 2].map(|c| self.rgb.eval(s, &[phi_i, theta_i, c as f64]));
+        (v, rgb)
+    }
+
+    /// The `ndf(u_m) / (4 sigma(u_i))` factor of a pair.
+    pub fn jacobian_factor(&self, l: &Vector3<f64>, v: &Vector3<f64>) -> f64 {
+        let m = (l + v).normalize();
+        let (phi_i, theta_i) = Self::params(l);
+        let u_m = self.u_m(&m, phi_i);
+        let u_i = [theta2u(theta_i), phi2u(phi_i)];
+        self.ndf.eval(u_m, &[]) / (4.0 * self.sigma.eval(u_i, &[]))
+    }
+
+    fn u_m(&self, m: &Vector3<f64>, phi_i: f64) -> [f64; 2] {
+        let theta_m = m.z.clamp(-1.0, 1.0).acos();
+        let phi_m = m.y.atan2(m.x);
+        let y = phi2u(if self.isotropic { phi_m - phi_i } else { phi_m });
+        [theta2u(theta_m), y - y.floor()]
+    }
+}
+
+impl Brdf for Rgl {
+    fn channels(&self) -> usize {
+        3
+    }
+    fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        out[..3].fill(0.0);
+        if !(l.z > 0.0 && v.z > 0.0) {
+            return;
+        }
+        let sum = l + v;
+        let len = sum.norm();
+        if !(len > 0.0) {
+            return;
+        }
+        let m = sum / len;
+        let (phi_i, theta_i) = Self::params(l);
+        let u_m = self.u_m(&m, phi_i);
+        let s = self.vndf.invert(u_m, &[phi_i, theta_i]);
+        let u_i = [theta2u(theta_i), phi2u(phi_i)];
+        let sigma = self.sigma.eval(u_i, &[]);
+        if !(sigma > 0.0) {
+            return;
+        }
+        let k = self.ndf.eval(u_m, &[]) / (4.0 * sigma);
+        for c in 0..3 {
+            // Negative values come from out-of-gamut spectra: clamped, as
+            // the format's authors do.
+            out[c] = self.rgb.eval(s, &[phi_i, theta_i, c as f64]).max(0.0) * k;
+        }
+    }
+}
