@@ -6,6 +6,7 @@
 //! | --- | --- | --- |
 //! | `abrdf.dat#N` (with `table.txt` beside it) | CUReT | grey |
 //! | `*.brdf` | Cornell (`#y` for luminance) | linear sRGB |
+//! | `*.bsdf` | RGL (resampled onto Sopp's goniometric grid, cell weights) | RGB |
 //! | `*.binary` | MERL (valid bins, solid-angle weights; `#STRIDE` keeps every STRIDE-th bin, default 50) | RGB |
 //! | `*.csv` with a `light_theta_deg` header | Sopp's goniometric grid (cell weights) | RGB |
 //! | other `*.csv` | generic samples | as in the header |
@@ -33,6 +34,8 @@ pub enum Format {
     Cornell,
     /// MERL `.binary`.
     Merl,
+    /// RGL `.bsdf`.
+    Rgl,
     /// Sopp's grid CSV.
     SoppGrid,
     /// Generic sample CSV.
@@ -47,6 +50,7 @@ pub fn format_of(path: &Path) -> Result<Format, StudyError> {
         ("abrdf.dat", _) => Format::Curet,
         (_, "brdf") => Format::Cornell,
         (_, "binary") => Format::Merl,
+        (_, "bsdf") => Format::Rgl,
         (_, "csv") => {
             let text = std::fs::read_to_string(path).map_err(|e| StudyError::Io {
                 path: path.display().to_string(),
@@ -60,7 +64,7 @@ pub fn format_of(path: &Path) -> Result<Format, StudyError> {
         }
         _ => {
             return Err(StudyError::Usage(format!(
-                "{}: unknown data format (CUReT abrdf.dat#N, Cornell .brdf, MERL .binary, grid or sample .csv)",
+                "{}: unknown data format (CUReT abrdf.dat#N, Cornell .brdf, RGL .bsdf, MERL .binary, grid or sample .csv)",
                 path.display()
             )));
         }
@@ -74,6 +78,7 @@ pub fn load_dense(spec: &str) -> Result<Option<Box<dyn Brdf>>, StudyError> {
     let (path, _) = split_sample(spec);
     Ok(match format_of(&path)? {
         Format::Merl => Some(Box::new(brdf_io::merl::read(&path)?)),
+        Format::Rgl => Some(Box::new(brdf_io::rgl::Rgl::read(&path)?)),
         _ => None,
     })
 }
@@ -125,6 +130,12 @@ pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_default();
             Ok(m.to_samples(&format!("merl#{name}"), stride).0)
+        }
+        Format::Rgl => {
+            let m = brdf_io::rgl::Rgl::read(&path)?;
+            let g = brdf_io::sopp_grid::SoppGrid::resample(&m);
+            let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            Ok(g.to_samples(&format!("rgl#{name}"), 90.0, true))
         }
         Format::SoppGrid => {
             let g = brdf_io::sopp_grid::read(&path)?;

@@ -107,8 +107,8 @@ fn fit_command_on_curet_quarry_tile() {
             String::from_utf8_lossy(&out.stderr)
         );
         let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-        assert_eq!(v["fit"]["data"], "curet#25 Quarry Tile");
-        v["fit"]["ngan_l2"].as_f64().unwrap()
+        assert_eq!(v["fits"][0]["data"], "curet#25 Quarry Tile");
+        v["fits"][0]["ngan_l2"].as_f64().unwrap()
     };
     let lambert = run(&["lambert"]);
     let k8 = run(&["koenderink", "--order", "8"]);
