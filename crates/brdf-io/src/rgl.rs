@@ -91,16 +91,15 @@ impl TensorFile {
             reason: format!("byte {at}: {reason}"),
         };
         let take = |at: usize, n: usize| -> Result<&[u8], IoError> {
-            b.get(at..at.checked_add(n).unwrap_or(usize::MAX))
-                .ok_or_else(|| {
-                    err(
-                        at,
-                        format!(
-                            "needs {n} more bytes; the file has {} (truncated?)",
-                            b.len()
-                        ),
-                    )
-                })
+            b.get(at..at.saturating_add(n)).ok_or_else(|| {
+                err(
+                    at,
+                    format!(
+                        "needs {n} more bytes; the file has {} (truncated?)",
+                        b.len()
+                    ),
+                )
+            })
         };
         if take(0, 12)? != b"tensor_file\0" {
             return Err(err(

@@ -134,7 +134,10 @@ pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
         Format::Rgl => {
             let m = brdf_io::rgl::Rgl::read(&path)?;
             let g = brdf_io::sopp_grid::SoppGrid::resample(&m);
-            let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            let name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
             Ok(g.to_samples(&format!("rgl#{name}"), 90.0, true))
         }
         Format::SoppGrid => {

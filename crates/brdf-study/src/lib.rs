@@ -24,6 +24,7 @@ pub mod render;
 pub mod report;
 pub mod saved_model;
 pub mod select;
+pub mod sopp_tables;
 pub mod synthetic;
 
 pub use error::StudyError;

@@ -196,14 +196,30 @@ fn real_curet_quarry_tile() {
         return;
     };
     let path = std::path::PathBuf::from(root).join("curet/abrdf.dat");
-    assert!(path.exists(), "BRDF_DATA is set but {} is missing", path.display());
+    assert!(
+        path.exists(),
+        "BRDF_DATA is set but {} is missing",
+        path.display()
+    );
     let data = brdf_study::data::load(&format!("{}#25", path.display())).unwrap();
     let (data, _) = data.filter_angle_limit(80f64.to_radians());
     let mut err = std::collections::HashMap::new();
-    for name in ["ashikhmin-shirley", "blinn-phong", "cook-torrance", "lafortune", "oren-nayar", "ward", "ward-duer"] {
+    for name in [
+        "ashikhmin-shirley",
+        "blinn-phong",
+        "cook-torrance",
+        "lafortune",
+        "oren-nayar",
+        "ward",
+        "ward-duer",
+    ] {
         let mut m = build(name, &ModelConfig::default()).unwrap();
         let r = fit(m.as_mut(), &data, &FitOptions::default()).unwrap();
-        assert!(r.termination.starts_with("converged"), "{name}: {}", r.termination);
+        assert!(
+            r.termination.starts_with("converged"),
+            "{name}: {}",
+            r.termination
+        );
         if name == "blinn-phong" {
             let n = r.parameters.iter().find(|p| p.name == "n").unwrap().value;
             assert!((n - 16.5).abs() < 0.5, "Blinn-Phong exponent {n}");

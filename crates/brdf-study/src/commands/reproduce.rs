@@ -236,6 +236,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), StudyError> {
     ];
     written.extend(crate::kurt_tables::write(&m.sets, &m.source, &args.out)?);
 
+    // Sopp's study on the RGL materials, when present.
+    if let Some(dir) = data.as_ref().map(|d| d.join("rgl")).filter(|d| d.is_dir()) {
+        written.extend(crate::sopp_tables::write(&dir, &args.out)?);
+    }
+
     // Solver certification, when the NIST folder is present.
     if let Some(dir) = data
         .as_ref()
