@@ -35,12 +35,11 @@
 use std::f64::consts::FRAC_1_PI;
 
 use brdf_core::ParamSpec;
-use brdf_core::fresnel::{schlick, schlick_d_f0};
 use nalgebra::Vector3;
 
 use crate::ashikhmin_shirley::f0_spec;
 use crate::combinators::{Lobe, MultiLobe};
-use crate::microfacet::HalfGeometry;
+use crate::microfacet::facet_lobe;
 
 /// One Cook-Torrance lobe `D G F / (pi N.L N.V)`, parameters `m`, `f0`.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,33 +54,16 @@ impl Lobe for CtLobe {
         ]
     }
     fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
-        let (m, f0) = (q[0], q[1]);
-        let zero = |dq: Option<&mut [f64]>| {
-            if let Some(dq) = dq {
-                dq.fill(0.0);
+        facet_lobe(q, l, v, dq, |g, m| {
+            if !(g.nh > 0.0) {
+                return None;
             }
-            0.0
-        };
-        let Some(g) = HalfGeometry::new(l, v) else {
-            return zero(dq);
-        };
-        if !(g.nh > 0.0) {
-            return zero(dq);
-        }
-        let c2 = g.nh * g.nh;
-        let tan2 = (1.0 - c2).max(0.0) / c2;
-        let e = (-tan2 / (m * m)).exp();
-        if e == 0.0 {
-            return zero(dq);
-        }
-        let d = e / (m * m * c2 * c2);
-        let common = FRAC_1_PI * d * g.shadowing() / (g.nl * g.nv);
-        let s = common * schlick(f0, g.vh);
-        if let Some(dq) = dq {
-            dq[0] = s * (2.0 * tan2 / (m * m) - 2.0) / m;
-            dq[1] = common * schlick_d_f0(g.vh);
-        }
-        s
+            let c2 = g.nh * g.nh;
+            let tan2 = (1.0 - c2).max(0.0) / c2;
+            // exp underflows to 0 before cos^4 can vanish.
+            let d = FRAC_1_PI * (-tan2 / (m * m)).exp() / (m * m * c2 * c2);
+            Some((d, (2.0 * tan2 / (m * m) - 2.0) / m))
+        })
     }
 }
 

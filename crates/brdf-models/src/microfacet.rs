@@ -50,3 +50,33 @@ impl HalfGeometry {
         1.0f64.min(k * self.nv).min(k * self.nl).max(0.0)
     }
 }
+
+/// The lobe `D G F(V.H) / (N.L N.V)` of Torrance-Sparrow and Cook-Torrance
+/// with parameters `q = [m, f0]`: `distribution(g, m)` gives `D` and
+/// `d ln D / dm` (`None` or `D = 0` where the distribution vanishes); the
+/// derivatives `dS/dm`, `dS/df0` go into `dq`.
+#[inline]
+pub(crate) fn facet_lobe(
+    q: &[f64],
+    l: &Vector3<f64>,
+    v: &Vector3<f64>,
+    dq: Option<&mut [f64]>,
+    distribution: impl Fn(&HalfGeometry, f64) -> Option<(f64, f64)>,
+) -> f64 {
+    use brdf_core::fresnel::{schlick, schlick_d_f0};
+    let (m, f0) = (q[0], q[1]);
+    let found = HalfGeometry::new(l, v).and_then(|g| distribution(&g, m).map(|d| (g, d)));
+    let Some((g, (d, dln))) = found.filter(|(_, (d, _))| *d > 0.0) else {
+        if let Some(dq) = dq {
+            dq.fill(0.0);
+        }
+        return 0.0;
+    };
+    let common = d * g.shadowing() / (g.nl * g.nv);
+    let s = common * schlick(f0, g.vh);
+    if let Some(dq) = dq {
+        dq[0] = s * dln;
+        dq[1] = common * schlick_d_f0(g.vh);
+    }
+    s
+}

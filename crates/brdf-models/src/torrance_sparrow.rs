@@ -33,12 +33,11 @@
 use std::f64::consts::PI;
 
 use brdf_core::ParamSpec;
-use brdf_core::fresnel::{schlick, schlick_d_f0};
 use nalgebra::Vector3;
 
 use crate::ashikhmin_shirley::f0_spec;
 use crate::combinators::{DiffuseLobe, Lobe};
-use crate::microfacet::HalfGeometry;
+use crate::microfacet::facet_lobe;
 
 /// The Torrance-Sparrow lobe `D G F / (N.L N.V)`, parameters `m`, `f0`.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,30 +52,11 @@ impl Lobe for TsLobe {
         ]
     }
     fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
-        let (m, f0) = (q[0], q[1]);
-        let zero = |dq: Option<&mut [f64]>| {
-            if let Some(dq) = dq {
-                dq.fill(0.0);
-            }
-            0.0
-        };
-        let Some(g) = HalfGeometry::new(l, v) else {
-            return zero(dq);
-        };
-        let delta = g.nh.clamp(-1.0, 1.0).acos();
-        let t = delta / m;
-        let e = (-t * t).exp();
-        if e == 0.0 {
-            return zero(dq);
-        }
-        let d = e / (PI * m * m);
-        let common = d * g.shadowing() / (g.nl * g.nv);
-        let s = common * schlick(f0, g.vh);
-        if let Some(dq) = dq {
-            dq[0] = s * (2.0 * t * t - 2.0) / m;
-            dq[1] = common * schlick_d_f0(g.vh);
-        }
-        s
+        facet_lobe(q, l, v, dq, |g, m| {
+            let t = g.nh.clamp(-1.0, 1.0).acos() / m;
+            let d = (-t * t).exp() / (PI * m * m);
+            Some((d, (2.0 * t * t - 2.0) / m))
+        })
     }
 }
 

@@ -14,8 +14,6 @@ use std::time::Instant;
 
 use brdf_core::metrics::ngan_l2;
 use brdf_core::{MetricValue, Parametric, SampleSet};
-use brdf_solve::{LstsqMethod, lstsq, nnls};
-use faer::Mat;
 
 use crate::StudyError;
 
@@ -73,48 +71,9 @@ pub fn fit_linear(
         )));
     }
     let pairs = samples.pairs();
-    let zero = vec![0.0; np];
-    let mut offset = vec![0.0; nc * n];
-    let mut jac = vec![0.0; nc * n * np];
-    model.eval_grad_batch_at(&zero, pairs, &mut offset, &mut jac);
-    let w: Vec<f64> = (0..n)
-        .map(|j| samples.weights()[j] * pairs.lz[j] * pairs.lz[j])
-        .collect();
-    let mut p = zero.clone();
-    let mut rank = usize::MAX;
-    let mut solver = String::new();
-    for c in 0..nc {
-        let cols: Vec<usize> = (0..np)
-            .filter(|&k| (0..n).any(|j| jac[(c * n + j) * np + k] != 0.0))
-            .collect();
-        if cols.is_empty() {
-            continue;
-        }
-        let y = samples.channel(c);
-        let nonneg = cols.iter().all(|&k| specs[k].lower == 0.0);
-        if nonneg {
-            let sw: Vec<f64> = w.iter().map(|x| x.sqrt()).collect();
-            let a = Mat::from_fn(n, cols.len(), |j, k| {
-                sw[j] * jac[(c * n + j) * np + cols[k]]
-            });
-            let b: Vec<f64> = (0..n).map(|j| sw[j] * (y[j] - offset[c * n + j])).collect();
-            let s = nnls(a.as_ref(), &b, 3 * cols.len() + 10)?;
-            for (k, &col) in cols.iter().enumerate() {
-                p[col] = s.x[k];
-            }
-            rank = rank.min(s.passive.len());
-            solver = "nnls (Lawson-Hanson)".into();
-        } else {
-            let a = Mat::from_fn(n, cols.len(), |j, k| jac[(c * n + j) * np + cols[k]]);
-            let b = Mat::from_fn(n, 1, |j, _| y[j] - offset[c * n + j]);
-            let s = lstsq(a.as_ref(), b.as_ref(), Some(&w), LstsqMethod::PivotedQr)?;
-            for (k, &col) in cols.iter().enumerate() {
-                p[col] = s.x[(k, 0)];
-            }
-            rank = rank.min(s.rank);
-            solver = format!("weighted least squares ({:?})", s.method);
-        }
-    }
+    let scales = crate::pipeline::Objective::Ngan.row_scales(samples);
+    let (p, solver, rank) =
+        crate::pipeline::fit_all_linear(model, samples, &scales, crate::pipeline::Solver::Ols)?;
     model.set_params(&p)?;
     let seconds = start.elapsed().as_secs_f64();
     let mut fitted = vec![0.0; nc * n];
@@ -133,7 +92,7 @@ pub fn fit_linear(
         ngan_l2: total,
         ngan_l2_per_channel: per_channel,
         solver,
-        rank: if rank == usize::MAX { 0 } else { rank },
+        rank,
         seconds,
     })
 }

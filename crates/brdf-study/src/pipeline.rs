@@ -277,7 +277,7 @@ pub fn fit(
         ..opts.clone()
     };
     let (p, solver, rep, starts_info) = if all_linear && opts.objective != Objective::Log {
-        let (p, how) = fit_all_linear(model, data, &scales, opts.solver)?;
+        let (p, how, _) = fit_all_linear(model, data, &scales, opts.solver)?;
         (p, how, None, (1, 1, 1))
     } else {
         match opts.solver {
@@ -506,12 +506,15 @@ fn fit_nonlinear(
     Ok((p, rep, info, how))
 }
 
-fn fit_all_linear(
+/// Fit an all-linear model channel by channel on rows scaled by `scales`:
+/// returns the parameters, how, and the smallest numerical rank (or number
+/// of positive NNLS coefficients) over the channels.
+pub(crate) fn fit_all_linear(
     model: &dyn Parametric,
     data: &SampleSet,
     scales: &[f64],
     solver: Solver,
-) -> Result<(Vec<f64>, String), StudyError> {
+) -> Result<(Vec<f64>, String, usize), StudyError> {
     let specs = model.param_specs();
     let (n, nc, np) = (data.len(), model.channels(), specs.len());
     let zero = vec![0.0; np];
@@ -520,6 +523,7 @@ fn fit_all_linear(
     model.eval_grad_batch_at(&zero, data.pairs(), &mut offset, &mut jac);
     let mut p = zero;
     let mut how = String::new();
+    let mut rank = usize::MAX;
     for c in 0..nc {
         let cols: Vec<usize> = (0..np)
             .filter(|&k| (0..n).any(|j| jac[(c * n + j) * np + k] != 0.0))
@@ -555,7 +559,9 @@ fn fit_all_linear(
             }
             _ if cols.iter().all(|&k| specs[k].lower == 0.0) => {
                 how = "NNLS (Lawson-Hanson)".into();
-                brdf_solve::nnls(a.as_ref(), &b, 3 * cols.len() + 10)?.x
+                let s = brdf_solve::nnls(a.as_ref(), &b, 3 * cols.len() + 10)?;
+                rank = rank.min(s.passive.len());
+                s.x
             }
             _ => {
                 let bm = Mat::from_fn(n, 1, |j, _| b[j]);
@@ -566,6 +572,7 @@ fn fit_all_linear(
                     brdf_solve::LstsqMethod::PivotedQr,
                 )?;
                 how = format!("least squares (column-pivoted QR, rank {})", s.rank);
+                rank = rank.min(s.rank);
                 (0..cols.len()).map(|k| s.x[(k, 0)]).collect()
             }
         };
@@ -573,7 +580,7 @@ fn fit_all_linear(
             p[col] = x[k];
         }
     }
-    Ok((p, how))
+    Ok((p, how, if rank == usize::MAX { 0 } else { rank }))
 }
 
 #[allow(clippy::too_many_arguments)]
