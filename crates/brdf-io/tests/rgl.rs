@@ -203,3 +203,31 @@ fn every_real_material_loads() {
         );
     }
 }
+
+#[test]
+fn rgl_material_resampled_onto_merl_round_trips() {
+    let Some(p) = data("vch_golden_yellow_rgb.bsdf") else {
+        eprintln!("skipped: BRDF_DATA is not set");
+        return;
+    };
+    let m = Rgl::read(&p).unwrap();
+    let merl = brdf_io::merl::Merl::resample(&m);
+    let out = std::env::temp_dir().join(format!("rgl-merl-{}.binary", std::process::id()));
+    brdf_io::merl::write(&out, &merl).unwrap();
+    let back = brdf_io::merl::read(&out).unwrap();
+    for (a, b) in back.values().iter().zip(merl.values()) {
+        assert!((a - b).abs() <= 4.0 * f64::EPSILON * b.abs());
+    }
+    // At a bin centre the MERL lookup equals the RGL evaluation there.
+    let (l, v) = brdf_io::merl::bin_centre(30, 20, 45);
+    let (mut f, mut g) = ([0.0; 3], [0.0; 3]);
+    m.eval(&l, &v, &mut f);
+    back.eval(&l, &v, &mut g);
+    for c in 0..3 {
+        assert!(
+            (f[c] - g[c]).abs() <= 1e-12 * f[c].abs().max(1e-12),
+            "{f:?} vs {g:?}"
+        );
+    }
+    std::fs::remove_file(&out).ok();
+}

@@ -50,6 +50,16 @@
 //! elsewhere.
 //!
 //! ```
+//! use brdf_core::{Brdf, spherical_to_cartesian};
+//! use brdf_models::OrenNayarFull;
+//! // sigma = 0 is Lambert; the interreflection term vanishes with sigma.
+//! let m = OrenNayarFull::new(&[0.6], 0.0).unwrap();
+//! let mut f = [0.0];
+//! m.eval(&spherical_to_cartesian(0.7, 0.0), &spherical_to_cartesian(0.4, 2.0), &mut f);
+//! assert!((f[0] - 0.6 / std::f64::consts::PI).abs() < 1e-15);
+//! ```
+//!
+//! ```
 //! use brdf_core::Brdf;
 //! use brdf_models::OrenNayar;
 //! use nalgebra::Vector3;

@@ -8,7 +8,8 @@ use std::path::Path;
 
 use brdf_core::Parametric;
 use brdf_core::params::assign_by_name;
-use brdf_models::ModelConfig;
+use brdf_models::kurt_polynomial::{Pca, PolyVariant};
+use brdf_models::{KurtPolynomial, ModelConfig};
 use serde::{Deserialize, Serialize};
 
 use crate::StudyError;
@@ -30,24 +31,43 @@ pub struct SavedModel {
     pub parameters: Vec<(String, f64)>,
     /// Where it came from (data set, objective, error).
     pub provenance: String,
+    /// The PCA transform of a Kurt polynomial (its structure depends on the
+    /// data it was fitted to).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pca: Option<Pca>,
+}
+
+fn poly_variant(name: &str) -> Option<PolyVariant> {
+    match name {
+        "polynomial" => Some(PolyVariant::Isotropic),
+        "polynomial-aniso" => Some(PolyVariant::Anisotropic),
+        _ => None,
+    }
 }
 
 impl SavedModel {
-    /// Capture a model built from the catalogue with `config`.
+    /// Capture a model built from the catalogue with `config`; `pairs` are
+    /// the directions it was fitted at (needed for Kurt's polynomial, whose
+    /// PCA transform is recomputed from them, deterministically).
     pub fn capture(
         model: &dyn Parametric,
         config: &ModelConfig,
+        pairs: &brdf_core::DirPairs,
         provenance: String,
     ) -> Result<Self, StudyError> {
         let e = brdf_models::entry(model.name()).ok_or_else(|| {
             StudyError::Usage(format!("`{}` is not a catalogue model", model.name()))
         })?;
-        if e.build_for_data.is_some() {
-            return Err(StudyError::Usage(format!(
-                "`{}` depends on the fitted data (its PCA transform); saving it is not supported",
-                model.name()
-            )));
-        }
+        let pca = match (e.build_for_data.is_some(), poly_variant(model.name())) {
+            (false, _) => None,
+            (true, Some(v)) => Some(Pca::from_pairs(v, pairs)?),
+            (true, None) => {
+                return Err(StudyError::Usage(format!(
+                    "`{}` depends on the fitted data; saving it is not supported",
+                    model.name()
+                )));
+            }
+        };
         Ok(Self {
             model: model.name().to_string(),
             channels: config.channels,
@@ -61,6 +81,7 @@ impl SavedModel {
                 .zip(model.params().iter().copied())
                 .collect(),
             provenance,
+            pca,
         })
     }
 
@@ -72,7 +93,15 @@ impl SavedModel {
             order: self.order,
             degree: self.degree,
         };
-        let mut m = brdf_models::build(&self.model, &config)?;
+        let mut m: Box<dyn Parametric> = match (&self.pca, poly_variant(&self.model)) {
+            (Some(pca), Some(v)) => Box::new(KurtPolynomial::new(
+                v,
+                self.degree,
+                self.channels,
+                pca.clone(),
+            )?),
+            _ => brdf_models::build(&self.model, &config)?,
+        };
         if self.parameters.len() != m.n_params() {
             return Err(StudyError::Usage(format!(
                 "saved `{}` has {} parameters, the model has {}",

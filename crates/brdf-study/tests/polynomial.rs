@@ -3,7 +3,7 @@
 //! where OLS does not; the expected-bias analysis vanishes for a true model
 //! the fit can represent and shrinks with the degree for one it cannot.
 
-use brdf_core::{DirPairs, SampleSet};
+use brdf_core::{Brdf, DirPairs, Parametric, SampleSet};
 use brdf_models::kurt_polynomial::{Pca, PolyVariant};
 use brdf_models::{KurtPolynomial, ModelConfig, build};
 use brdf_solve::{LstsqMethod, lstsq};
@@ -149,4 +149,33 @@ fn expected_bias_vanishes_when_representable_and_shrinks_with_degree() {
         })
         .collect();
     assert!(r[0] > r[1] && r[1] > r[2] && r[2] > r[3], "{r:?}");
+}
+
+#[test]
+fn saved_polynomial_carries_its_pca_and_evaluates_identically() {
+    let dp = pairs(200);
+    let config = ModelConfig {
+        degree: 4,
+        ..ModelConfig::default()
+    };
+    let e = brdf_models::entry("polynomial").unwrap();
+    let mut m = (e.build_for_data.unwrap())(&config, &dp).unwrap();
+    let p: Vec<f64> = (0..m.n_params()).map(|c| 0.2 / (1.0 + c as f64)).collect();
+    m.set_params(&p).unwrap();
+    let saved =
+        brdf_study::saved_model::SavedModel::capture(m.as_ref(), &config, &dp, "test".into())
+            .unwrap();
+    let path = std::env::temp_dir().join(format!("poly-{}.json", std::process::id()));
+    saved.save(&path).unwrap();
+    let back = brdf_study::saved_model::SavedModel::load(&path)
+        .unwrap()
+        .build()
+        .unwrap();
+    // New direction pairs, not the fitted ones.
+    let (mut a, mut b) = ([0.0], [0.0]);
+    for (l, v) in scattered_pairs(300, 1.3).into_iter().skip(250) {
+        m.eval(l.vector(), v.vector(), &mut a);
+        back.eval(l.vector(), v.vector(), &mut b);
+        assert_eq!(a, b);
+    }
 }

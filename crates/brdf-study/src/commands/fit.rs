@@ -7,7 +7,6 @@ use std::path::PathBuf;
 use brdf_models::{ModelConfig, entry};
 
 use crate::StudyError;
-use crate::cli::ModelOpts;
 use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
 use crate::saved_model::SavedModel;
 
@@ -29,7 +28,7 @@ pub struct FitArgs {
     /// grey (mean of the channels), rgb (shared non-linear, per-channel
     /// linear parameters) or per-channel (everything per channel).
     #[arg(long, default_value = "rgb")]
-    pub channels_mode: String,
+    pub channels: String,
     /// Solver: auto (default: IRLS bisquare for the polynomial, direct least
     /// squares for other linear models, sqp otherwise), sqp (linear
     /// parameters projected out), lm, sopp (Sopp's two stages), ols or
@@ -45,9 +44,15 @@ pub struct FitArgs {
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
-    /// Structural options (degree, order, lobes).
-    #[command(flatten)]
-    pub model_opts: ModelOpts,
+    /// Specular lobes (Lafortune, Cook-Torrance).
+    #[arg(long, default_value_t = 1)]
+    pub lobes: usize,
+    /// Koenderink expansion order.
+    #[arg(long, default_value_t = 8)]
+    pub order: usize,
+    /// Polynomial degree (Kurt's model).
+    #[arg(long, default_value_t = 7)]
+    pub degree: usize,
 }
 
 /// Run `brdf fit`.
@@ -67,7 +72,7 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
     let data = crate::data::load(&args.data)?;
     let (data, invalid) = data.filter_invalid(false);
     let (data, angle) = data.filter_angle_limit(args.limit.to_radians());
-    let sets = match args.channels_mode.as_str() {
+    let sets = match args.channels.as_str() {
         "rgb" => vec![data.clone()],
         "grey" => vec![data.mean_channel()],
         "per-channel" => (0..data.channels())
@@ -75,7 +80,7 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
             .collect(),
         other => {
             return Err(StudyError::Usage(format!(
-                "--channels-mode {other}: expected grey, rgb or per-channel"
+                "--channels {other}: expected grey, rgb or per-channel"
             )));
         }
     };
@@ -86,7 +91,9 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
     for set in &sets {
         let config = ModelConfig {
             channels: set.channels(),
-            ..args.model_opts.config()
+            lobes: args.lobes,
+            order: args.order,
+            degree: args.degree,
         };
         let build = |config: &ModelConfig| match e.build_for_data {
             Some(f) => f(config, set.pairs()),
@@ -105,14 +112,14 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
         if let Some(path) = &args.save {
             if sets.len() > 1 {
                 return Err(StudyError::Usage(
-                    "--save needs one model: use --channels-mode rgb or grey".into(),
+                    "--save needs one model: use --channels rgb or grey".into(),
                 ));
             }
             let prov = format!(
                 "{} on {}, {} = {:.6e}",
                 report.solver, report.data, report.objective, report.error
             );
-            SavedModel::capture(model.as_ref(), &config, prov)?.save(path)?;
+            SavedModel::capture(model.as_ref(), &config, set.pairs(), prov)?.save(path)?;
         }
         reports.push(report);
     }
