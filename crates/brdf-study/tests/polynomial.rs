@@ -3,7 +3,7 @@
 //! where OLS does not; the expected-bias analysis vanishes for a true model
 //! the fit can represent and shrinks with the degree for one it cannot.
 
-use brdf_core::{Brdf, DirPairs, Parametric, SampleSet};
+use brdf_core::{DirPairs, SampleSet};
 use brdf_models::kurt_polynomial::{Pca, PolyVariant};
 use brdf_models::{KurtPolynomial, ModelConfig, build};
 use brdf_solve::{LstsqMethod, lstsq};
