@@ -13,6 +13,7 @@ pub mod bias;
 pub mod cli;
 pub mod commands;
 pub mod data;
+pub mod dense_tables;
 pub mod error;
 pub mod fit;
 pub mod kurt_tables;

@@ -236,6 +236,14 @@ pub fn run(args: &ReproduceArgs) -> Result<(), StudyError> {
     ];
     written.extend(crate::kurt_tables::write(&m.sets, &m.source, &args.out)?);
 
+    // Table 9.3 stand-in and renderings on the dense materials, when present.
+    if let Some(root) = data
+        .as_ref()
+        .filter(|d| d.join("rgl").is_dir() || d.join("cornell").is_dir())
+    {
+        written.extend(crate::dense_tables::write(root, &args.out)?);
+    }
+
     // Sopp's study on the RGL materials, when present.
     if let Some(dir) = data.as_ref().map(|d| d.join("rgl")).filter(|d| d.is_dir()) {
         written.extend(crate::sopp_tables::write(&dir, &args.out)?);
