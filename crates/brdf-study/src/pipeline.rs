@@ -393,7 +393,9 @@ pub fn box_constraints(model: &dyn Parametric) -> Result<Constraints, StudyError
 
 /// The multi-start box of the non-linear parameters: exponents (upper end
 /// of 1e3 or more) on a log scale over `[max(lower, 1), min(upper, 1e4)]`,
-/// the rest linearly over the box (infinite ends replaced by +-1).
+/// roughness-like parameters (box open at 0) on a log scale over
+/// `[1e-3 upper, upper]`, the rest linearly over the box (infinite ends
+/// replaced by +-1).
 fn start_box(model: &dyn Parametric, nonlinear: &[usize]) -> StartBox {
     let specs = model.param_specs();
     let mut b = StartBox {
@@ -406,6 +408,12 @@ fn start_box(model: &dyn Parametric, nonlinear: &[usize]) -> StartBox {
         if s.upper >= 1e3 {
             b.lower.push(s.lower.max(1.0));
             b.upper.push(s.upper.min(1e4));
+            b.log_scale.push(true);
+        } else if s.lower_open && s.lower == 0.0 && s.upper.is_finite() {
+            // Roughness-like parameters: sharp lobes need values decades
+            // below the box's upper end.
+            b.lower.push(1e-3 * s.upper);
+            b.upper.push(s.upper);
             b.log_scale.push(true);
         } else {
             let lo = if s.lower.is_finite() { s.lower } else { -1.0 };
