@@ -55,6 +55,22 @@ pub struct ModelEntry {
     pub build_for_data: Option<BuildForData>,
 }
 
+impl ModelEntry {
+    /// Build the model for the direction pairs it will be fitted at: through
+    /// `build_for_data` where the structure depends on the data (Kurt's
+    /// polynomial), `build` otherwise.
+    pub fn build_for(
+        &self,
+        config: &ModelConfig,
+        pairs: &DirPairs,
+    ) -> Result<Box<dyn Parametric>, ParamError> {
+        match self.build_for_data {
+            Some(f) => f(config, pairs),
+            None => (self.build)(config),
+        }
+    }
+}
+
 impl std::fmt::Debug for ModelEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ModelEntry")
@@ -304,8 +320,22 @@ pub fn entry(name: &str) -> Option<ModelEntry> {
 
 /// Build a model by name at its default parameters.
 pub fn build(name: &str, config: &ModelConfig) -> Result<Box<dyn Parametric>, ParamError> {
+    entry_or_error(name).and_then(|e| (e.build)(config))
+}
+
+/// Build a model by name for the direction pairs it will be fitted at
+/// ([`ModelEntry::build_for`]).
+pub fn build_for(
+    name: &str,
+    config: &ModelConfig,
+    pairs: &DirPairs,
+) -> Result<Box<dyn Parametric>, ParamError> {
+    entry_or_error(name).and_then(|e| e.build_for(config, pairs))
+}
+
+fn entry_or_error(name: &str) -> Result<ModelEntry, ParamError> {
     match entry(name) {
-        Some(e) => (e.build)(config),
+        Some(e) => Ok(e),
         None => Err(ParamError::Config {
             model: name.to_string(),
             reason: format!(

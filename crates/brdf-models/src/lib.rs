@@ -65,7 +65,7 @@ pub use ashikhmin_shirley::{
 };
 #[cfg(feature = "phong")]
 pub use blinn_phong::BlinnPhong;
-pub use catalogue::{ModelConfig, ModelEntry, build, catalogue, entry};
+pub use catalogue::{ModelConfig, ModelEntry, build, build_for, catalogue, entry};
 #[cfg(feature = "sopp")]
 pub use clear_coat::ClearCoat;
 #[cfg(feature = "microfacet")]

@@ -465,33 +465,27 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
             }
         }
     };
-    let termination = if termination.is_converged() && termination != Termination::ZeroResidual {
-        let jnow = if termination == Termination::SmallGradient {
-            jac.clone()
-        } else {
-            let mut j = vec![0.0; m * n];
-            problem.jacobian(&p, &mut j);
-            j
-        };
-        if plateau(&jnow, &r, &p, &constraints.status(&p)) {
-            Termination::SingularPlateau
-        } else {
-            termination
-        }
+    // `jac` is at the final `p` unless the last step was accepted and ended
+    // the run (the relative-reduction test): only then evaluate it again.
+    if termination == Termination::SmallReduction {
+        problem.jacobian(&p, &mut jac);
+    }
+    let termination = if termination.is_converged()
+        && termination != Termination::ZeroResidual
+        && plateau(&jac, &r, &p, &constraints.status(&p))
+    {
+        Termination::SingularPlateau
     } else {
         termination
     };
     let ssr = 2.0 * cost;
-    let gn = {
-        let mut g = vec![0.0; n];
-        problem.jacobian(&p, &mut jac);
-        for i in 0..m {
-            for k in 0..n {
-                g[k] += jac[i * n + k] * r[i];
-            }
+    let mut g = vec![0.0; n];
+    for i in 0..m {
+        for k in 0..n {
+            g[k] += jac[i * n + k] * r[i];
         }
-        g.iter().fold(0.0f64, |a, v| a.max(v.abs()))
-    };
+    }
+    let gn = g.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     Ok(report(
         p,
         ssr,

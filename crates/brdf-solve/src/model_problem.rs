@@ -156,7 +156,7 @@ impl SeparableProblem for ModelProblem<'_> {
     fn basis(&self, a: &[f64], phi: &mut [f64], dphi: Option<&mut [f64]>) {
         let (m, n) = (self.rows(), self.pairs.len());
         let np = self.model.n_params();
-        let (nl, nn) = (self.linear.len(), self.nonlinear.len());
+        let nl = self.linear.len();
         let mut val = vec![0.0; m];
         let mut jac = vec![0.0; m * np];
         match dphi {
@@ -189,7 +189,6 @@ impl SeparableProblem for ModelProblem<'_> {
                         }
                     }
                 }
-                let _ = nn;
             }
         }
     }

@@ -45,7 +45,8 @@ pub trait SeparableProblem {
 pub struct VarPro<'a, S: SeparableProblem + ?Sized> {
     problem: &'a S,
     nonneg: bool,
-    scratch: RefCell<(Vec<f64>, Vec<f64>)>,
+    /// The basis buffer reused by `residuals` (one allocation per problem).
+    phi: RefCell<Vec<f64>>,
 }
 
 impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
@@ -55,15 +56,15 @@ impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
         Self {
             problem,
             nonneg,
-            scratch: RefCell::new((vec![0.0; m * l], Vec::new())),
+            phi: RefCell::new(vec![0.0; m * l]),
         }
     }
 
     /// The optimal linear coefficients at `a`.
     pub fn linear_coefficients(&self, a: &[f64]) -> Result<Vec<f64>, SolveError> {
-        let mut sc = self.scratch.borrow_mut();
-        self.problem.basis(a, &mut sc.0, None);
-        self.solve_linear(&sc.0)
+        let mut phi = self.phi.borrow_mut();
+        self.problem.basis(a, &mut phi, None);
+        self.solve_linear(&phi)
     }
 
     fn solve_linear(&self, phi: &[f64]) -> Result<Vec<f64>, SolveError> {
@@ -91,17 +92,17 @@ impl<S: SeparableProblem + ?Sized> LeastSquaresProblem for VarPro<'_, S> {
 
     fn residuals(&self, a: &[f64], out: &mut [f64]) {
         let (m, l) = (self.problem.n_rows(), self.problem.n_linear());
-        let mut sc = self.scratch.borrow_mut();
-        self.problem.basis(a, &mut sc.0, None);
-        if sc.0.iter().any(|v| !v.is_finite()) {
+        let mut phi = self.phi.borrow_mut();
+        self.problem.basis(a, &mut phi, None);
+        if phi.iter().any(|v| !v.is_finite()) {
             out.fill(f64::NAN);
             return;
         }
-        match self.solve_linear(&sc.0) {
+        match self.solve_linear(&phi) {
             Ok(c) => {
                 let y = self.problem.targets();
                 for i in 0..m {
-                    out[i] = (0..l).map(|j| sc.0[j * m + i] * c[j]).sum::<f64>() - y[i];
+                    out[i] = (0..l).map(|j| phi[j * m + i] * c[j]).sum::<f64>() - y[i];
                 }
             }
             Err(_) => out.fill(f64::NAN),

@@ -12,13 +12,12 @@
 use std::path::Path;
 
 use brdf_core::metrics::psnr;
-use brdf_core::{Parametric, SampleSet};
+
 use brdf_models::ModelConfig;
 use nalgebra::Vector3;
 
 use crate::StudyError;
-use crate::kurt_tables::nine_models;
-use crate::pipeline::{FitOptions, fit};
+use crate::kurt_tables::{fit_catalogue, nine_models};
 use crate::render::{Image, render_sphere};
 use crate::report::{Cell, Table};
 
@@ -26,21 +25,6 @@ const SIZE: usize = 96;
 
 fn light() -> Vector3<f64> {
     Vector3::new(0.5, 0.5, 0.707).normalize()
-}
-
-fn fitted(
-    name: &str,
-    config: ModelConfig,
-    set: &SampleSet,
-) -> Result<(Box<dyn Parametric>, f64), StudyError> {
-    let e = brdf_models::entry(name)
-        .ok_or_else(|| StudyError::Usage(format!("model `{name}` is not in this build")))?;
-    let mut m = match e.build_for_data {
-        Some(f) => f(&config, set.pairs())?,
-        None => (e.build)(&config)?,
-    };
-    let r = fit(m.as_mut(), set, &FitOptions::default())?;
-    Ok((m, r.ngan_l2))
 }
 
 /// Fit, render and score every material; returns the files written.
@@ -76,7 +60,7 @@ pub fn write(data_root: &Path, out: &Path) -> Result<Vec<String>, StudyError> {
         let mut row = vec![Cell::Text(name.to_string())];
         let mut images = vec![reference.clone()];
         for (label, model, config) in &models {
-            let (m, l2) = fitted(
+            let (m, r) = fit_catalogue(
                 model,
                 ModelConfig {
                     channels: 3,
@@ -84,6 +68,7 @@ pub fn write(data_root: &Path, out: &Path) -> Result<Vec<String>, StudyError> {
                 },
                 &set,
             )?;
+            let l2 = r.ngan_l2;
             let img = render_sphere(m.as_ref(), SIZE, &light(), &Vector3::z(), false);
             row.push(Cell::Num(l2, 4));
             row.push(Cell::Num(psnr(&reference.data, &img.data, peak)?, 4));
@@ -111,14 +96,16 @@ pub fn write(data_root: &Path, out: &Path) -> Result<Vec<String>, StudyError> {
         let (set, _) = set.filter_angle_limit(80f64.to_radians());
         let mut row = vec![Cell::Text(format!("cornell {name}"))];
         for (_, model, config) in &models {
-            let (_, l2) = fitted(
+            let l2 = fit_catalogue(
                 model,
                 ModelConfig {
                     channels: 3,
                     ..*config
                 },
                 &set,
-            )?;
+            )?
+            .1
+            .ngan_l2;
             row.push(Cell::Num(l2, 4));
             row.push(Cell::Text("n/a (scattered)".into()));
         }

@@ -6,8 +6,9 @@
 
 use std::path::Path;
 
+use brdf_core::Parametric;
 use brdf_core::SampleSet;
-use brdf_models::{ModelConfig, entry};
+use brdf_models::{ModelConfig, build_for};
 
 use crate::StudyError;
 use crate::pipeline::{FitOptions, FitSummary, fit};
@@ -67,14 +68,16 @@ const KURT_9_4: [Option<f64>; 9] = [
     Some(0.1058),
 ];
 
-fn fit_one(name: &str, config: ModelConfig, set: &SampleSet) -> Result<FitSummary, StudyError> {
-    let e = entry(name)
-        .ok_or_else(|| StudyError::Usage(format!("model `{name}` is not in this build")))?;
-    let mut model = match e.build_for_data {
-        Some(f) => f(&config, set.pairs())?,
-        None => (e.build)(&config)?,
-    };
-    fit(model.as_mut(), set, &FitOptions::default())
+/// Build catalogue model `name` for `set` and fit it with the default
+/// pipeline; the fitted model and its summary.
+pub(crate) fn fit_catalogue(
+    name: &str,
+    config: ModelConfig,
+    set: &SampleSet,
+) -> Result<(Box<dyn Parametric>, FitSummary), StudyError> {
+    let mut model = build_for(name, &config, set.pairs())?;
+    let summary = fit(model.as_mut(), set, &FitOptions::default())?;
+    Ok((model, summary))
 }
 
 fn sample_number(set: &SampleSet) -> Option<u32> {
@@ -96,7 +99,7 @@ pub fn write(sets: &[SampleSet], source: &str, out: &Path) -> Result<Vec<String>
     for (_, name, config) in &models {
         let mut row = Vec::new();
         for s in sets {
-            row.push(fit_one(name, *config, s)?);
+            row.push(fit_catalogue(name, *config, s)?.1);
         }
         results.push(row);
     }

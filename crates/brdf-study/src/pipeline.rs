@@ -745,8 +745,3 @@ impl LeastSquaresProblem for LogProblem<'_> {
         }
     }
 }
-
-/// Whether the termination of a report certifies a minimum.
-pub fn converged(t: Termination) -> bool {
-    t.is_converged()
-}

@@ -105,10 +105,7 @@ pub fn select(
         let Some(e) = brdf_models::entry(name) else {
             continue;
         };
-        let mut model = match e.build_for_data {
-            Some(f) => f(&config, data.pairs())?,
-            None => (e.build)(&config)?,
-        };
+        let mut model = e.build_for(&config, data.pairs())?;
         if model.n_params() >= data.len() * data.channels() {
             continue;
         }

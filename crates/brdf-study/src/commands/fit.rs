@@ -95,10 +95,7 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
             order: args.order,
             degree: args.degree,
         };
-        let build = |config: &ModelConfig| match e.build_for_data {
-            Some(f) => f(config, set.pairs()),
-            None => (e.build)(config),
-        };
+        let build = |config: &ModelConfig| e.build_for(config, set.pairs());
         let mut model = build(&config)?;
         let report = if opts.solver == Solver::Sopp {
             let mut grey = build(&ModelConfig {

@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 
 use brdf_core::SampleSet;
-use brdf_models::{ModelConfig, entry};
+use brdf_models::{ModelConfig, build_for};
 
 use crate::StudyError;
 use crate::fit::fit_linear;
@@ -34,12 +34,7 @@ pub struct ReproduceArgs {
 const KURT_9_1_QUARRY: [f64; 6] = [0.041, 0.027, 0.015, 0.011, 0.011, 0.010];
 
 fn fit_error(name: &str, config: ModelConfig, set: &SampleSet) -> Result<f64, StudyError> {
-    let e = entry(name)
-        .ok_or_else(|| StudyError::Usage(format!("model `{name}` is not in this build")))?;
-    let mut model = match e.build_for_data {
-        Some(f) => f(&config, set.pairs())?,
-        None => (e.build)(&config)?,
-    };
+    let mut model = build_for(name, &config, set.pairs())?;
     Ok(fit_linear(model.as_mut(), set)?.ngan_l2)
 }
 
