@@ -5,7 +5,11 @@
 //! BRDF values (the mean of the R, G and B channels, 1/sr). `table.txt`: 205
 //! rows `index theta_v phi_v theta_i phi_i` (radians), the measurement
 //! geometry shared by every sample, in the column order the database
-//! documents. The per-channel layout (`rbrdf.dat`, `gbrdf.dat`, `bbrdf.dat`,
+//! documents. The data confirm that order: the radiance offset visible in
+//! the darkest sample (61) is divided by the cosine of columns 4-5, as only
+//! the illumination angle is, and with the columns swapped removing it
+//! would leave 125 negative BRDF values (the argument and its numbers are
+//! the test `real_curet_column_order_from_the_data` in `tests/curet.rs`). The per-channel layout (`rbrdf.dat`, `gbrdf.dat`, `bbrdf.dat`,
 //! same shape) is read by [`read_rgb`].
 //!
 //! Slightly negative values (29 in `abrdf.dat`) are measurement noise, i.e.
