@@ -125,12 +125,21 @@ fn data_line(
     Ok(f)
 }
 
-/// The measurement geometry: `(L, V)` of the 205 configurations.
-pub fn read_table(path: &Path) -> Result<Vec<(Direction, Direction)>, IoError> {
-    let text = std::fs::read_to_string(path).map_err(|e| IoError::Io {
+fn read_text(path: &Path) -> Result<String, IoError> {
+    std::fs::read_to_string(path).map_err(|e| IoError::Io {
         path: path.into(),
         source: e,
-    })?;
+    })
+}
+
+/// The measurement geometry: `(L, V)` of the 205 configurations.
+pub fn read_table(path: &Path) -> Result<Vec<(Direction, Direction)>, IoError> {
+    parse_table(path, &read_text(path)?)
+}
+
+/// [`read_table`] on the text of a `table.txt` (`path` only names it in
+/// errors).
+pub fn parse_table(path: &Path, text: &str) -> Result<Vec<(Direction, Direction)>, IoError> {
     let mut out = Vec::with_capacity(CONFIGURATIONS);
     for (k, line) in text.lines().enumerate() {
         if line.trim().is_empty() {
@@ -178,10 +187,12 @@ pub fn read_table(path: &Path) -> Result<Vec<(Direction, Direction)>, IoError> {
 
 /// One channel file: sample number -> 205 values, in file order.
 pub fn read_values(path: &Path) -> Result<Vec<(u32, Vec<f64>)>, IoError> {
-    let text = std::fs::read_to_string(path).map_err(|e| IoError::Io {
-        path: path.into(),
-        source: e,
-    })?;
+    parse_values(path, &read_text(path)?)
+}
+
+/// [`read_values`] on the text of a channel file (`path` only names it in
+/// errors).
+pub fn parse_values(path: &Path, text: &str) -> Result<Vec<(u32, Vec<f64>)>, IoError> {
     let mut out: Vec<(u32, Vec<f64>)> = Vec::new();
     for (k, line) in text.lines().enumerate() {
         if line.trim().is_empty() {

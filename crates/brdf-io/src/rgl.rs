@@ -159,6 +159,54 @@ impl TensorFile {
     pub fn field(&self, name: &str) -> Option<&Field> {
         self.fields.iter().find(|(n, _)| n == name).map(|(_, f)| f)
     }
+
+    /// The file's bytes: the header, then each field's data in field order,
+    /// contiguous (the layout [`TensorFile::parse`] reads back to `self`).
+    ///
+    /// Fails when a field's byte count does not match its dtype and shape,
+    /// or a name or rank does not fit the format's `u16` lengths.
+    pub fn to_bytes(&self) -> Result<Vec<u8>, IoError> {
+        let bad = |name: &str, reason: String| IoError::Format {
+            path: PathBuf::new(),
+            line: 0,
+            reason: format!("field `{name}`: {reason}"),
+        };
+        let mut header_len = 18;
+        for (name, f) in &self.fields {
+            let size = dtype_size(f.dtype)
+                .ok_or_else(|| bad(name, format!("unknown dtype {}", f.dtype)))?;
+            let count = f.shape.iter().try_fold(size, |a, s| a.checked_mul(*s));
+            if count != Some(f.bytes.len()) {
+                return Err(bad(
+                    name,
+                    format!("{} bytes for shape {:?}", f.bytes.len(), f.shape),
+                ));
+            }
+            if name.len() > u16::MAX as usize || f.shape.len() > u16::MAX as usize {
+                return Err(bad(name, "name or rank too long".into()));
+            }
+            header_len += 2 + name.len() + 2 + 1 + 8 + 8 * f.shape.len();
+        }
+        let mut out = b"tensor_file\0".to_vec();
+        out.extend_from_slice(&[1, 0]);
+        out.extend_from_slice(&(self.fields.len() as u32).to_le_bytes());
+        let mut offset = header_len;
+        for (name, f) in &self.fields {
+            out.extend_from_slice(&(name.len() as u16).to_le_bytes());
+            out.extend_from_slice(name.as_bytes());
+            out.extend_from_slice(&(f.shape.len() as u16).to_le_bytes());
+            out.push(f.dtype);
+            out.extend_from_slice(&(offset as u64).to_le_bytes());
+            for s in &f.shape {
+                out.extend_from_slice(&(*s as u64).to_le_bytes());
+            }
+            offset += f.bytes.len();
+        }
+        for (_, f) in &self.fields {
+            out.extend_from_slice(&f.bytes);
+        }
+        Ok(out)
+    }
 }
 
 /// Piecewise-bilinear 2D function on `[0, 1]^2` (`nx` columns contiguous),

@@ -1,14 +1,18 @@
-//! Fuzzing every reader with proptest: arbitrary bytes, and valid files
-//! with random corruption (truncation, byte flips, inserted garbage), must
-//! give `Ok` or a typed error, never a panic. (`cargo fuzz` needs a nightly
-//! toolchain, which this project's machines do not have; these property
-//! tests are the fuzz targets, run on every `cargo test`: 256 cases per
-//! target per run by default, more with `PROPTEST_CASES`.)
+//! Quick fuzzing of every reader with proptest, run on every `cargo test`:
+//! arbitrary bytes, and valid files with random corruption (truncation,
+//! byte flips, inserted garbage), must give `Ok` or a typed error, never a
+//! panic. 256 cases per target per run by default, more with
+//! `PROPTEST_CASES`. The coverage-guided counterparts are the cargo-fuzz
+//! (libFuzzer) targets in `crates/brdf-io/fuzz/`, which need a nightly
+//! toolchain and are run by hand (see `fuzz/README.md`).
 
 use std::path::Path;
 
+use brdf_core::Brdf;
 use brdf_io::cornell::{self, CornellColour};
+use brdf_io::rgl::{Field, Rgl, TensorFile};
 use brdf_io::{csv_samples, curet, merl, nist, sopp_grid};
+use nalgebra::Vector3;
 use proptest::prelude::*;
 
 fn cornell_text() -> String {
@@ -97,15 +101,64 @@ proptest! {
     }
 
     #[test]
-    fn curet_files_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..300)) {
-        let dir = std::env::temp_dir().join(format!("brdf-io-fuzz-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let t = dir.join("table.txt");
-        let a = dir.join("abrdf.dat");
-        std::fs::write(&t, &bytes).unwrap();
-        std::fs::write(&a, &bytes).unwrap();
-        let _ = curet::read_table(&t);
-        let _ = curet::read_values(&a);
-        let _ = curet::read_grey(&a, &t);
+    fn curet_never_panics(bytes in proptest::collection::vec(any::<u8>(), 0..300),
+                          cut in any::<usize>(), flip in any::<usize>(), at in any::<usize>()) {
+        let t = Path::new("table.txt");
+        let a = Path::new("abrdf.dat");
+        let _ = curet::parse_table(t, &text(&bytes));
+        let _ = curet::parse_values(a, &text(&bytes));
+        let table = curet_fixture("table.txt");
+        let _ = curet::parse_table(t, &text(&corrupt(table.as_bytes(), cut, flip, &bytes, at)));
+        let values = curet_fixture("rbrdf.dat");
+        let _ = curet::parse_values(a, &text(&corrupt(values.as_bytes(), cut, flip, &bytes, at)));
     }
+
+    #[test]
+    fn rgl_never_panics(bytes in proptest::collection::vec(any::<u8>(), 0..200),
+                        cut in any::<usize>(), flip in any::<usize>(), at in any::<usize>()) {
+        let p = Path::new("fuzz.bsdf");
+        let _ = Rgl::parse(p, &bytes);
+        let tiny = tiny_rgl();
+        prop_assert!(Rgl::parse(p, &tiny).is_ok());
+        if let Ok(m) = Rgl::parse(p, &corrupt(&tiny, cut, flip, &bytes, at)) {
+            let mut out = [0.0; 3];
+            let l = Vector3::new(0.3, 0.1, 0.95).normalize();
+            let v = Vector3::new(-0.5, 0.2, 0.8).normalize();
+            m.eval(&l, &v, &mut out);
+        }
+    }
+}
+
+fn curet_fixture(name: &str) -> String {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/curet");
+    std::fs::read_to_string(dir.join(name)).unwrap()
+}
+
+/// A valid RGL material of constant 2 x 2 tables.
+fn tiny_rgl() -> Vec<u8> {
+    let f = |shape: &[usize], x: f32| {
+        let n: usize = shape.iter().product();
+        let bytes = (0..n).flat_map(|_| x.to_le_bytes()).collect();
+        Field {
+            dtype: 10,
+            shape: shape.to_vec(),
+            bytes,
+        }
+    };
+    let fields = [
+        ("phi_i", f(&[1], 0.0)),
+        ("theta_i", f(&[2], 0.5)),
+        ("ndf", f(&[2, 2], 1.0)),
+        ("sigma", f(&[2, 2], 1.0)),
+        ("vndf", f(&[1, 2, 2, 2], 1.0)),
+        ("rgb", f(&[1, 2, 3, 2, 2], 0.5)),
+    ];
+    TensorFile {
+        fields: fields
+            .into_iter()
+            .map(|(n, f)| (n.to_string(), f))
+            .collect(),
+    }
+    .to_bytes()
+    .unwrap()
 }

@@ -6,33 +6,28 @@
 use std::path::{Path, PathBuf};
 
 use brdf_core::{AlbedoFrame, Brdf, QuadratureOptions, directional_albedo, spherical_to_cartesian};
-use brdf_io::rgl::{Rgl, TensorFile};
+use brdf_io::rgl::{Field, Rgl, TensorFile};
 
+/// A tensor file of `(name, dtype, shape, bytes)` fields, written by the
+/// library's own writer.
 fn tensor_bytes(fields: &[(&str, u8, Vec<u64>, Vec<u8>)]) -> Vec<u8> {
-    let mut head = b"tensor_file\0".to_vec();
-    head.extend_from_slice(&[1, 0]);
-    head.extend_from_slice(&(fields.len() as u32).to_le_bytes());
-    let hlen: usize = head.len()
-        + fields
+    let tf = TensorFile {
+        fields: fields
             .iter()
-            .map(|f| 2 + f.0.len() + 2 + 1 + 8 + 8 * f.2.len())
-            .sum::<usize>();
-    let mut data = Vec::new();
-    let mut desc = Vec::new();
-    for (name, dtype, shape, bytes) in fields {
-        desc.extend_from_slice(&(name.len() as u16).to_le_bytes());
-        desc.extend_from_slice(name.as_bytes());
-        desc.extend_from_slice(&(shape.len() as u16).to_le_bytes());
-        desc.push(*dtype);
-        desc.extend_from_slice(&((hlen + data.len()) as u64).to_le_bytes());
-        for s in shape {
-            desc.extend_from_slice(&s.to_le_bytes());
-        }
-        data.extend_from_slice(bytes);
-    }
-    head.extend(desc);
-    head.extend(data);
-    head
+            .map(|(n, d, s, b)| {
+                let shape = s.iter().map(|x| *x as usize).collect();
+                (
+                    n.to_string(),
+                    Field {
+                        dtype: *d,
+                        shape,
+                        bytes: b.clone(),
+                    },
+                )
+            })
+            .collect(),
+    };
+    tf.to_bytes().unwrap()
 }
 
 #[test]
@@ -49,6 +44,11 @@ fn tensor_container_and_bad_input() {
         vec![1.5, -2.0, 3.25]
     );
     assert_eq!(t.field("d").unwrap().bytes, b"hi");
+    // Written then read gives the same file, byte for byte.
+    assert_eq!(t.to_bytes().unwrap(), b);
+    let mut wrong = t.clone();
+    wrong.fields[0].1.shape = vec![4];
+    assert!(wrong.to_bytes().is_err(), "3 f32 values for shape [4]");
     for cut in [0, 5, 13, 20, b.len() - 1] {
         assert!(
             TensorFile::parse(p, &b[..cut]).is_err(),
@@ -230,4 +230,42 @@ fn rgl_material_resampled_onto_merl_round_trips() {
         );
     }
     std::fs::remove_file(&out).ok();
+}
+
+/// A material with constant tables, written with `TensorFile::to_bytes`:
+/// `rgb = c`, `ndf = n`, `sigma = s` and a uniform VNDF give
+/// `f = c n / (4 s)` for every pair above the horizon (the warp is the
+/// identity), and 0 below it.
+#[test]
+fn constant_tables_evaluate_to_c_ndf_over_4_sigma() {
+    let f32s = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let filled = |x: f32, n: usize| f32s(&vec![x; n]);
+    let b = tensor_bytes(&[
+        ("phi_i", 10, vec![1], f32s(&[0.0])),
+        ("theta_i", 10, vec![2], f32s(&[0.0, 1.5])),
+        ("ndf", 10, vec![3, 3], filled(2.0, 9)),
+        ("sigma", 10, vec![3, 3], filled(0.5, 9)),
+        ("vndf", 10, vec![1, 2, 3, 3], filled(1.0, 18)),
+        ("rgb", 10, vec![1, 2, 3, 3, 3], filled(0.125, 54)),
+    ]);
+    let m = Rgl::parse(Path::new("tiny.bsdf"), &b).unwrap();
+    let mut out = [0.0; 3];
+    for (l, v) in [
+        ((0.0, 0.0), (0.0, 0.0)),
+        ((0.4, 0.3), (0.9, 2.0)),
+        ((1.2, -1.0), (0.3, 0.5)),
+    ] {
+        let l = spherical_to_cartesian(l.0, l.1);
+        let v = spherical_to_cartesian(v.0, v.1);
+        m.eval(&l, &v, &mut out);
+        for c in out {
+            assert!((c - 0.125 * 2.0 / (4.0 * 0.5)).abs() < 1e-6, "{out:?}");
+        }
+    }
+    m.eval(
+        &spherical_to_cartesian(0.3, 0.0),
+        &spherical_to_cartesian(2.0, 0.0),
+        &mut out,
+    );
+    assert_eq!(out, [0.0; 3]);
 }
