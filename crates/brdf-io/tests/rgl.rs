@@ -139,10 +139,9 @@ fn paper_is_near_diffuse_below_one_and_roughly_reciprocal() {
     }
     // Near-diffuse: f within a factor 2 of albedo/pi over a grid of pairs;
     // reciprocity approximately: the median relative difference of
-    // f(L, V) and f(V, L) over the grid is below 25% (measured: 0.17,
-    // largest 0.48 in back-scatter pairs; the swapped pair is a different
-    // measurement interpolated on a grid adapted to the specular lobe, so
-    // the diffuse tails of a near-diffuse material are coarsely resolved).
+    // f(L, V) and f(V, L) over the grid is below 5% and the largest below
+    // 20% (measured: 0.017 and 0.072; the swapped pair is a different
+    // measurement, interpolated on a grid adapted to another incidence).
     let mut f = [0.0; 3];
     let mut g = [0.0; 3];
     let mut devs = Vec::new();
@@ -168,8 +167,8 @@ fn paper_is_near_diffuse_below_one_and_roughly_reciprocal() {
         devs[devs.len() - 1]
     );
     assert!(
-        median < 0.25,
-        "median reciprocity deviation {median}: {devs:?}"
+        median < 0.05 && devs[devs.len() - 1] < 0.2,
+        "reciprocity deviation, median {median}: {devs:?}"
     );
 }
 
@@ -234,10 +233,10 @@ fn rgl_material_resampled_onto_merl_round_trips() {
 
 /// A material with constant tables, written with `TensorFile::to_bytes`:
 /// `rgb = c`, `ndf = n`, `sigma = s` and a uniform VNDF give
-/// `f = c n / (4 s)` for every pair above the horizon (the warp is the
-/// identity), and 0 below it.
+/// `f = c n / (4 s cos theta_v)` for every pair above the horizon (the
+/// warp is the identity), and 0 below it.
 #[test]
-fn constant_tables_evaluate_to_c_ndf_over_4_sigma() {
+fn constant_tables_evaluate_to_c_ndf_over_4_sigma_cos_theta_v() {
     let f32s = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
     let filled = |x: f32, n: usize| f32s(&vec![x; n]);
     let b = tensor_bytes(&[
@@ -259,7 +258,8 @@ fn constant_tables_evaluate_to_c_ndf_over_4_sigma() {
         let v = spherical_to_cartesian(v.0, v.1);
         m.eval(&l, &v, &mut out);
         for c in out {
-            assert!((c - 0.125 * 2.0 / (4.0 * 0.5)).abs() < 1e-6, "{out:?}");
+            let expect = 0.125 * 2.0 / (4.0 * 0.5 * v.z);
+            assert!((c - expect).abs() < 1e-6 * expect, "{out:?}");
         }
     }
     m.eval(
