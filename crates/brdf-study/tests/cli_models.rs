@@ -88,3 +88,23 @@ fn eval_rejects_bad_input_with_a_message() {
     assert!(!ok);
     assert!(err.contains("name=value"), "{err}");
 }
+
+/// A reader that stops early (`brdf models | head -1`) ends the command
+/// quietly and successfully, not with a panic.
+#[test]
+fn closed_stdout_is_not_a_panic() {
+    use std::process::Stdio;
+    // The read end is closed before the command starts, so its first write
+    // fails, every time.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(env!("CARGO_BIN_EXE_brdf"))
+        .arg("models")
+        .stdout(Stdio::from(writer))
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{:?}: {err}", out.status);
+    assert!(!err.contains("panicked"), "{err}");
+}

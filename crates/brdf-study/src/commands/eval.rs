@@ -122,10 +122,10 @@ pub fn run(args: &EvalArgs) -> Result<(), StudyError> {
         channels: f.clone(),
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        say!("{}", serde_json::to_string_pretty(&out)?)?;
     } else {
         for (i, v) in f.iter().enumerate() {
-            println!("channel {i}: {v:.10e}");
+            say!("channel {i}: {v:.10e}")?;
         }
     }
     Ok(())

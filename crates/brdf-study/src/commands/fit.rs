@@ -127,11 +127,11 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
             "dropped_angle": angle.dropped(),
             "negative_values_kept": data.count_negative(),
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        say!("{}", serde_json::to_string_pretty(&v)?)?;
         return Ok(());
     }
     for r in &reports {
-        println!(
+        say!(
             "model {} on {} ({} samples; dropped {} invalid, {} beyond {} deg)",
             r.model,
             r.data,
@@ -139,12 +139,16 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
             invalid.dropped(),
             angle.dropped(),
             args.limit
-        );
-        println!("solver: {}", r.solver);
-        println!(
+        )?;
+        say!("solver: {}", r.solver)?;
+        say!(
             "iterations {}, {}; starts {} ({} converged, {} at the best cost)",
-            r.iterations, r.termination, r.starts.0, r.starts.1, r.starts.2
-        );
+            r.iterations,
+            r.termination,
+            r.starts.0,
+            r.starts.1,
+            r.starts.2
+        )?;
         for p in &r.parameters {
             let se = p
                 .std_error
@@ -155,15 +159,15 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
                 .map(|b| format!(" [at {b} bound]"))
                 .unwrap_or_default();
             let pr = if p.projected { " (projected)" } else { "" };
-            println!("  {:<8} {:>14.6e} {se}{b}{pr}", p.name, p.value);
+            say!("  {:<8} {:>14.6e} {se}{b}{pr}", p.name, p.value)?;
         }
-        println!(
+        say!(
             "{} error: {:.6e}  Ngan L2: {:.6e}  time: {:.3} ms",
             r.objective,
             r.error,
             r.ngan_l2,
             r.seconds * 1e3
-        );
+        )?;
     }
     Ok(())
 }

@@ -70,23 +70,24 @@ pub fn run(args: &InfoArgs) -> Result<(), StudyError> {
         phi_o_deg: range(sph.iter().map(|a| a.1.1.to_degrees())),
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&info)?);
+        say!("{}", serde_json::to_string_pretty(&info)?)?;
     } else {
-        println!(
+        say!(
             "{} ({:?}): {} samples, channels {}",
             info.name,
             info.format,
             info.samples,
             info.channels.join(",")
-        );
-        println!(
+        )?;
+        say!(
             "  negative values {}, non-finite {}",
-            info.negative, info.non_finite
-        );
+            info.negative,
+            info.non_finite
+        )?;
         if let Some((a, b)) = info.value_range {
-            println!("  values [{a:.6e}, {b:.6e}] 1/sr");
+            say!("  values [{a:.6e}, {b:.6e}] 1/sr")?;
         }
-        println!(
+        say!(
             "  theta_i [{:.2}, {:.2}] deg, theta_o [{:.2}, {:.2}] deg, phi_i [{:.2}, {:.2}], phi_o [{:.2}, {:.2}]",
             info.theta_i_deg.0,
             info.theta_i_deg.1,
@@ -96,9 +97,9 @@ pub fn run(args: &InfoArgs) -> Result<(), StudyError> {
             info.phi_i_deg.1,
             info.phi_o_deg.0,
             info.phi_o_deg.1
-        );
+        )?;
         if format == crate::data::Format::Curet && !args.path.contains('#') {
-            println!("  (CUReT holds 61 samples; shown: sample 1; name one as PATH#N)");
+            say!("  (CUReT holds 61 samples; shown: sample 1; name one as PATH#N)")?;
         }
     }
     Ok(())

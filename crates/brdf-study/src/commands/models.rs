@@ -65,14 +65,14 @@ pub fn run(args: &ModelsArgs) -> Result<(), StudyError> {
         });
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        say!("{}", serde_json::to_string_pretty(&out)?)?;
         return Ok(());
     }
     for m in &out {
-        println!("{} ({}): {}", m.name, m.family, m.summary);
-        println!("  paper: {}", m.paper);
+        say!("{} ({}): {}", m.name, m.family, m.summary)?;
+        say!("  paper: {}", m.paper)?;
         for p in &m.parameters {
-            println!(
+            say!(
                 "  {:<10} {}{}, {}] {:<10} default {:<8} {}",
                 p.name,
                 if p.lower_open { '(' } else { '[' },
@@ -81,7 +81,7 @@ pub fn run(args: &ModelsArgs) -> Result<(), StudyError> {
                 if p.linear { "linear" } else { "non-linear" },
                 p.default,
                 p.meaning
-            );
+            )?;
         }
     }
     Ok(())

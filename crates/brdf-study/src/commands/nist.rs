@@ -95,9 +95,9 @@ pub fn run(args: &NistArgs) -> Result<(), StudyError> {
         table.write(out, "nist")?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&runs)?);
+        say!("{}", serde_json::to_string_pretty(&runs)?)?;
     } else {
-        print!("{}", table.markdown());
+        say_raw!("{}", table.markdown())?;
     }
     Ok(())
 }

@@ -254,11 +254,11 @@ pub fn run(args: &ReproduceArgs) -> Result<(), StudyError> {
         crate::nist::table(&runs, Path::new("$BRDF_DATA/nist_strd")).write(&args.out, "nist")?;
         written.push("nist.{csv,md}".to_string());
     }
-    println!(
+    say!(
         "wrote into {}: {} ({})",
         args.out.display(),
         written.join(", "),
         m.source
-    );
+    )?;
     Ok(())
 }

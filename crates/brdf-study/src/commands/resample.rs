@@ -55,7 +55,7 @@ pub fn run(args: &ResampleArgs) -> Result<(), StudyError> {
             )));
         }
     }
-    println!("wrote {}", args.out.display());
+    say!("wrote {}", args.out.display())?;
     Ok(())
 }
 

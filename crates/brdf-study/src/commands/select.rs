@@ -40,7 +40,7 @@ pub fn run(args: &SelectArgs) -> Result<(), StudyError> {
     let (rows, choice) = crate::select::select(&data, args.tolerance, &FitOptions::default())?;
     if args.json {
         let v = serde_json::json!({ "data": data.name, "tolerance": args.tolerance, "choice": rows[choice], "candidates": rows });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        say!("{}", serde_json::to_string_pretty(&v)?)?;
         return Ok(());
     }
     let mut t = Table::new(
@@ -82,6 +82,6 @@ pub fn run(args: &SelectArgs) -> Result<(), StudyError> {
         "Chosen: {} ({} stored numbers, error {:.4e}): the fewest stored numbers within {} of the best error.",
         rows[choice].label, rows[choice].stored_numbers, rows[choice].error, args.tolerance
     );
-    print!("{}", t.markdown());
+    say_raw!("{}", t.markdown())?;
     Ok(())
 }
