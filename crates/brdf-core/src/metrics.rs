@@ -28,7 +28,7 @@ fn check(measured: &[f64], model: &[f64], n: usize, other: &[&[f64]]) -> Result<
             right: model.len(),
         });
     }
-    if measured.len() % n != 0 {
+    if !measured.len().is_multiple_of(n) {
         return Err(CoreError::LengthMismatch {
             what: "values vs samples x channels",
             left: measured.len(),

@@ -87,7 +87,7 @@ pub fn parse(path: &Path, text: &str, colour: CornellColour) -> Result<SampleSet
         }
     }
     let rest = tokens.len() - 32;
-    if rest == 0 || rest % 35 != 0 {
+    if rest == 0 || !rest.is_multiple_of(35) {
         return Err(IoError::Count {
             path: path.to_path_buf(),
             line: tokens.last().map_or(0, |t| t.0),

@@ -152,7 +152,7 @@ impl Merl {
                 let w = merl_bin_solid_angle(ih, id);
                 for ip in 0..np {
                     k += 1;
-                    if (k - 1) % stride.max(1) != 0 {
+                    if !(k - 1).is_multiple_of(stride.max(1)) {
                         continue;
                     }
                     let b = ih * nd * np + id * np + ip;

@@ -49,7 +49,7 @@ use nalgebra::Vector3;
 /// Zernike radial polynomial `R_n^m(rho)` (0 unless `n - m` is even and
 /// non-negative).
 pub fn zernike_radial(n: usize, m: usize, rho: f64) -> f64 {
-    if m > n || (n - m) % 2 != 0 {
+    if m > n || !(n - m).is_multiple_of(2) {
         return 0.0;
     }
     let fact = |k: usize| (1..=k).fold(1.0f64, |a, b| a * b as f64);
