@@ -82,22 +82,27 @@ fn isotropic_set_has_52_samples() {
     assert_eq!(SAMPLE_NAMES[32], "Slate_a");
 }
 
-#[test]
-fn real_curet_files() {
+/// The 61 real samples when `BRDF_DATA` is set (failing loudly if it is
+/// set and a file is missing); `None`, said on stderr, when it is not.
+fn real_curet() -> Option<Vec<brdf_core::SampleSet>> {
     let Some(root) = std::env::var_os("BRDF_DATA") else {
         eprintln!("skipped: BRDF_DATA is not set");
-        return;
+        return None;
     };
     let dir = PathBuf::from(root).join("curet");
-    let abrdf = dir.join("abrdf.dat");
-    let table = dir.join("table.txt");
+    let (abrdf, table) = (dir.join("abrdf.dat"), dir.join("table.txt"));
     assert!(
         abrdf.exists() && table.exists(),
         "BRDF_DATA is set but {} or {} is missing",
         abrdf.display(),
         table.display()
     );
-    let sets = curet::read_grey(&abrdf, &table).unwrap();
+    Some(curet::read_grey(&abrdf, &table).unwrap())
+}
+
+#[test]
+fn real_curet_files() {
+    let Some(sets) = real_curet() else { return };
     assert_eq!(sets.len(), 61);
     assert!(sets.iter().all(|s| s.len() == 205 && s.channels() == 1));
     // The 29 slightly negative values are kept, not clamped.
@@ -156,23 +161,11 @@ fn slope_through_origin(x: &[f64], d: &[f64]) -> (f64, f64) {
 ///    over-subtraction, as the 28 negative values say) and removing it
 ///    leaves no negative value. With the columns swapped it would have to be
 ///    positive, and removing it would make 125 of the 205 values negative:
-///    impossible. Sample 4, the other sample with a
-///    negative value, agrees (0 negatives left against 3).
+///    impossible. Sample 4, the other sample with a negative value,
+///    agrees (0 negatives left against 3).
 #[test]
 fn real_curet_column_order_from_the_data() {
-    let Some(root) = std::env::var_os("BRDF_DATA") else {
-        eprintln!("skipped: BRDF_DATA is not set");
-        return;
-    };
-    let dir = PathBuf::from(root).join("curet");
-    let (abrdf, table) = (dir.join("abrdf.dat"), dir.join("table.txt"));
-    assert!(
-        abrdf.exists() && table.exists(),
-        "BRDF_DATA is set but {} or {} is missing",
-        abrdf.display(),
-        table.display()
-    );
-    let sets = curet::read_grey(&abrdf, &table).unwrap();
+    let Some(sets) = real_curet() else { return };
     let p = sets[0].pairs();
     let theta_i: Vec<f64> = p.lz.iter().map(|z| z.acos()).collect();
     let theta_v: Vec<f64> = p.vz.iter().map(|z| z.acos()).collect();
