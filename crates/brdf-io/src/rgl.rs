@@ -28,7 +28,9 @@
 //!    `eval`, which includes the foreshortening of the outgoing direction;
 //!    pbrt-v4's `Sample_f` divides by that cosine as here). Without the
 //!    division, `f(L, V)` and `f(V, L)` of `paper_white` differ by a median
-//!    29% over a grid of pairs; with it, by 2% (`tests/rgl.rs`).
+//!    29% over a grid of pairs; with it, by 2% (`tests/rgl.rs`). A file
+//!    whose `jacobian` flag is 0 stores values that already include
+//!    `ndf / (4 sigma)`: only the cosine is divided out.
 //!
 //! [`Rgl`] implements [`Brdf`] with this evaluation, and
 //! [`Rgl::direction_of_sample`] maps a sample-space point forward (the
@@ -435,6 +437,9 @@ pub struct Rgl {
     vndf: Interp2D,
     rgb: Interp2D,
     isotropic: bool,
+    /// The file's `jacobian` flag (absent: set): whether the stored values
+    /// still need the `ndf / (4 sigma)` factor.
+    jacobian: bool,
 }
 
 fn theta2u(t: f64) -> f64 {
@@ -508,6 +513,13 @@ impl Rgl {
             .unwrap_or_default();
         let err = |what: &str| bad(format!("field `{what}`: degenerate table"));
         let isotropic = phi_i.len() <= 2;
+        let jacobian = match tf.field("jacobian") {
+            None => true,
+            Some(f) => match f.to_f64().as_deref() {
+                Some([x]) => *x != 0.0,
+                _ => return Err(bad("field `jacobian`: expected one u8 or f32 flag".into())),
+            },
+        };
         Ok(Self {
             path: path.to_path_buf(),
             description,
@@ -531,6 +543,7 @@ impl Rgl {
             )
             .ok_or_else(|| err("rgb"))?,
             isotropic,
+            jacobian,
         })
     }
 
@@ -558,14 +571,25 @@ impl Rgl {
         (v, rgb)
     }
 
-    /// The `ndf(u_m) / (4 sigma(u_i) cos theta_v)` factor of a pair, which
-    /// turns a stored value into the BRDF.
+    /// The factor that turns a stored value into the BRDF:
+    /// `ndf(u_m) / (4 sigma(u_i) cos theta_v)`, or `1 / cos theta_v` when the
+    /// file's `jacobian` flag is 0.
     pub fn jacobian_factor(&self, l: &Vector3<f64>, v: &Vector3<f64>) -> f64 {
         let m = (l + v).normalize();
         let (phi_i, theta_i) = Self::params(l);
-        let u_m = self.u_m(&m, phi_i);
+        self.factor(&self.u_m(&m, phi_i), theta_i, phi_i, v.z)
+    }
+
+    fn factor(&self, u_m: &[f64; 2], theta_i: f64, phi_i: f64, cos_v: f64) -> f64 {
+        if !self.jacobian {
+            return 1.0 / cos_v;
+        }
         let u_i = [theta2u(theta_i), phi2u(phi_i)];
-        self.ndf.eval(u_m, &[]) / (4.0 * self.sigma.eval(u_i, &[]) * v.z)
+        let sigma = self.sigma.eval(u_i, &[]);
+        if !(sigma > 0.0) {
+            return f64::NAN;
+        }
+        self.ndf.eval(*u_m, &[]) / (4.0 * sigma * cos_v)
     }
 
     fn u_m(&self, m: &Vector3<f64>, phi_i: f64) -> [f64; 2] {
@@ -594,12 +618,10 @@ impl Brdf for Rgl {
         let (phi_i, theta_i) = Self::params(l);
         let u_m = self.u_m(&m, phi_i);
         let s = self.vndf.invert(u_m, &[phi_i, theta_i]);
-        let u_i = [theta2u(theta_i), phi2u(phi_i)];
-        let sigma = self.sigma.eval(u_i, &[]);
-        if !(sigma > 0.0) {
+        let k = self.factor(&u_m, theta_i, phi_i, v.z);
+        if !(k.is_finite()) {
             return;
         }
-        let k = self.ndf.eval(u_m, &[]) / (4.0 * sigma * v.z);
         for c in 0..3 {
             // Negative values come from out-of-gamut spectra: clamped, as
             // the format's authors do.

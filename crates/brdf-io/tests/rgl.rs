@@ -268,4 +268,27 @@ fn constant_tables_evaluate_to_c_ndf_over_4_sigma_cos_theta_v() {
         &mut out,
     );
     assert_eq!(out, [0.0; 3]);
+
+    // With the file's `jacobian` flag 0 the stored values already hold the
+    // ndf / (4 sigma) factor: f = c / cos theta_v.
+    let mut tf = TensorFile::parse(Path::new("tiny.bsdf"), &b).unwrap();
+    tf.fields.push((
+        "jacobian".into(),
+        Field {
+            dtype: 1,
+            shape: vec![1],
+            bytes: vec![0],
+        },
+    ));
+    let m = Rgl::parse(Path::new("tiny.bsdf"), &tf.to_bytes().unwrap()).unwrap();
+    let v = spherical_to_cartesian(0.9, 2.0);
+    m.eval(&spherical_to_cartesian(0.4, 0.3), &v, &mut out);
+    assert!((out[0] - 0.125 / v.z).abs() < 1e-6, "{out:?}");
+    // A malformed flag is an error, not a guess.
+    tf.fields.last_mut().unwrap().1 = Field {
+        dtype: 1,
+        shape: vec![2],
+        bytes: vec![0, 1],
+    };
+    assert!(Rgl::parse(Path::new("tiny.bsdf"), &tf.to_bytes().unwrap()).is_err());
 }
