@@ -67,6 +67,53 @@ impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
         self.solve_linear(&phi)
     }
 
+    /// The optimal linear coefficients at `a` within the box
+    /// `lower <= c <= upper` (infinite ends impose nothing; with `nonneg`
+    /// the lower ends are at least 0), by least squares with inequality
+    /// constraints ([`crate::lsi`]). For a stage that fixes `a` and must
+    /// return coefficients inside the model's box, which NNLS alone does
+    /// not guarantee (it knows no upper bounds).
+    pub fn linear_coefficients_in_box(
+        &self,
+        a: &[f64],
+        lower: &[f64],
+        upper: &[f64],
+    ) -> Result<Vec<f64>, SolveError> {
+        let (m, l) = (self.problem.n_rows(), self.problem.n_linear());
+        if lower.len() != l || upper.len() != l {
+            return Err(SolveError::Dimension {
+                what: "box ends vs linear coefficients",
+                left: lower.len().min(upper.len()),
+                right: l,
+            });
+        }
+        let mut phi = self.phi.borrow_mut();
+        self.problem.basis(a, &mut phi, None);
+        let e = Mat::from_fn(m, l, |i, j| phi[j * m + i]);
+        // Rows of G x >= h: x_j >= lo_j and -x_j >= -hi_j for finite ends.
+        let mut rows: Vec<(usize, f64, f64)> = Vec::new();
+        for j in 0..l {
+            let lo = if self.nonneg {
+                lower[j].max(0.0)
+            } else {
+                lower[j]
+            };
+            if lo.is_finite() {
+                rows.push((j, 1.0, lo));
+            }
+            if upper[j].is_finite() {
+                rows.push((j, -1.0, -upper[j]));
+            }
+        }
+        let g = Mat::from_fn(
+            rows.len(),
+            l,
+            |i, j| if rows[i].0 == j { rows[i].1 } else { 0.0 },
+        );
+        let h: Vec<f64> = rows.iter().map(|r| r.2).collect();
+        crate::lsi(e.as_ref(), self.problem.targets(), g.as_ref(), &h)
+    }
+
     fn solve_linear(&self, phi: &[f64]) -> Result<Vec<f64>, SolveError> {
         let (m, l) = (self.problem.n_rows(), self.problem.n_linear());
         let pm = Mat::from_fn(m, l, |i, j| phi[j * m + i]);

@@ -174,3 +174,49 @@ fn halton_starts_respect_the_box() {
     };
     assert!(bad.starts(3).is_err());
 }
+
+/// Linear coefficients within a box: Lanczos's amplitudes are
+/// (0.0951, 0.8607, 1.5576); with the third at most 1.5 it sits on that
+/// bound, and the other two are the least-squares fit of `y - 1.5 phi_3` by
+/// `phi_1, phi_2` (solved here independently by the normal equations;
+/// 0.0807 and 0.9265, inside their box [0, 1]).
+#[test]
+fn linear_coefficients_in_box_put_the_third_amplitude_on_its_bound() {
+    let rates = [1.0, 3.0, 5.0];
+    let p = Exps::lanczos([0.0951, 0.8607, 1.5576], rates);
+    let vp = VarPro::new(&p, true);
+    let free = vp.linear_coefficients(&rates).unwrap();
+    assert!((free[2] - 1.5576).abs() < 1e-9, "{free:?}");
+    let c = vp
+        .linear_coefficients_in_box(&rates, &[0.0; 3], &[1.0, 1.0, 1.5])
+        .unwrap();
+    assert!((c[2] - 1.5).abs() < 1e-9, "{c:?}");
+    // Reference: 2 x 2 normal equations for y - 1.5 phi_3.
+    let phi = |k: usize, x: f64| (-rates[k] * x).exp();
+    let (mut a11, mut a12, mut a22, mut b1, mut b2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (x, y) in p.x.iter().zip(&p.y) {
+        let (u, v, r) = (phi(0, *x), phi(1, *x), y - 1.5 * phi(2, *x));
+        a11 += u * u;
+        a12 += u * v;
+        a22 += v * v;
+        b1 += u * r;
+        b2 += v * r;
+    }
+    let det = a11 * a22 - a12 * a12;
+    let reference = [(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det];
+    assert!(
+        reference.iter().all(|r| (0.0..=1.0).contains(r)),
+        "{reference:?}"
+    );
+    for k in 0..2 {
+        assert!(
+            (c[k] - reference[k]).abs() < 1e-6 * reference[k].abs().max(1.0),
+            "{c:?} vs {reference:?}"
+        );
+    }
+    // Wrong box sizes are an error, not a panic.
+    assert!(
+        vp.linear_coefficients_in_box(&rates, &[0.0; 2], &[1.0; 3])
+            .is_err()
+    );
+}

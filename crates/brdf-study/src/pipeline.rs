@@ -16,7 +16,8 @@
 //!   one-channel model on the mean of the channels with his LM and damping
 //!   schedule from the model's default parameters; stage 2 fixes the
 //!   non-linear parameters and solves the per-channel linear coefficients
-//!   directly.
+//!   directly, within their box (least squares with inequality
+//!   constraints).
 //! - All-linear models (Lambert, Koenderink, Kurt's polynomial) are solved
 //!   directly: NNLS / column-pivoted QR ([`Solver::Ols`]) or robust IRLS
 //!   ([`Solver::Irls`]).
@@ -351,9 +352,16 @@ pub fn fit_sopp(
     let values = data.values_channel_major();
     let mp = ModelProblem::new(&*model, data.pairs(), &values, &scales)?;
     let nl: Vec<f64> = mp.nonlinear_indices().iter().map(|k| p[*k]).collect();
-    let vp = VarPro::new(&mp, true);
-    let coef = vp.linear_coefficients(&nl)?;
-    let p = mp.assemble(&nl, &coef);
+    // The linear parameters within their box (NNLS alone would let, e.g.,
+    // a specular coefficient exceed its upper bound); rounding-level
+    // violations of the box by the constrained solution are clamped.
+    let full = box_constraints(model)?;
+    let lin = mp.linear_indices();
+    let lower: Vec<f64> = lin.iter().map(|k| full.lower()[*k]).collect();
+    let upper: Vec<f64> = lin.iter().map(|k| full.upper()[*k]).collect();
+    let coef = VarPro::new(&mp, true).linear_coefficients_in_box(&nl, &lower, &upper)?;
+    let mut p = mp.assemble(&nl, &coef);
+    full.clamp(&mut p);
     drop(mp);
     model.set_params(&p)?;
     summarise(
@@ -363,7 +371,7 @@ pub fn fit_sopp(
         &p,
         &scales,
         &values,
-        "Sopp two-stage: LM (Sopp damping) on the channel mean, then per-channel linear NNLS"
+        "Sopp two-stage: LM (Sopp damping) on the channel mean, then the linear parameters by least squares within their box (LSI)"
             .into(),
         Some(rep1),
         (1, 1, 1),

@@ -153,6 +153,44 @@ fn other_objectives_and_solvers_recover_ward() {
     );
 }
 
+/// Data brighter than the model's box allows (Ward with `ks` = 3, its box
+/// ends at 1): Sopp's stage 2 returns linear parameters inside the box, the
+/// specular ones on their upper bound and reported there.
+#[test]
+fn sopp_stage_two_keeps_linear_parameters_in_their_box() {
+    let config = ModelConfig {
+        channels: 3,
+        ..ModelConfig::default()
+    };
+    let mut model = build("ward", &config).unwrap();
+    let specs = model.param_specs().to_vec();
+    let data = {
+        let mut bright = truth(model.as_ref());
+        for (k, s) in specs.iter().enumerate() {
+            if s.name.starts_with("ks") {
+                bright[k] = 3.0;
+            }
+        }
+        // eval_at does not validate: the generating model may leave the box.
+        synth(model.as_ref(), &bright, 300)
+    };
+    let mut grey = build("ward", &ModelConfig::default()).unwrap();
+    let rep = fit_sopp(grey.as_mut(), model.as_mut(), &data, &FitOptions::default()).unwrap();
+    for (k, fp) in rep.parameters.iter().enumerate() {
+        let s = &specs[k];
+        assert!(
+            fp.value >= s.lower && fp.value <= s.upper,
+            "{} = {}",
+            fp.name,
+            fp.value
+        );
+        if s.name.starts_with("ks") {
+            assert_eq!(fp.value, 1.0, "{}", fp.name);
+            assert_eq!(fp.at_bound, Some("upper"), "{}", fp.name);
+        }
+    }
+}
+
 #[test]
 fn impossible_requests_are_errors() {
     let mut model = build("ward", &ModelConfig::default()).unwrap();
