@@ -29,6 +29,14 @@ fn truth(model: &dyn Parametric) -> Vec<f64> {
         .collect()
 }
 
+/// Three channels, everything else default.
+fn rgb() -> ModelConfig {
+    ModelConfig {
+        channels: 3,
+        ..ModelConfig::default()
+    }
+}
+
 fn synth(model: &dyn Parametric, p: &[f64], n: usize) -> SampleSet {
     let nc = model.channels();
     let names: Vec<String> = (0..nc).map(|c| format!("c{c}")).collect();
@@ -114,11 +122,7 @@ fn every_nonlinear_model_is_recovered_from_automatic_starts() {
 
 #[test]
 fn other_objectives_and_solvers_recover_ward() {
-    let config = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let mut model = build("ward", &config).unwrap();
+    let mut model = build("ward", &rgb()).unwrap();
     let p = truth(model.as_ref());
     let data = synth(model.as_ref(), &p, 300);
     for (objective, solver) in [
@@ -158,11 +162,7 @@ fn other_objectives_and_solvers_recover_ward() {
 /// specular ones on their upper bound and reported there.
 #[test]
 fn sopp_stage_two_keeps_linear_parameters_in_their_box() {
-    let config = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let mut model = build("ward", &config).unwrap();
+    let mut model = build("ward", &rgb()).unwrap();
     let specs = model.param_specs().to_vec();
     let data = {
         let mut bright = truth(model.as_ref());
@@ -199,19 +199,7 @@ fn impossible_requests_are_errors() {
     // Fewer samples than parameters.
     assert!(fit(model.as_mut(), &data, &FitOptions::default()).is_err());
     // Wrong channel count.
-    let data3 = synth(
-        build(
-            "ward",
-            &ModelConfig {
-                channels: 3,
-                ..ModelConfig::default()
-            },
-        )
-        .unwrap()
-        .as_ref(),
-        &[0.1; 9],
-        50,
-    );
+    let data3 = synth(build("ward", &rgb()).unwrap().as_ref(), &[0.1; 9], 50);
     assert!(fit(model.as_mut(), &data3, &FitOptions::default()).is_err());
     // OLS on a non-linear model.
     let data = synth(model.as_ref(), &p, 50);
