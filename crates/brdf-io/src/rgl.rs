@@ -443,6 +443,15 @@ pub struct Rgl {
     jacobian: bool,
 }
 
+/// An outgoing direction `V` with a smaller cosine counts as on the
+/// horizon, where RGL evaluation returns 0 as below it: there
+/// `f = stored / cos theta_v` has no finite value, because the stored
+/// cosine-weighted values do not vanish at the horizon (`paper_white` at
+/// exactly 90 deg would give 5e15 1/sr). `1e-6` is 0.00006 deg from the
+/// horizon. The incident direction needs no such rule (nothing is divided
+/// by its cosine; the files tabulate incidence up to 90 deg).
+pub const HORIZON_COS: f64 = 1e-6;
+
 fn theta2u(t: f64) -> f64 {
     (t * 2.0 / PI).max(0.0).sqrt()
 }
@@ -607,7 +616,7 @@ impl Brdf for Rgl {
     }
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         out[..3].fill(0.0);
-        if !(l.z > 0.0 && v.z > 0.0) {
+        if !(l.z > 0.0 && v.z > HORIZON_COS) {
             return;
         }
         let sum = l + v;

@@ -3,6 +3,7 @@
 //! stored values at grid nodes, paper is near-diffuse with an albedo below
 //! 1, and reciprocity holds approximately.
 
+use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
 use brdf_core::{AlbedoFrame, Brdf, QuadratureOptions, directional_albedo, spherical_to_cartesian};
@@ -268,6 +269,17 @@ fn constant_tables_evaluate_to_c_ndf_over_4_sigma_cos_theta_v() {
         &mut out,
     );
     assert_eq!(out, [0.0; 3]);
+    // At the horizon (cos theta_v = 6e-17 in floating point) f has no
+    // finite value: 0, as below it; 0.1 deg above it, c n / (4 s cos).
+    let l = spherical_to_cartesian(0.3, 0.0);
+    m.eval(&l, &spherical_to_cartesian(FRAC_PI_2, 1.0), &mut out);
+    assert_eq!(out, [0.0; 3]);
+    let v = spherical_to_cartesian(FRAC_PI_2 - 0.1f64.to_radians(), 1.0);
+    m.eval(&l, &v, &mut out);
+    assert!(
+        (out[0] - 0.125 * 2.0 / (4.0 * 0.5 * v.z)).abs() < 1e-6 * out[0],
+        "{out:?}"
+    );
 
     // With the file's `jacobian` flag 0 the stored values already hold the
     // ndf / (4 sigma) factor: f = c / cos theta_v.
