@@ -72,7 +72,7 @@ pub fn format_of(path: &Path) -> Result<Format, StudyError> {
 }
 
 /// A dense data set that can be evaluated at any direction pair (for
-/// resampling and rendering): MERL tables and Sopp grids are, scattered
+/// resampling and rendering): MERL tables and RGL materials are, scattered
 /// sets are not.
 pub fn load_dense(spec: &str) -> Result<Option<Box<dyn Brdf>>, StudyError> {
     let (path, _) = split_sample(spec);
