@@ -2,22 +2,13 @@
 //! brdf-io's self-written fixtures and temporary files always, on the real
 //! files when `BRDF_DATA` is set.
 
+mod common;
+
+use common::brdf;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use serde_json::Value;
-
-fn brdf(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_brdf"))
-        .args(args)
-        .output()
-        .expect("the brdf binary runs");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 /// `brdf info PATH --json`, parsed.
 fn info(path: &str) -> Value {
@@ -122,22 +113,15 @@ fn csv_samples_resample_to_csv_exactly_and_not_onto_a_grid() {
 
 #[test]
 fn real_files_info_and_resample() {
-    let Some(root) = std::env::var_os("BRDF_DATA") else {
-        eprintln!("skipped: BRDF_DATA is not set");
+    let Some(curet) = common::data_file("curet/abrdf.dat") else {
         return;
     };
-    let root = PathBuf::from(root);
     let file = |rel: &str| {
-        let p = root.join(rel);
-        assert!(
-            p.exists(),
-            "BRDF_DATA is set but {} is missing",
-            p.display()
-        );
+        let p = common::data_file(rel).expect("BRDF_DATA is set");
         p.display().to_string()
     };
     // CUReT: the darkest sample keeps its 28 negative values.
-    let v = info(&format!("{}#61", file("curet/abrdf.dat")));
+    let v = info(&format!("{}#61", curet.display()));
     assert_eq!(
         (v["format"].as_str(), v["samples"].as_u64()),
         (Some("Curet"), Some(205))

@@ -1,18 +1,10 @@
 //! The `brdf models` and `brdf eval` commands, run as a user would.
 
-use std::process::Command;
+mod common;
 
-fn brdf(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_brdf"))
-        .args(args)
-        .output()
-        .expect("the brdf binary runs");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use common::brdf;
+
+use std::process::Command;
 
 #[test]
 fn models_json_lists_lambert_with_its_box() {

@@ -2,6 +2,8 @@
 //! synthetic data, and the `brdf fit` command on the real CUReT data when
 //! `BRDF_DATA` is set.
 
+mod common;
+
 use std::process::Command;
 
 use brdf_core::SampleSet;
@@ -81,16 +83,9 @@ fn non_linear_models_are_refused_with_a_message() {
 
 #[test]
 fn fit_command_on_curet_quarry_tile() {
-    let Some(root) = std::env::var_os("BRDF_DATA") else {
-        eprintln!("skipped: BRDF_DATA is not set");
+    let Some(path) = common::data_file("curet/abrdf.dat") else {
         return;
     };
-    let path = std::path::PathBuf::from(root).join("curet/abrdf.dat");
-    assert!(
-        path.exists(),
-        "BRDF_DATA is set but {} is missing",
-        path.display()
-    );
     let run = |model: &[&str]| -> f64 {
         let mut args = vec!["fit", "--json", "--data"];
         let spec = format!("{}#25", path.display());

@@ -2,6 +2,8 @@
 //! starts, for every catalogue model with non-linear parameters, in grey
 //! and RGB (shared non-linear, per-channel linear parameters).
 
+mod common;
+
 use brdf_core::{Parametric, SampleSet};
 use brdf_models::{ModelConfig, build, catalogue};
 use brdf_study::pipeline::{FitOptions, Objective, Solver, fit, fit_sopp};
@@ -217,16 +219,9 @@ fn impossible_requests_are_errors() {
 /// Cook-Torrance beat Blinn-Phong and Oren-Nayar).
 #[test]
 fn real_curet_quarry_tile() {
-    let Some(root) = std::env::var_os("BRDF_DATA") else {
-        eprintln!("skipped: BRDF_DATA is not set");
+    let Some(path) = common::data_file("curet/abrdf.dat") else {
         return;
     };
-    let path = std::path::PathBuf::from(root).join("curet/abrdf.dat");
-    assert!(
-        path.exists(),
-        "BRDF_DATA is set but {} is missing",
-        path.display()
-    );
     let data = brdf_study::data::load(&format!("{}#25", path.display())).unwrap();
     let (data, _) = data.filter_angle_limit(80f64.to_radians());
     let mut err = std::collections::HashMap::new();
