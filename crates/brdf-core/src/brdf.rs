@@ -16,6 +16,7 @@ use nalgebra::Vector3;
 
 use crate::params::{ParamError, ParamSpec};
 use crate::samples::DirPairs;
+use crate::shared_basis::SharedBasis;
 
 /// A BRDF that can be evaluated: `f(L, V)` in 1/sr, one value per channel.
 ///
@@ -118,6 +119,14 @@ pub trait Parametric: Brdf {
                     .copy_from_slice(&grad[c * np..(c + 1) * np]);
             }
         }
+    }
+
+    /// The channel-shared basis, for models of the form
+    /// `f_c = sum_t x_{c,t} phi_t(L, V; q)` ([`SharedBasis`]); `None` (the
+    /// default) for other models. Solvers use it to fit all channels as
+    /// right-hand sides of one basis.
+    fn shared_basis(&self) -> Option<&dyn SharedBasis> {
+        None
     }
 
     /// A boxed copy (models are cloned per thread and per fit).

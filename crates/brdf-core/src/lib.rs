@@ -21,6 +21,8 @@
 //! | [`brdf`] | the traits [`Brdf`] (evaluate) and [`Parametric`] (parameters, derivatives) |
 //! | [`params`] | [`ParamSpec`], [`ParamError`], validation |
 //! | [`samples`] | [`SampleSet`] in structure-of-arrays storage, filters |
+//! | [`pair_geometry`] | [`PairGeometry`]: half-vector cosines of a sample set, computed once per fit |
+//! | [`shared_basis`] | [`SharedBasis`]: models whose channels share one basis (block-diagonal fits) |
 //! | [`weights`] | cosine weights, grid-cell and MERL-bin solid angles |
 //! | [`metrics`] | Ngan L2, Sopp, Lafortune, log, RMS, relative RMS, PSNR |
 //! | [`quadrature`] | adaptive Gauss-Kronrod, directional albedo |
@@ -39,12 +41,14 @@ pub mod frame;
 pub mod fresnel;
 pub mod half_diff;
 pub mod metrics;
+pub mod pair_geometry;
 pub mod params;
 pub mod plausibility;
 #[cfg(feature = "proptest-support")]
 pub mod proptest;
 pub mod quadrature;
 pub mod samples;
+pub mod shared_basis;
 pub mod trig;
 pub mod weights;
 
@@ -56,6 +60,8 @@ pub use error::CoreError;
 pub use frame::Frame;
 pub use half_diff::{HalfDiff, half_vector};
 pub use metrics::MetricValue;
+pub use pair_geometry::PairGeometry;
 pub use params::{ParamError, ParamSpec};
 pub use quadrature::{Albedo, AlbedoFrame, QuadratureOptions, directional_albedo};
 pub use samples::{DirPairs, FilterReport, SampleSet};
+pub use shared_basis::SharedBasis;

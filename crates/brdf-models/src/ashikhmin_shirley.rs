@@ -38,8 +38,8 @@
 
 use std::f64::consts::PI;
 
-use brdf_core::ParamSpec;
 use brdf_core::fresnel::{schlick, schlick_d_f0};
+use brdf_core::{DirPairs, PairGeometry, ParamSpec};
 use nalgebra::Vector3;
 
 use crate::combinators::{DiffuseLobe, Lobe, pow_clamped};
@@ -89,6 +89,65 @@ pub(crate) fn as_lobe(
     (s, [dnu, dnv, base * pw * dfr])
 }
 
+/// [`as_lobe`] for every pair of a sample set, over its precomputed
+/// geometry (the fitting kernel: no per-pair half-vector, logarithm or
+/// allocation). `ds` holds `dS/dnu, dS/dnv, dS/dF0` as `ds[u * n + j]`, or
+/// for the isotropic lobe (`aniso` false) `dS/dn, dS/dF0`.
+pub(crate) fn as_lobe_batch(
+    (nu, nv, f0): (f64, f64, f64),
+    aniso: bool,
+    pairs: &DirPairs,
+    geom: &PairGeometry,
+    s: &mut [f64],
+    ds: Option<&mut [f64]>,
+) {
+    let n = pairs.len();
+    let norm = ((nu + 1.0) * (nv + 1.0)).sqrt() / (8.0 * PI);
+    let (hu, hv) = (0.5 / (nu + 1.0), 0.5 / (nv + 1.0));
+    let lobe = |j: usize| -> Option<(f64, f64, f64, f64, f64)> {
+        let lnh = geom.ln_nh[j];
+        if !geom.valid[j] || lnh == f64::NEG_INFINITY {
+            return None;
+        }
+        let (c2, vh) = (geom.cos2_phi_h[j], geom.vh[j]);
+        let pw = ((nu * c2 + nv * (1.0 - c2)) * lnh).exp();
+        let base = norm / (vh * pairs.lz[j].max(pairs.vz[j]));
+        let m = 1.0 - vh.clamp(0.0, 1.0);
+        let m5 = m * m * m * m * m;
+        Some((base * pw, f0 + (1.0 - f0) * m5, 1.0 - m5, lnh, c2))
+    };
+    match ds {
+        None => {
+            for j in 0..n {
+                s[j] = lobe(j).map_or(0.0, |(bp, fr, ..)| bp * fr);
+            }
+        }
+        Some(ds) => {
+            for j in 0..n {
+                let (v, d) = match lobe(j) {
+                    None => (0.0, [0.0; 3]),
+                    Some((bp, fr, dfr, lnh, c2)) => {
+                        let v = bp * fr;
+                        let dpw = v * lnh;
+                        let dnu = v * hu + dpw * c2;
+                        let dnv = v * hv + dpw * (1.0 - c2);
+                        (v, [dnu, dnv, bp * dfr])
+                    }
+                };
+                s[j] = v;
+                if aniso {
+                    ds[j] = d[0];
+                    ds[n + j] = d[1];
+                    ds[2 * n + j] = d[2];
+                } else {
+                    ds[j] = d[0] + d[1];
+                    ds[n + j] = d[2];
+                }
+            }
+        }
+    }
+}
+
 /// Coupled diffuse `28/(23 pi) (1 - F0) (1 - (1 - N.L/2)^5)(1 - (1 - N.V/2)^5)`
 /// and its derivative with respect to `F0`.
 #[inline]
@@ -129,6 +188,44 @@ macro_rules! as_model {
                     }
                 }
                 s
+            }
+            fn shape_batch(
+                q: &[f64],
+                pairs: &DirPairs,
+                geom: &PairGeometry,
+                s: &mut [f64],
+                ds: Option<&mut [f64]>,
+            ) {
+                let par = if $aniso {
+                    (q[0], q[1], q[2])
+                } else {
+                    (q[0], q[0], q[1])
+                };
+                as_lobe_batch(par, $aniso, pairs, geom, s, ds)
+            }
+            fn diffuse_batch(
+                q: &[f64],
+                pairs: &DirPairs,
+                geom: &PairGeometry,
+                d: &mut [f64],
+                dd: Option<&mut [f64]>,
+            ) {
+                if $coupled {
+                    return crate::combinators::per_pair(q, pairs, geom, d, dd, |q, l, v, dq| {
+                        Self::diffuse(q, l, v, dq)
+                    });
+                }
+                // Lambert: the constant 1/pi above the horizon.
+                for (x, ok) in d.iter_mut().zip(&geom.valid) {
+                    *x = if *ok {
+                        std::f64::consts::FRAC_1_PI
+                    } else {
+                        0.0
+                    };
+                }
+                if let Some(dd) = dd {
+                    dd.fill(0.0);
+                }
             }
             fn diffuse(
                 q: &[f64],

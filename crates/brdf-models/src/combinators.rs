@@ -9,7 +9,7 @@
 use std::f64::consts::FRAC_1_PI;
 
 use brdf_core::params::per_channel_specs;
-use brdf_core::{Brdf, ParamError, ParamSpec, Parametric};
+use brdf_core::{Brdf, DirPairs, PairGeometry, ParamError, ParamSpec, Parametric, SharedBasis};
 use nalgebra::Vector3;
 
 /// A specular lobe shape `S(L, V; q)` with its derivatives.
@@ -33,6 +33,71 @@ pub trait Lobe: Clone + Send + Sync + 'static {
     /// by the caller) when it is `Some`. Lambert's `1/pi` by default.
     fn diffuse(_q: &[f64], _l: &Vector3<f64>, _v: &Vector3<f64>, _dq: Option<&mut [f64]>) -> f64 {
         FRAC_1_PI
+    }
+
+    /// `s[j] = S(L_j, V_j; q)` for every pair (0 where `geom.valid[j]` is
+    /// false) and, when given, `ds[u * n + j] = dS/dq_u`. The default calls
+    /// [`Lobe::shape`] per pair; lobes override it with a kernel over the
+    /// precomputed geometry.
+    fn shape_batch(
+        q: &[f64],
+        pairs: &DirPairs,
+        geom: &PairGeometry,
+        s: &mut [f64],
+        ds: Option<&mut [f64]>,
+    ) {
+        per_pair(q, pairs, geom, s, ds, Self::shape)
+    }
+
+    /// The diffuse shape for every pair, as [`Lobe::shape_batch`] does for
+    /// the lobe; the default calls [`Lobe::diffuse`] per pair.
+    fn diffuse_batch(
+        q: &[f64],
+        pairs: &DirPairs,
+        geom: &PairGeometry,
+        d: &mut [f64],
+        dd: Option<&mut [f64]>,
+    ) {
+        per_pair(q, pairs, geom, d, dd, Self::diffuse)
+    }
+}
+
+/// Evaluate a per-pair shape function over every pair into batch layout
+/// (`out[j]`, `d[u * n + j]`), 0 where the pair is invalid.
+pub(crate) fn per_pair(
+    q: &[f64],
+    pairs: &DirPairs,
+    geom: &PairGeometry,
+    out: &mut [f64],
+    d: Option<&mut [f64]>,
+    f: impl Fn(&[f64], &Vector3<f64>, &Vector3<f64>, Option<&mut [f64]>) -> f64,
+) {
+    let n = pairs.len();
+    let nq = q.len();
+    let mut dq = [0.0; 8];
+    match d {
+        None => {
+            for j in 0..n {
+                out[j] = if geom.valid[j] {
+                    f(q, &pairs.l(j), &pairs.v(j), None)
+                } else {
+                    0.0
+                };
+            }
+        }
+        Some(d) => {
+            for j in 0..n {
+                dq[..nq].fill(0.0);
+                out[j] = if geom.valid[j] {
+                    f(q, &pairs.l(j), &pairs.v(j), Some(&mut dq[..nq]))
+                } else {
+                    0.0
+                };
+                for u in 0..nq {
+                    d[u * n + j] = dq[u];
+                }
+            }
+        }
     }
 }
 
@@ -150,6 +215,43 @@ impl<S: Lobe> Parametric for DiffuseLobe<S> {
     }
     fn is_reciprocal(&self) -> bool {
         S::reciprocal()
+    }
+    fn shared_basis(&self) -> Option<&dyn SharedBasis> {
+        Some(self)
+    }
+}
+
+/// Basis `[D, S]`: `x_{c,0} = kd_c`, `x_{c,1} = ks_c`.
+impl<S: Lobe> SharedBasis for DiffuseLobe<S> {
+    fn basis_len(&self) -> usize {
+        2
+    }
+    fn coefficient_index(&self, channel: usize, t: usize) -> usize {
+        t * self.channels + channel
+    }
+    fn basis_batch(
+        &self,
+        p: &[f64],
+        pairs: &DirPairs,
+        geom: &PairGeometry,
+        phi: &mut [f64],
+        dphi: Option<&mut [f64]>,
+    ) {
+        let n = pairs.len();
+        let q = &p[2 * self.channels..];
+        let nq = q.len();
+        let (d, s) = phi[..2 * n].split_at_mut(n);
+        match dphi {
+            None => {
+                S::diffuse_batch(q, pairs, geom, d, None);
+                S::shape_batch(q, pairs, geom, s, None);
+            }
+            Some(dphi) => {
+                let (dd, ds) = dphi[..2 * nq * n].split_at_mut(nq * n);
+                S::diffuse_batch(q, pairs, geom, d, Some(dd));
+                S::shape_batch(q, pairs, geom, s, Some(ds));
+            }
+        }
     }
 }
 
@@ -310,5 +412,51 @@ impl<S: Lobe> Parametric for MultiLobe<S> {
     }
     fn is_reciprocal(&self) -> bool {
         S::reciprocal()
+    }
+    fn shared_basis(&self) -> Option<&dyn SharedBasis> {
+        Some(self)
+    }
+}
+
+/// Basis `[1/pi, S_1, ..., S_K]`: `x_{c,0} = kd_c`, `x_{c,k} = ks{k}_c`.
+impl<S: Lobe> SharedBasis for MultiLobe<S> {
+    fn basis_len(&self) -> usize {
+        1 + self.lobes
+    }
+    fn coefficient_index(&self, channel: usize, t: usize) -> usize {
+        if t == 0 {
+            channel
+        } else {
+            self.channels + (t - 1) * self.block() + channel
+        }
+    }
+    fn basis_batch(
+        &self,
+        p: &[f64],
+        pairs: &DirPairs,
+        geom: &PairGeometry,
+        phi: &mut [f64],
+        mut dphi: Option<&mut [f64]>,
+    ) {
+        let (n, nc, b) = (pairs.len(), self.channels, self.block());
+        let nq = b - nc;
+        let big_q = nq * self.lobes;
+        for j in 0..n {
+            phi[j] = if geom.valid[j] { FRAC_1_PI } else { 0.0 };
+        }
+        if let Some(d) = dphi.as_deref_mut() {
+            d[..(1 + self.lobes) * big_q * n].fill(0.0);
+        }
+        for k in 0..self.lobes {
+            let q = &p[nc + k * b + nc..nc + (k + 1) * b];
+            let s = &mut phi[(k + 1) * n..(k + 2) * n];
+            match dphi.as_deref_mut() {
+                None => S::shape_batch(q, pairs, geom, s, None),
+                Some(d) => {
+                    let at = ((k + 1) * big_q + k * nq) * n;
+                    S::shape_batch(q, pairs, geom, s, Some(&mut d[at..at + nq * n]));
+                }
+            }
+        }
     }
 }

@@ -1,6 +1,9 @@
 //! Parameter covariance and standard errors at a least-squares solution:
 //! `Cov = s^2 (J^T J)^-1` with `s^2 = ||r||^2 / (m - n)`, computed from the
 //! thin SVD of `J` (`(J^T J)^-1 = V S^-2 V^T`), never by inverting `J^T J`.
+//! For a tall `J` the SVD is that of its triangle `R` (`J = Q R` has the
+//! singular values and right vectors of `R`), so millions of residuals cost
+//! one pass of [`crate::tall_qr`].
 //! Singular values below `max(m, n) eps s_max` are treated as zero: the
 //! corresponding directions are unidentifiable and their variances infinite.
 
@@ -45,8 +48,9 @@ pub fn covariance_from_jacobian(
     n: usize,
     s2: f64,
 ) -> Result<Vec<f64>, SolveError> {
-    let j = Mat::from_fn(m, n, |i, k| jac[i * n + k]);
-    let svd = j.thin_svd().map_err(|e| SolveError::Factorisation {
+    let mut j = Mat::from_fn(m, n, |i, k| jac[i * n + k]);
+    let r = crate::tall_qr::r_factor(j.as_mut());
+    let svd = r.thin_svd().map_err(|e| SolveError::Factorisation {
         method: "SVD",
         reason: format!("{e:?}"),
     })?;

@@ -6,7 +6,9 @@
 //! `min_d ||J d + r||^2 + lambda ||D d||^2`, i.e.
 //! `(J^T J + lambda D^2) d = -J^T r`, never by forming `J^T J`: the stacked
 //! system `[J; sqrt(lambda) D] d = [-r; 0]` is solved by Householder QR
-//! (faer). With constraints the same stacked problem is solved as a
+//! (faer). `[J | r]` is factored once per Jacobian ([`crate::tall_qr`]), so
+//! each trial damping solves only the `2n x n` system `[R; sqrt(lambda) D]
+//! d = [-Q^T r; 0]`, whatever the number of residuals. With constraints the same stacked problem is solved as a
 //! least-squares problem with linear inequalities ([`crate::lsi`]) so every
 //! iterate stays feasible.
 //!
@@ -37,12 +39,12 @@
 //! [`Termination::SingularPlateau`], not as convergence.
 
 use faer::Mat;
-use faer::linalg::solvers::SolveLstsq;
+use faer::linalg::solvers::{Solve, SolveLstsq};
 
 use crate::constraints::Constraints;
 use crate::problem::LeastSquaresProblem;
 use crate::report::{SolverReport, Termination};
-use crate::{SolveError, lsi};
+use crate::{SolveError, lsi, tall_qr};
 
 /// Damping schedule.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -162,6 +164,106 @@ fn all_finite(v: &[f64]) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
+/// The Jacobian at the current point, reduced to what a step needs: the
+/// triangle `R` of `J = Q R`, `Q^T r`, the column norms `||J_k|| = ||R_k||`
+/// and the gradient `g = J^T r = R^T Q^T r`. Every damped step is then a
+/// `2n x n` problem, whatever the number of residuals.
+struct Factored {
+    r: Mat<f64>,
+    qtr: Vec<f64>,
+    colnorm: Vec<f64>,
+    g: Vec<f64>,
+}
+
+impl Factored {
+    /// Factor `[J | r]`; `ws` is the reused `m x (n+1)` workspace.
+    fn new(jac: &[f64], r: &[f64], n: usize, ws: &mut Mat<f64>) -> Self {
+        let m = r.len();
+        for k in 0..n {
+            let col = ws
+                .col_mut(k)
+                .try_as_col_major_mut()
+                .map(|c| c.as_slice_mut());
+            if let Some(col) = col {
+                for (i, v) in col.iter_mut().enumerate() {
+                    *v = jac[i * n + k];
+                }
+            }
+        }
+        if let Some(col) = ws.col_mut(n).try_as_col_major_mut() {
+            col.as_slice_mut().copy_from_slice(r);
+        }
+        let raug = tall_qr::r_factor(ws.as_mut());
+        let rows = raug.nrows().min(n);
+        let rr = Mat::from_fn(n, n, |i, k| if i < rows { raug[(i, k)] } else { 0.0 });
+        let qtr: Vec<f64> = (0..n)
+            .map(|i| if i < rows { raug[(i, n)] } else { 0.0 })
+            .collect();
+        let colnorm = (0..n)
+            .map(|k| (0..=k).map(|i| rr[(i, k)].powi(2)).sum::<f64>().sqrt())
+            .collect();
+        let g = (0..n)
+            .map(|k| (0..=k).map(|i| rr[(i, k)] * qtr[i]).sum())
+            .collect();
+        debug_assert!(m >= n);
+        Factored {
+            r: rr,
+            qtr,
+            colnorm,
+            g,
+        }
+    }
+
+    /// The damped step `min ||R d + Q^T r||^2 + lambda ||D d||^2` (subject to
+    /// `G d >= h` when constrained) and its predicted cost reduction.
+    fn step(
+        &self,
+        d: &[f64],
+        lambda: f64,
+        constrained: Option<(&Mat<f64>, &[f64])>,
+    ) -> Option<(Vec<f64>, f64)> {
+        let n = d.len();
+        let sl = lambda.sqrt();
+        let e = Mat::from_fn(2 * n, n, |i, k| {
+            if i < n {
+                self.r[(i, k)]
+            } else if i - n == k {
+                sl * d[k]
+            } else {
+                0.0
+            }
+        });
+        let f: Vec<f64> = (0..2 * n)
+            .map(|i| if i < n { -self.qtr[i] } else { 0.0 })
+            .collect();
+        let delta = match constrained {
+            Some((gmat, h)) => lsi::lsi(e.as_ref(), &f, gmat.as_ref(), h).ok()?,
+            None => {
+                let fm = Mat::from_fn(2 * n, 1, |i, _| f[i]);
+                let s = e.qr().solve_lstsq(&fm);
+                (0..n).map(|k| s[(k, 0)]).collect()
+            }
+        };
+        if !all_finite(&delta) {
+            return None;
+        }
+        Some((delta.clone(), self.predicted_reduction(&delta)))
+    }
+
+    /// `cost - 1/2 ||r + J d||^2 = 1/2 (||Q^T r||^2 - ||R d + Q^T r||^2)`.
+    fn predicted_reduction(&self, delta: &[f64]) -> f64 {
+        let n = delta.len();
+        let mut before = 0.0;
+        let mut after = 0.0;
+        for i in 0..n {
+            let rd: f64 = (i..n).map(|k| self.r[(i, k)] * delta[k]).sum();
+            before += self.qtr[i] * self.qtr[i];
+            after += (rd + self.qtr[i]).powi(2);
+        }
+        0.5 * (before - after)
+    }
+}
+
 /// The damped LM driver shared by the unconstrained and the bounded solver.
 pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
     problem: &P,
@@ -171,44 +273,14 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
 ) -> Result<SolverReport, SolveError> {
     options.validate()?;
     let (m, n) = (problem.n_residuals(), problem.n_params());
-    if n == 0 {
-        return Err(SolveError::Empty { what: "parameters" });
-    }
-    if p0.len() != n || constraints.len() != n {
-        return Err(SolveError::Dimension {
-            what: "start / constraints vs parameters",
-            left: p0.len(),
-            right: n,
-        });
-    }
-    if m < n {
-        return Err(SolveError::Dimension {
-            what: "fewer residuals than parameters",
-            left: m,
-            right: n,
-        });
-    }
-    if let Some(k) = p0.iter().position(|v| !v.is_finite()) {
-        return Err(SolveError::NonFinite {
-            what: "start",
-            row: k,
-            col: 0,
-            value: p0[k],
-        });
-    }
-    if !constraints.is_feasible(p0, 1e-12) {
-        return Err(SolveError::InvalidOption {
-            name: "start",
-            value: f64::NAN,
-            reason: "the start violates the bounds or inequality constraints",
-        });
-    }
+    check_inputs(m, n, p0, constraints)?;
     let constrained = !constraints.is_unconstrained();
     let mut p = p0.to_vec();
     let mut r = vec![0.0; m];
     problem.residuals(&p, &mut r);
     let mut evaluations = 1;
     let mut jac = vec![0.0; m * n];
+    let mut ws = Mat::<f64>::zeros(m, n + 1);
     let report = |p: Vec<f64>, ssr: f64, t, it, ev, g, l| SolverReport {
         bounds: constraints.status(&p),
         params: p,
@@ -239,8 +311,8 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
     let mut r_new = vec![0.0; m];
     let mut r_tmp = vec![0.0; m];
     let mut p_new = vec![0.0; n];
-    let mut gnorm;
     let mut polished = 0;
+    let mut fac;
     let termination = 'outer: loop {
         problem.jacobian(&p, &mut jac);
         if !all_finite(&jac) {
@@ -260,45 +332,23 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
             crate::problem::fd_jacobian(problem, &p, &mut jac);
             evaluations += 2 * n;
             if !all_finite(&jac) {
+                fac = None;
                 break Termination::NonFiniteStart;
             }
         }
-        // Column norms, scaling, gradient.
-        let mut colnorm = vec![0.0f64; n];
-        let mut g = vec![0.0; n];
-        for i in 0..m {
-            for k in 0..n {
-                let v = jac[i * n + k];
-                colnorm[k] += v * v;
-                g[k] += v * r[i];
-            }
-        }
+        let f = Factored::new(&jac, &r, n, &mut ws);
         for k in 0..n {
-            colnorm[k] = colnorm[k].sqrt();
             d[k] = match options.scaling {
-                Scaling::Marquardt => d[k].max(colnorm[k]),
+                Scaling::Marquardt => d[k].max(f.colnorm[k]),
                 Scaling::Identity => 1.0,
             };
-        }
-        for k in 0..n {
             if d[k] == 0.0 {
                 d[k] = 1.0;
             }
         }
-        let status = constraints.status(&p);
-        let rnorm = (2.0 * cost).sqrt();
-        gnorm = 0.0f64;
-        let mut gscaled = 0.0f64;
-        for k in 0..n {
-            let blocked = (status[k] == crate::BoundStatus::AtLower && g[k] > 0.0)
-                || (status[k] == crate::BoundStatus::AtUpper && g[k] < 0.0);
-            if !blocked {
-                gnorm = gnorm.max(g[k].abs());
-                if colnorm[k] > 0.0 && rnorm > 0.0 {
-                    gscaled = gscaled.max(g[k].abs() / (colnorm[k] * rnorm));
-                }
-            }
-        }
+        let gscaled = scaled_gradient(&f, &constraints.status(&p), (2.0 * cost).sqrt());
+        fac = Some(f);
+        let f = fac.as_ref().expect("just set");
         if cost <= f64::MIN_POSITIVE {
             break Termination::ZeroResidual;
         }
@@ -312,13 +362,12 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
         if lambda.is_nan() {
             lambda = options.initial_damping.unwrap_or(match options.scaling {
                 Scaling::Marquardt => 1e-3,
-                Scaling::Identity => 1e-3 * colnorm.iter().fold(0.0f64, |a, c| a.max(c * c)),
+                Scaling::Identity => 1e-3 * f.colnorm.iter().fold(0.0f64, |a, c| a.max(c * c)),
             });
             if lambda <= 0.0 {
                 lambda = 1e-3;
             }
         }
-        let jm = Mat::from_fn(m, n, |i, k| jac[i * n + k]);
         let (grows, hrows) = if constrained {
             constraints.step_rows(&p)
         } else {
@@ -330,72 +379,23 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
             if evaluations >= options.max_evaluations {
                 break 'outer Termination::MaxEvaluations;
             }
-            let sl = lambda.sqrt();
-            let e = Mat::from_fn(m + n, n, |i, k| {
-                if i < m {
-                    jm[(i, k)]
-                } else if i - m == k {
-                    sl * d[k]
-                } else {
-                    0.0
+            let sub = constrained.then_some((&gmat, hrows.as_slice()));
+            let Some((mut delta, pred)) = f.step(&d, lambda, sub) else {
+                // A failed subproblem is treated as a rejected step.
+                if !increase_damping(options.damping, &mut lambda, &mut nu) {
+                    break 'outer Termination::DampingLimit;
                 }
-            });
-            let f: Vec<f64> = (0..m + n)
-                .map(|i| if i < m { -r[i] } else { 0.0 })
-                .collect();
-            let step = if constrained {
-                lsi::lsi(e.as_ref(), &f, gmat.as_ref(), &hrows)
-            } else {
-                let fm = Mat::from_fn(m + n, 1, |i, _| f[i]);
-                let s = e.qr().solve_lstsq(&fm);
-                Ok((0..n).map(|k| s[(k, 0)]).collect::<Vec<f64>>())
+                continue;
             };
-            let mut delta = match step {
-                Ok(s) if all_finite(&s) => s,
-                _ => {
-                    // A failed subproblem is treated as a rejected step.
-                    if !increase_damping(options.damping, &mut lambda, &mut nu) {
-                        break 'outer Termination::DampingLimit;
-                    }
-                    continue;
-                }
-            };
-            // Predicted reduction from the linear model (before acceleration).
-            let mut jd = vec![0.0; m];
-            for i in 0..m {
-                jd[i] = (0..n).map(|k| jac[i * n + k] * delta[k]).sum();
-            }
-            let pred = cost - 0.5 * (0..m).map(|i| (r[i] + jd[i]).powi(2)).sum::<f64>();
             if options.geodesic_acceleration && !constrained {
-                let h = 0.1;
-                for k in 0..n {
-                    p_new[k] = p[k] + h * delta[k];
-                }
-                problem.residuals(&p_new, &mut r_tmp);
-                evaluations += 1;
-                if all_finite(&r_tmp) {
-                    let fm = Mat::from_fn(m + n, 1, |i, _| {
-                        if i < m {
-                            -(2.0 / h) * ((r_tmp[i] - r[i]) / h - jd[i])
-                        } else {
-                            0.0
-                        }
-                    });
-                    let a = e.qr().solve_lstsq(&fm);
-                    let an = (0..n)
-                        .map(|k| (d[k] * a[(k, 0)]).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
-                    let dn = (0..n)
-                        .map(|k| (d[k] * delta[k]).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
-                    if an.is_finite() && 2.0 * an <= 0.75 * dn {
-                        for k in 0..n {
-                            delta[k] += 0.5 * a[(k, 0)];
-                        }
-                    }
-                }
+                evaluations += geodesic_correction(
+                    problem,
+                    (&p, &r, &jac),
+                    f,
+                    (&d, lambda),
+                    &mut delta,
+                    (&mut p_new, &mut r_tmp),
+                );
             }
             let dnorm = (0..n)
                 .map(|k| (d[k] * delta[k]).powi(2))
@@ -465,36 +465,150 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
             }
         }
     };
-    // `jac` is at the final `p` unless the last step was accepted and ended
-    // the run (the relative-reduction test): only then evaluate it again.
-    if termination == Termination::SmallReduction {
+    // The factorisation is at the final `p` unless the last step was
+    // accepted and ended the run (the relative-reduction test): only then
+    // evaluate the Jacobian again.
+    if termination == Termination::SmallReduction || fac.is_none() {
         problem.jacobian(&p, &mut jac);
+        fac = all_finite(&jac).then(|| Factored::new(&jac, &r, n, &mut ws));
     }
-    let termination = if termination.is_converged()
-        && termination != Termination::ZeroResidual
-        && plateau(&jac, &r, &p, &constraints.status(&p))
-    {
-        Termination::SingularPlateau
-    } else {
-        termination
-    };
-    let ssr = 2.0 * cost;
-    let mut g = vec![0.0; n];
-    for i in 0..m {
-        for k in 0..n {
-            g[k] += jac[i * n + k] * r[i];
+    let (termination, gn) = match &fac {
+        Some(f) => {
+            let t = if termination.is_converged()
+                && termination != Termination::ZeroResidual
+                && plateau(&f.colnorm, &r, &p, &constraints.status(&p))
+            {
+                Termination::SingularPlateau
+            } else {
+                termination
+            };
+            (t, f.g.iter().fold(0.0f64, |a, v| a.max(v.abs())))
         }
-    }
-    let gn = g.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        None => (termination, f64::NAN),
+    };
     Ok(report(
         p,
-        ssr,
+        2.0 * cost,
         termination,
         iterations,
         evaluations,
         gn,
         lambda,
     ))
+}
+
+/// Misuse of the driver: no parameters, mismatched lengths, fewer residuals
+/// than parameters, a non-finite or infeasible start.
+fn check_inputs(
+    m: usize,
+    n: usize,
+    p0: &[f64],
+    constraints: &Constraints,
+) -> Result<(), SolveError> {
+    if n == 0 {
+        return Err(SolveError::Empty { what: "parameters" });
+    }
+    if p0.len() != n || constraints.len() != n {
+        return Err(SolveError::Dimension {
+            what: "start / constraints vs parameters",
+            left: p0.len(),
+            right: n,
+        });
+    }
+    if m < n {
+        return Err(SolveError::Dimension {
+            what: "fewer residuals than parameters",
+            left: m,
+            right: n,
+        });
+    }
+    if let Some(k) = p0.iter().position(|v| !v.is_finite()) {
+        return Err(SolveError::NonFinite {
+            what: "start",
+            row: k,
+            col: 0,
+            value: p0[k],
+        });
+    }
+    if !constraints.is_feasible(p0, 1e-12) {
+        return Err(SolveError::InvalidOption {
+            name: "start",
+            value: f64::NAN,
+            reason: "the start violates the bounds or inequality constraints",
+        });
+    }
+    Ok(())
+}
+
+/// MINPACK's scaled gradient `max_k |g_k| / (||J_k|| ||r||)` over the
+/// parameters not held by a bound.
+fn scaled_gradient(f: &Factored, status: &[crate::BoundStatus], rnorm: f64) -> f64 {
+    let mut gscaled = 0.0f64;
+    for k in 0..f.g.len() {
+        let g = f.g[k];
+        let blocked = (status[k] == crate::BoundStatus::AtLower && g > 0.0)
+            || (status[k] == crate::BoundStatus::AtUpper && g < 0.0);
+        if !blocked && f.colnorm[k] > 0.0 && rnorm > 0.0 {
+            gscaled = gscaled.max(g.abs() / (f.colnorm[k] * rnorm));
+        }
+    }
+    gscaled
+}
+
+/// Geodesic acceleration (unconstrained): add `a/2`, where `a` solves the
+/// damped system for the directional second derivative
+/// `r'' ~ 2/h ((r(p + h d) - r(p))/h - J d)`, when `2 ||D a|| <= 0.75
+/// ||D d||`. Returns the residual evaluations used.
+fn geodesic_correction<P: LeastSquaresProblem + ?Sized>(
+    problem: &P,
+    (p, r, jac): (&[f64], &[f64], &[f64]),
+    f: &Factored,
+    (d, lambda): (&[f64], f64),
+    delta: &mut [f64],
+    (p_tmp, r_tmp): (&mut [f64], &mut [f64]),
+) -> usize {
+    let (m, n) = (r.len(), delta.len());
+    let h = 0.1;
+    for k in 0..n {
+        p_tmp[k] = p[k] + h * delta[k];
+    }
+    problem.residuals(p_tmp, r_tmp);
+    if !all_finite(r_tmp) {
+        return 1;
+    }
+    // Right-hand side rows and J^T of them; then the damped normal
+    // equations of the small system (R^T R + lambda D^2) a = J^T rhs.
+    let mut jtb = vec![0.0; n];
+    for i in 0..m {
+        let row = &jac[i * n..(i + 1) * n];
+        let jd: f64 = (0..n).map(|k| row[k] * delta[k]).sum();
+        let rhs = -(2.0 / h) * ((r_tmp[i] - r[i]) / h - jd);
+        for k in 0..n {
+            jtb[k] += row[k] * rhs;
+        }
+    }
+    let a = Mat::from_fn(n, n, |i, k| {
+        (0..n).map(|t| f.r[(t, i)] * f.r[(t, k)]).sum::<f64>()
+            + if i == k { lambda * d[k] * d[k] } else { 0.0 }
+    });
+    let Ok(chol) = a.llt(faer::Side::Lower) else {
+        return 1;
+    };
+    let acc = chol.solve(Mat::from_fn(n, 1, |k, _| jtb[k]));
+    let an = (0..n)
+        .map(|k| (d[k] * acc[(k, 0)]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let dn = (0..n)
+        .map(|k| (d[k] * delta[k]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    if an.is_finite() && 2.0 * an <= 0.75 * dn {
+        for k in 0..n {
+            delta[k] += 0.5 * acc[(k, 0)];
+        }
+    }
+    1
 }
 
 /// Raise the damping after a rejected step; false when the schedule is
@@ -521,21 +635,14 @@ fn increase_damping(schedule: Damping, lambda: &mut f64, nu: &mut f64) -> bool {
 /// (`||J_k|| max(|p_k|, 1e-300) <= PLATEAU_RCOND ||r||`). There a stationary
 /// point is a plateau, not a certified minimum (BoxBOD from start 1 ends
 /// with `exp(-b2 x) ~ 0`).
-fn plateau(jac: &[f64], r: &[f64], p: &[f64], status: &[crate::BoundStatus]) -> bool {
-    let n = p.len();
+fn plateau(colnorm: &[f64], r: &[f64], p: &[f64], status: &[crate::BoundStatus]) -> bool {
     let rnorm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
     if rnorm == 0.0 {
         return false;
     }
-    (0..n)
+    (0..p.len())
         .filter(|k| status[*k] == crate::BoundStatus::Free)
-        .any(|k| {
-            let col = (0..r.len())
-                .map(|i| jac[i * n + k].powi(2))
-                .sum::<f64>()
-                .sqrt();
-            col * p[k].abs().max(1e-300) <= PLATEAU_RCOND * rnorm
-        })
+        .any(|k| colnorm[k] * p[k].abs().max(1e-300) <= PLATEAU_RCOND * rnorm)
 }
 
 /// Relative size of a cost change that rounding can produce.

@@ -20,6 +20,8 @@
 //! | [`varpro`] | variable projection: linear coefficients (NNLS) projected out, Golub-Pereyra Jacobian |
 //! | [`model_problem`] | least-squares problems from any `Parametric` model and samples (full and separable) |
 //! | [`multistart`] | deterministic Halton multi-start, best result and spread |
+//! | [`tall_qr`] | the triangular factor of tall, skinny matrices (row-block TSQR on faer's kernels) |
+//! | [`scratch`] | reusable buffers for problems shared between threads |
 //! | [`strd`] | the 27 NIST StRD model functions with analytic gradients, LRE |
 //! | [`error`] | [`SolveError`] |
 //!
@@ -42,7 +44,9 @@ pub mod nnls;
 pub mod problem;
 pub mod report;
 pub mod robust_weights;
+pub mod scratch;
 pub mod strd;
+pub mod tall_qr;
 pub mod varpro;
 
 pub use bounded::bounded_least_squares;

@@ -13,11 +13,18 @@
 //! model's gradient evaluated with that linear parameter set to 1 and the
 //! others to 0 (exact for models linear in their linear parameters, which
 //! is what `ParamSpec::linear` declares).
+//!
+//! Models whose channels share one basis ([`SharedBasis`]) are evaluated
+//! through it, over the sample set's [`PairGeometry`] computed once here:
+//! the full problem's residuals and Jacobian combine the basis with the
+//! coefficients, and the separable form has one block per channel sharing
+//! one basis matrix (no zero blocks, one factorisation for all channels).
 
-use brdf_core::{DirPairs, Parametric};
+use brdf_core::{DirPairs, PairGeometry, Parametric, SharedBasis};
 
 use crate::SolveError;
 use crate::problem::LeastSquaresProblem;
+use crate::scratch::ScratchPool;
 use crate::varpro::SeparableProblem;
 
 /// A model, samples and row scales: a least-squares problem.
@@ -31,6 +38,11 @@ pub struct ModelProblem<'a> {
     nonlinear: Vec<usize>,
     /// Parameter vector the split problem fills in.
     base: Vec<f64>,
+    /// The model's channel-shared basis, with the geometry it reads.
+    shared: Option<(&'a dyn SharedBasis, PairGeometry)>,
+    /// Parameter index of each linear coefficient, in coefficient order.
+    coefficients: Vec<usize>,
+    pool: ScratchPool,
 }
 
 impl<'a> ModelProblem<'a> {
@@ -65,8 +77,15 @@ impl<'a> ModelProblem<'a> {
         }
         let targets = (0..n * nc).map(|i| values[i] * scale[i % n]).collect();
         let specs = model.param_specs();
-        let linear = (0..specs.len()).filter(|k| specs[*k].linear).collect();
+        let linear: Vec<usize> = (0..specs.len()).filter(|k| specs[*k].linear).collect();
         let nonlinear = (0..specs.len()).filter(|k| !specs[*k].linear).collect();
+        let shared = model.shared_basis().map(|b| (b, PairGeometry::new(pairs)));
+        let coefficients = match &shared {
+            Some((b, _)) => (0..nc)
+                .flat_map(|c| (0..b.basis_len()).map(move |t| b.coefficient_index(c, t)))
+                .collect(),
+            None => linear.clone(),
+        };
         Ok(Self {
             model,
             pairs,
@@ -75,7 +94,17 @@ impl<'a> ModelProblem<'a> {
             linear,
             nonlinear,
             base: model.params().to_vec(),
+            shared,
+            coefficients,
+            pool: ScratchPool::new(),
         })
+    }
+
+    /// Parameter index of each linear coefficient in the order of the
+    /// separable form's coefficient vector (channel after channel for a
+    /// model with a shared basis).
+    pub fn coefficient_indices(&self) -> &[usize] {
+        &self.coefficients
     }
 
     /// Indices of the linear parameters.
@@ -94,7 +123,7 @@ impl<'a> ModelProblem<'a> {
         for (t, k) in self.nonlinear.iter().enumerate() {
             p[*k] = a[t];
         }
-        for (t, k) in self.linear.iter().enumerate() {
+        for (t, k) in self.coefficients.iter().enumerate() {
             p[*k] = c[t];
         }
         p
@@ -102,6 +131,56 @@ impl<'a> ModelProblem<'a> {
 
     fn rows(&self) -> usize {
         self.pairs.len() * self.model.channels()
+    }
+
+    /// Full residuals through the shared basis.
+    fn shared_residuals(&self, sb: &(&dyn SharedBasis, PairGeometry), p: &[f64], out: &mut [f64]) {
+        let (b, geom) = sb;
+        let (n, nc, l) = (self.pairs.len(), self.model.channels(), b.basis_len());
+        self.pool.with(l * n, |phi| {
+            b.basis_batch(p, self.pairs, geom, phi, None);
+            for c in 0..nc {
+                let o = &mut out[c * n..(c + 1) * n];
+                o.fill(0.0);
+                for t in 0..l {
+                    let x = p[b.coefficient_index(c, t)];
+                    let col = &phi[t * n..(t + 1) * n];
+                    for j in 0..n {
+                        o[j] += x * col[j];
+                    }
+                }
+                let y = &self.targets[c * n..(c + 1) * n];
+                for j in 0..n {
+                    o[j] = o[j] * self.scale[j] - y[j];
+                }
+            }
+        })
+    }
+
+    /// Full Jacobian through the shared basis: `d/dx_{c,t} = s_j phi_t` on
+    /// channel `c`'s rows, `d/dq_u = s_j sum_t x_{c,t} dphi_{t,u}`.
+    fn shared_jacobian(&self, sb: &(&dyn SharedBasis, PairGeometry), p: &[f64], jac: &mut [f64]) {
+        let (b, geom) = sb;
+        let (n, nc, l) = (self.pairs.len(), self.model.channels(), b.basis_len());
+        let (np, nq) = (p.len(), self.nonlinear.len());
+        jac.fill(0.0);
+        self.pool.with(l * n, |phi| {
+            self.pool.with(l * nq * n, |dphi| {
+                b.basis_batch(p, self.pairs, geom, phi, Some(dphi));
+                for c in 0..nc {
+                    for t in 0..l {
+                        let (k, x) = (b.coefficient_index(c, t), p[b.coefficient_index(c, t)]);
+                        for j in 0..n {
+                            let row = &mut jac[(c * n + j) * np..(c * n + j + 1) * np];
+                            row[k] = phi[t * n + j] * self.scale[j];
+                            for (u, &ku) in self.nonlinear.iter().enumerate() {
+                                row[ku] += x * dphi[(t * nq + u) * n + j] * self.scale[j];
+                            }
+                        }
+                    }
+                }
+            })
+        })
     }
 }
 
@@ -115,6 +194,9 @@ impl LeastSquaresProblem for ModelProblem<'_> {
     }
 
     fn residuals(&self, p: &[f64], out: &mut [f64]) {
+        if let Some(sb) = &self.shared {
+            return self.shared_residuals(sb, p, out);
+        }
         let n = self.pairs.len();
         self.model.eval_batch_at(p, self.pairs, out);
         for (i, o) in out.iter_mut().enumerate() {
@@ -123,10 +205,14 @@ impl LeastSquaresProblem for ModelProblem<'_> {
     }
 
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
+        if let Some(sb) = &self.shared {
+            return self.shared_jacobian(sb, p, jac);
+        }
         let n = self.pairs.len();
         let np = p.len();
-        let mut val = vec![0.0; self.rows()];
-        self.model.eval_grad_batch_at(p, self.pairs, &mut val, jac);
+        self.pool.with(self.rows(), |val| {
+            self.model.eval_grad_batch_at(p, self.pairs, val, jac);
+        });
         for i in 0..self.rows() {
             let s = self.scale[i % n];
             for v in &mut jac[i * np..(i + 1) * np] {
@@ -142,11 +228,24 @@ impl SeparableProblem for ModelProblem<'_> {
     }
 
     fn n_linear(&self) -> usize {
-        self.linear.len()
+        match &self.shared {
+            Some((b, _)) => b.basis_len(),
+            None => self.linear.len(),
+        }
     }
 
     fn n_rows(&self) -> usize {
-        self.rows()
+        match &self.shared {
+            Some(_) => self.pairs.len(),
+            None => self.rows(),
+        }
+    }
+
+    fn n_blocks(&self) -> usize {
+        match &self.shared {
+            Some(_) => self.model.channels(),
+            None => 1,
+        }
     }
 
     fn targets(&self) -> &[f64] {
@@ -154,17 +253,69 @@ impl SeparableProblem for ModelProblem<'_> {
     }
 
     fn basis(&self, a: &[f64], phi: &mut [f64], dphi: Option<&mut [f64]>) {
+        let nl = self.n_linear();
+        let p = self.assemble(a, &vec![0.0; self.coefficients.len()]);
+        match &self.shared {
+            Some(sb) => self.shared_basis_scaled(sb, &p, phi, dphi),
+            None => self.general_basis(&p, a, phi, dphi, nl),
+        }
+    }
+}
+
+impl ModelProblem<'_> {
+    /// The separable basis of a shared-basis model: row-scaled `phi`, and
+    /// `dphi` in the separable layout `[u * n * L + t * n + j]`.
+    fn shared_basis_scaled(
+        &self,
+        (b, geom): &(&dyn SharedBasis, PairGeometry),
+        p: &[f64],
+        phi: &mut [f64],
+        dphi: Option<&mut [f64]>,
+    ) {
+        let (n, l, nq) = (self.pairs.len(), b.basis_len(), self.nonlinear.len());
+        let scale_rows = |col: &mut [f64]| {
+            for (v, s) in col.iter_mut().zip(&self.scale) {
+                *v *= s;
+            }
+        };
+        match dphi {
+            None => b.basis_batch(p, self.pairs, geom, phi, None),
+            Some(dphi) => self.pool.with(l * nq * n, |raw| {
+                b.basis_batch(p, self.pairs, geom, phi, Some(raw));
+                for t in 0..l {
+                    for u in 0..nq {
+                        let src = &raw[(t * nq + u) * n..(t * nq + u + 1) * n];
+                        let dst = &mut dphi[u * n * l + t * n..u * n * l + (t + 1) * n];
+                        dst.copy_from_slice(src);
+                        scale_rows(dst);
+                    }
+                }
+            }),
+        }
+        for col in phi.chunks_exact_mut(n) {
+            scale_rows(col);
+        }
+    }
+
+    /// The separable basis of any model, from its gradient: column `t` is the
+    /// model with the `t`-th linear parameter 1 and the others 0.
+    fn general_basis(
+        &self,
+        p0: &[f64],
+        a: &[f64],
+        phi: &mut [f64],
+        dphi: Option<&mut [f64]>,
+        nl: usize,
+    ) {
         let (m, n) = (self.rows(), self.pairs.len());
         let np = self.model.n_params();
-        let nl = self.linear.len();
         let mut val = vec![0.0; m];
         let mut jac = vec![0.0; m * np];
         match dphi {
             None => {
                 // One gradient evaluation gives every basis column.
-                let p = self.assemble(a, &vec![0.0; nl]);
                 self.model
-                    .eval_grad_batch_at(&p, self.pairs, &mut val, &mut jac);
+                    .eval_grad_batch_at(p0, self.pairs, &mut val, &mut jac);
                 for (t, k) in self.linear.iter().enumerate() {
                     for i in 0..m {
                         phi[t * m + i] = jac[i * np + k] * self.scale[i % n];
@@ -172,8 +323,6 @@ impl SeparableProblem for ModelProblem<'_> {
                 }
             }
             Some(dphi) => {
-                // Column t of Phi is the model with c = e_t; its gradient
-                // with respect to a gives dPhi_t/da.
                 let mut c = vec![0.0; nl];
                 for t in 0..nl {
                     c.fill(0.0);

@@ -10,30 +10,44 @@
 //!
 //! `dr/da_k = P_perp (dPhi/da_k) c - (Phi^+)^T (dPhi/da_k)^T r`,
 //!
-//! computed with the thin QR `Phi_P = Q R` of the columns that are free at
+//! computed with the QR `Phi_F = Q R_F` of the columns that are free at
 //! `c(a)` (for NNLS the active coefficients are zero and stay fixed):
-//! `P_perp v = v - Q Q^T v`, `(Phi^+)^T w = Q R^-T w`.
+//! `P_perp v = v - Q Q^T v`, `(Phi^+)^T w = Q R_F^-T w`; both in one pass as
+//! `v - Phi_F (R_F^T R_F)^-1 (Phi_F^T v + w)`.
+//!
+//! Several right-hand sides may share one basis (`n_blocks`: the colour
+//! channels of a model whose channels share their basis functions): the
+//! problem is then block-diagonal, `r_b(a) = Phi(a) c_b - y_b`, and `Phi` is
+//! factored once for all blocks. With `m` rows and `l` columns only
+//! `[Phi | Y]`'s `(l + B)`-square triangle is formed
+//! ([`crate::tall_qr`]); each block's (non-negative) least-squares problem
+//! is solved on that triangle, and the Jacobian uses
+//! `Q = Phi_F R_F^-1`, so neither `Q` nor the zero blocks are ever stored.
 //!
 //! [`VarPro`] turns any [`SeparableProblem`] into a [`LeastSquaresProblem`]
 //! over `a` alone, so every solver of this crate (LM, bounded, multi-start)
 //! fits it.
 
-use std::cell::RefCell;
-
 use faer::Mat;
 
 use crate::problem::{LeastSquaresProblem, fd_jacobian};
-use crate::{LstsqMethod, SolveError, lstsq, nnls};
+use crate::scratch::ScratchPool;
+use crate::{LstsqMethod, SolveError, lstsq, nnls, tall_qr};
 
-/// A separable least-squares problem: residual rows `Phi(a) c - y`.
+/// A separable least-squares problem: residual rows `Phi(a) c_b - y_b` for
+/// each of `n_blocks` right-hand sides sharing the basis `Phi`.
 pub trait SeparableProblem {
     /// Number of non-linear parameters `a`.
     fn n_nonlinear(&self) -> usize;
-    /// Number of linear coefficients `c` (columns of `Phi`).
+    /// Number of linear coefficients per block (columns of `Phi`).
     fn n_linear(&self) -> usize;
-    /// Number of rows.
+    /// Number of rows of `Phi` (rows per block).
     fn n_rows(&self) -> usize;
-    /// The targets `y` (length `n_rows`).
+    /// Number of right-hand sides sharing `Phi` [1].
+    fn n_blocks(&self) -> usize {
+        1
+    }
+    /// The targets, block after block (length `n_blocks * n_rows`).
     fn targets(&self) -> &[f64];
     /// `Phi(a)` column-major into `phi` (`n_rows * n_linear`); when `dphi`
     /// is given, `dPhi/da_k` into `dphi[k * n_rows * n_linear ..]`, each
@@ -45,85 +59,144 @@ pub trait SeparableProblem {
 pub struct VarPro<'a, S: SeparableProblem + ?Sized> {
     problem: &'a S,
     nonneg: bool,
-    /// The basis buffer reused by `residuals` (one allocation per problem).
-    phi: RefCell<Vec<f64>>,
+    /// Basis buffers reused across evaluations.
+    pool: ScratchPool,
+}
+
+/// `[Phi | Y]` reduced to its triangle: `R` (`l x l`) and `Q^T y_b`.
+struct Reduced {
+    r: Mat<f64>,
+    qty: Vec<Vec<f64>>,
 }
 
 impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
     /// Wrap `problem`; `nonneg` makes every linear coefficient `>= 0`.
     pub fn new(problem: &'a S, nonneg: bool) -> Self {
-        let (m, l) = (problem.n_rows(), problem.n_linear());
         Self {
             problem,
             nonneg,
-            phi: RefCell::new(vec![0.0; m * l]),
+            pool: ScratchPool::new(),
         }
     }
 
-    /// The optimal linear coefficients at `a`.
+    fn dims(&self) -> (usize, usize, usize) {
+        let p = self.problem;
+        (p.n_rows(), p.n_linear(), p.n_blocks())
+    }
+
+    /// The optimal linear coefficients at `a`, block after block
+    /// (`c[b * n_linear + t]`).
     pub fn linear_coefficients(&self, a: &[f64]) -> Result<Vec<f64>, SolveError> {
-        let mut phi = self.phi.borrow_mut();
-        self.problem.basis(a, &mut phi, None);
-        self.solve_linear(&phi)
+        let (m, l, _) = self.dims();
+        self.pool.with(m * l, |phi| {
+            self.problem.basis(a, phi, None);
+            self.solve_linear(phi)
+        })
     }
 
     /// The optimal linear coefficients at `a` within the box
-    /// `lower <= c <= upper` (infinite ends impose nothing; with `nonneg`
-    /// the lower ends are at least 0), by least squares with inequality
-    /// constraints ([`crate::lsi`]). For a stage that fixes `a` and must
-    /// return coefficients inside the model's box, which NNLS alone does
-    /// not guarantee (it knows no upper bounds).
+    /// `lower <= c <= upper` (one entry per coefficient of every block;
+    /// infinite ends impose nothing; with `nonneg` the lower ends are at
+    /// least 0), by least squares with inequality constraints
+    /// ([`crate::lsi`]) on each block's reduced triangle. For a stage that
+    /// fixes `a` and must return coefficients inside the model's box, which
+    /// NNLS alone does not guarantee (it knows no upper bounds).
     pub fn linear_coefficients_in_box(
         &self,
         a: &[f64],
         lower: &[f64],
         upper: &[f64],
     ) -> Result<Vec<f64>, SolveError> {
-        let (m, l) = (self.problem.n_rows(), self.problem.n_linear());
-        if lower.len() != l || upper.len() != l {
+        let (m, l, nb) = self.dims();
+        if lower.len() != l * nb || upper.len() != l * nb {
             return Err(SolveError::Dimension {
                 what: "box ends vs linear coefficients",
                 left: lower.len().min(upper.len()),
-                right: l,
+                right: l * nb,
             });
         }
-        let mut phi = self.phi.borrow_mut();
-        self.problem.basis(a, &mut phi, None);
-        let e = Mat::from_fn(m, l, |i, j| phi[j * m + i]);
-        // Rows of G x >= h: x_j >= lo_j and -x_j >= -hi_j for finite ends.
-        let mut rows: Vec<(usize, f64, f64)> = Vec::new();
-        for j in 0..l {
-            let lo = if self.nonneg {
-                lower[j].max(0.0)
-            } else {
-                lower[j]
-            };
-            if lo.is_finite() {
-                rows.push((j, 1.0, lo));
+        let red = self.pool.with(m * l, |phi| {
+            self.problem.basis(a, phi, None);
+            self.reduce(phi)
+        })?;
+        let mut out = Vec::with_capacity(l * nb);
+        for b in 0..nb {
+            // Rows of G x >= h: x_j >= lo_j and -x_j >= -hi_j for finite ends.
+            let mut rows: Vec<(usize, f64, f64)> = Vec::new();
+            for j in 0..l {
+                let lo = if self.nonneg {
+                    lower[b * l + j].max(0.0)
+                } else {
+                    lower[b * l + j]
+                };
+                if lo.is_finite() {
+                    rows.push((j, 1.0, lo));
+                }
+                if upper[b * l + j].is_finite() {
+                    rows.push((j, -1.0, -upper[b * l + j]));
+                }
             }
-            if upper[j].is_finite() {
-                rows.push((j, -1.0, -upper[j]));
-            }
+            let g = Mat::from_fn(
+                rows.len(),
+                l,
+                |i, j| if rows[i].0 == j { rows[i].1 } else { 0.0 },
+            );
+            let h: Vec<f64> = rows.iter().map(|r| r.2).collect();
+            out.extend(crate::lsi(red.r.as_ref(), &red.qty[b], g.as_ref(), &h)?);
         }
-        let g = Mat::from_fn(
-            rows.len(),
-            l,
-            |i, j| if rows[i].0 == j { rows[i].1 } else { 0.0 },
-        );
-        let h: Vec<f64> = rows.iter().map(|r| r.2).collect();
-        crate::lsi(e.as_ref(), self.problem.targets(), g.as_ref(), &h)
+        Ok(out)
+    }
+
+    /// Factor `[Phi | Y]`.
+    fn reduce(&self, phi: &[f64]) -> Result<Reduced, SolveError> {
+        let (m, l, nb) = self.dims();
+        let y = self.problem.targets();
+        if let Some(i) = phi.iter().position(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite {
+                what: "basis",
+                row: i % m.max(1),
+                col: i / m.max(1),
+                value: phi[i],
+            });
+        }
+        let raug = self.pool.with(m * (l + nb), |buf| {
+            buf[..m * l].copy_from_slice(&phi[..m * l]);
+            buf[m * l..].copy_from_slice(&y[..m * nb]);
+            tall_qr::r_factor(faer::MatMut::from_column_major_slice_mut(buf, m, l + nb))
+        });
+        let rows = raug.nrows().min(l);
+        let r = Mat::from_fn(l, l, |i, k| if i < rows { raug[(i, k)] } else { 0.0 });
+        let qty = (0..nb)
+            .map(|b| {
+                (0..l)
+                    .map(|i| if i < rows { raug[(i, l + b)] } else { 0.0 })
+                    .collect()
+            })
+            .collect();
+        Ok(Reduced { r, qty })
     }
 
     fn solve_linear(&self, phi: &[f64]) -> Result<Vec<f64>, SolveError> {
-        let (m, l) = (self.problem.n_rows(), self.problem.n_linear());
-        let pm = Mat::from_fn(m, l, |i, j| phi[j * m + i]);
+        self.solve_from(&self.reduce(phi)?)
+    }
+
+    /// Residual rows `Phi c_b - y_b` of every block into `out`.
+    fn combine(&self, phi: &[f64], c: &[f64], out: &mut [f64]) {
+        let (m, l, nb) = self.dims();
         let y = self.problem.targets();
-        if self.nonneg {
-            Ok(nnls(pm.as_ref(), y, 3 * l + 10)?.x)
-        } else {
-            let ym = Mat::from_fn(m, 1, |i, _| y[i]);
-            let s = lstsq(pm.as_ref(), ym.as_ref(), None, LstsqMethod::PivotedQr)?;
-            Ok((0..l).map(|j| s.x[(j, 0)]).collect())
+        for b in 0..nb {
+            let o = &mut out[b * m..(b + 1) * m];
+            o.copy_from_slice(&y[b * m..(b + 1) * m]);
+            o.iter_mut().for_each(|v| *v = -*v);
+            for t in 0..l {
+                let ct = c[b * l + t];
+                if ct != 0.0 {
+                    let col = &phi[t * m..(t + 1) * m];
+                    for i in 0..m {
+                        o[i] += col[i] * ct;
+                    }
+                }
+            }
         }
     }
 }
@@ -134,95 +207,144 @@ impl<S: SeparableProblem + ?Sized> LeastSquaresProblem for VarPro<'_, S> {
     }
 
     fn n_residuals(&self) -> usize {
-        self.problem.n_rows()
+        self.problem.n_rows() * self.problem.n_blocks()
     }
 
     fn residuals(&self, a: &[f64], out: &mut [f64]) {
-        let (m, l) = (self.problem.n_rows(), self.problem.n_linear());
-        let mut phi = self.phi.borrow_mut();
-        self.problem.basis(a, &mut phi, None);
-        if phi.iter().any(|v| !v.is_finite()) {
-            out.fill(f64::NAN);
-            return;
-        }
-        match self.solve_linear(&phi) {
-            Ok(c) => {
-                let y = self.problem.targets();
-                for i in 0..m {
-                    out[i] = (0..l).map(|j| phi[j * m + i] * c[j]).sum::<f64>() - y[i];
-                }
+        let (m, l, _) = self.dims();
+        self.pool.with(m * l, |phi| {
+            self.problem.basis(a, phi, None);
+            match self.solve_linear(phi) {
+                Ok(c) => self.combine(phi, &c, out),
+                Err(_) => out.fill(f64::NAN),
             }
-            Err(_) => out.fill(f64::NAN),
-        }
+        })
     }
 
     fn jacobian(&self, a: &[f64], jac: &mut [f64]) {
-        let (m, l, n) = (
-            self.problem.n_rows(),
-            self.problem.n_linear(),
-            self.problem.n_nonlinear(),
-        );
-        let mut phi = vec![0.0; m * l];
-        let mut dphi = vec![0.0; n * m * l];
-        self.problem.basis(a, &mut phi, Some(&mut dphi));
-        let Ok(c) = self.solve_linear(&phi) else {
-            jac.fill(f64::NAN);
-            return;
-        };
-        let y = self.problem.targets();
-        let r: Vec<f64> = (0..m)
-            .map(|i| (0..l).map(|j| phi[j * m + i] * c[j]).sum::<f64>() - y[i])
-            .collect();
-        // Free columns: all for least squares, the positive ones for NNLS.
-        let free: Vec<usize> = (0..l).filter(|j| !self.nonneg || c[*j] > 0.0).collect();
-        let nf = free.len();
-        let (q, rr) = if nf > 0 {
-            let pm = Mat::from_fn(m, nf, |i, t| phi[free[t] * m + i]);
-            let qr = pm.qr();
-            let rr = qr.thin_R().to_owned();
-            let rmax = (0..nf).map(|t| rr[(t, t)].abs()).fold(0.0f64, f64::max);
-            if (0..nf).any(|t| rr[(t, t)].abs() <= 1e-12 * rmax) {
-                // Rank-deficient free columns: the projector's derivative is
-                // not defined by this formula; use differences instead.
-                drop(rr);
-                fd_jacobian(self, a, jac);
-                return;
-            }
-            (Some(qr.compute_thin_Q()), Some(rr))
-        } else {
-            (None, None)
-        };
-        for k in 0..n {
-            let dk = &dphi[k * m * l..(k + 1) * m * l];
-            // u = dPhi_k c, w = dPhi_k^T r (free columns only).
-            let mut u: Vec<f64> = (0..m)
-                .map(|i| (0..l).map(|j| dk[j * m + i] * c[j]).sum())
-                .collect();
-            let mut col = vec![0.0; m];
-            if let (Some(q), Some(rr)) = (&q, &rr) {
-                // P_perp u.
-                let qtu: Vec<f64> = (0..nf)
-                    .map(|t| (0..m).map(|i| q[(i, t)] * u[i]).sum())
-                    .collect();
-                for i in 0..m {
-                    u[i] -= (0..nf).map(|t| q[(i, t)] * qtu[t]).sum::<f64>();
-                }
-                // z = R^-T w, then Q z.
-                let mut z = Mat::from_fn(nf, 1, |t, _| {
-                    (0..m).map(|i| dk[free[t] * m + i] * r[i]).sum::<f64>()
-                });
-                rr.as_ref()
-                    .transpose()
-                    .solve_lower_triangular_in_place(z.as_mut());
-                for i in 0..m {
-                    col[i] = u[i] - (0..nf).map(|t| q[(i, t)] * z[(t, 0)]).sum::<f64>();
-                }
-            } else {
-                col.copy_from_slice(&u);
-            }
-            for i in 0..m {
-                jac[i * n + k] = col[i];
-            }
+        let (m, l, _) = self.dims();
+        let n = self.problem.n_nonlinear();
+        let done = self.pool.with(m * l, |phi| {
+            self.pool.with(n * m * l, |dphi| {
+                self.problem.basis(a, phi, Some(dphi));
+                self.golub_pereyra(phi, dphi, jac)
+            })
+        });
+        if !done {
+            fd_jacobian(self, a, jac);
         }
     }
+}
+
+impl<S: SeparableProblem + ?Sized> VarPro<'_, S> {
+    /// The full Golub-Pereyra Jacobian into `jac`; false when it is not
+    /// defined by the formula (failed solve, rank-deficient free columns).
+    fn golub_pereyra(&self, phi: &[f64], dphi: &[f64], jac: &mut [f64]) -> bool {
+        let (m, _, nb) = self.dims();
+        let Ok(red) = self.reduce(phi) else {
+            return false;
+        };
+        let Ok(c) = self.solve_from(&red) else {
+            return false;
+        };
+        self.pool.with(m * nb, |r| {
+            self.combine(phi, &c, r);
+            self.golub_pereyra_columns(phi, dphi, &red, &c, r, jac)
+        })
+    }
+
+    /// The Jacobian columns of every block from the reduced basis, the
+    /// coefficients `c` and the residuals `r` at `a`.
+    fn golub_pereyra_columns(
+        &self,
+        phi: &[f64],
+        dphi: &[f64],
+        red: &Reduced,
+        c: &[f64],
+        r: &[f64],
+        jac: &mut [f64],
+    ) -> bool {
+        let (m, l, nb) = self.dims();
+        let n = self.problem.n_nonlinear();
+        for b in 0..nb {
+            let cb = &c[b * l..(b + 1) * l];
+            let rb = &r[b * m..(b + 1) * m];
+            // Free columns: all for least squares, the positive ones for NNLS.
+            let free: Vec<usize> = (0..l).filter(|j| !self.nonneg || cb[*j] > 0.0).collect();
+            let Some(rf) = free_triangle(&red.r, &free) else {
+                return false;
+            };
+            let mut u = vec![0.0; m];
+            for k in 0..n {
+                let dk = &dphi[k * m * l..(k + 1) * m * l];
+                u.fill(0.0);
+                for t in 0..l {
+                    if cb[t] != 0.0 {
+                        let col = &dk[t * m..(t + 1) * m];
+                        for i in 0..m {
+                            u[i] += col[i] * cb[t];
+                        }
+                    }
+                }
+                if let Some(rf) = &rf {
+                    // v = Phi_F^T u + dPhi_kF^T r, z = R_F^-1 R_F^-T v.
+                    let mut z = Mat::from_fn(free.len(), 1, |s, _| {
+                        let (pc, dc) = (&phi[free[s] * m..], &dk[free[s] * m..]);
+                        (0..m).map(|i| pc[i] * u[i] + dc[i] * rb[i]).sum::<f64>()
+                    });
+                    rf.as_ref()
+                        .transpose()
+                        .solve_lower_triangular_in_place(z.as_mut());
+                    rf.as_ref().solve_upper_triangular_in_place(z.as_mut());
+                    for (s, &t) in free.iter().enumerate() {
+                        let col = &phi[t * m..(t + 1) * m];
+                        let zs = z[(s, 0)];
+                        for i in 0..m {
+                            u[i] -= col[i] * zs;
+                        }
+                    }
+                }
+                for i in 0..m {
+                    jac[(b * m + i) * n + k] = u[i];
+                }
+            }
+        }
+        true
+    }
+
+    fn solve_from(&self, red: &Reduced) -> Result<Vec<f64>, SolveError> {
+        let (_, l, nb) = self.dims();
+        let mut out = Vec::with_capacity(l * nb);
+        for b in 0..nb {
+            if self.nonneg {
+                out.extend(nnls(red.r.as_ref(), &red.qty[b], 3 * l + 10)?.x);
+            } else {
+                let ym = Mat::from_fn(l, 1, |i, _| red.qty[b][i]);
+                let s = lstsq(red.r.as_ref(), ym.as_ref(), None, LstsqMethod::PivotedQr)?;
+                out.extend((0..l).map(|j| s.x[(j, 0)]));
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The triangle `R_F` of the free columns `F` of `R` (`Some(None)` when no
+/// column is free; `None` when `R_F` is numerically rank-deficient, where
+/// the projector's derivative is not given by the formula).
+fn free_triangle(r: &Mat<f64>, free: &[usize]) -> Option<Option<Mat<f64>>> {
+    if free.is_empty() {
+        return Some(None);
+    }
+    let l = r.nrows();
+    let mut rf = Mat::from_fn(l, free.len(), |i, s| r[(i, free[s])]);
+    let rr = tall_qr::r_factor(rf.as_mut());
+    let nf = free.len();
+    if rr.nrows() < nf {
+        return None;
+    }
+    let rmax = (0..nf).map(|t| rr[(t, t)].abs()).fold(0.0f64, f64::max);
+    if (0..nf).any(|t| !(rr[(t, t)].abs() > 1e-12 * rmax)) {
+        return None;
+    }
+    Some(Some(rr))
 }

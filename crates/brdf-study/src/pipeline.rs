@@ -356,7 +356,7 @@ pub fn fit_sopp(
     // a specular coefficient exceed its upper bound); rounding-level
     // violations of the box by the constrained solution are clamped.
     let full = box_constraints(model)?;
-    let lin = mp.linear_indices();
+    let lin = mp.coefficient_indices();
     let lower: Vec<f64> = lin.iter().map(|k| full.lower()[*k]).collect();
     let upper: Vec<f64> = lin.iter().map(|k| full.upper()[*k]).collect();
     let coef = VarPro::new(&mp, true).linear_coefficients_in_box(&nl, &lower, &upper)?;
@@ -481,15 +481,17 @@ fn fit_nonlinear(
         full.clamp(&mut p);
         Ok(p)
     };
-    let ms = multistart(&starts, |s| {
-        if use_varpro {
-            let vp = VarPro::new(&mp, true);
-            bounded_least_squares(&vp, s, &nl_box, &opts.lm)
-        } else {
+    let ms = if use_varpro {
+        let coarse = coarse_starts(model, data, scales, &starts, &nl_box, opts)?;
+        multistart(&coarse, |s| {
+            bounded_least_squares(&VarPro::new(&mp, true), s, &nl_box, &opts.lm)
+        })?
+    } else {
+        multistart(&starts, |s| {
             let p0 = project(s)?;
             bounded_least_squares(problem, &p0, &full, &opts.lm)
-        }
-    })?;
+        })?
+    };
     let info = (starts.len(), ms.n_converged, ms.n_at_best);
     let (p, rep, how) = if use_varpro {
         // Polish on all parameters (enforces the linear upper bounds and
@@ -501,12 +503,21 @@ fn fit_nonlinear(
             evaluations: ms.best.evaluations + polish.evaluations,
             ..polish
         };
+        let stages = if data.len() > COARSE_ABOVE {
+            format!(
+                "{} Halton starts on a {}-sample stratified subsample, the best {} refined on all samples",
+                starts.len(),
+                data.len().div_ceil(data.len().div_ceil(COARSE_SAMPLES)),
+                POLISHED_STARTS.min(starts.len())
+            )
+        } else {
+            format!("{} Halton starts", starts.len())
+        };
         (
             rep.params.clone(),
             rep,
             format!(
-                "variable projection (NNLS) + bounded SQP-style LM, {} Halton starts, polished on all parameters",
-                starts.len()
+                "variable projection (NNLS) + bounded SQP-style LM, {stages}, polished on all parameters"
             ),
         )
     } else {
@@ -520,6 +531,60 @@ fn fit_nonlinear(
         )
     };
     Ok((p, rep, info, how))
+}
+
+/// Sample sets larger than this are searched coarse-to-fine.
+const COARSE_ABOVE: usize = 20_000;
+/// Size of the stratified subsample of the coarse search.
+const COARSE_SAMPLES: usize = 8_192;
+/// Coarse optima refined on every sample.
+const POLISHED_STARTS: usize = 3;
+
+/// The starts of the full-data search. Small sets use the Halton starts
+/// themselves. On a large set every start is first solved on a
+/// deterministic stratified subsample (every `k`-th sample, in the data's
+/// own order, which for gridded data covers the grid evenly), and the
+/// distinct best few of those optima become the starts on all samples: the
+/// coarse search finds the basin, the full data only refines it.
+fn coarse_starts(
+    model: &dyn Parametric,
+    data: &SampleSet,
+    scales: &[f64],
+    starts: &[Vec<f64>],
+    nl_box: &Constraints,
+    opts: &FitOptions,
+) -> Result<Vec<Vec<f64>>, StudyError> {
+    if data.len() <= COARSE_ABOVE {
+        return Ok(starts.to_vec());
+    }
+    let k = data.len().div_ceil(COARSE_SAMPLES);
+    let keep: Vec<bool> = (0..data.len()).map(|j| j % k == 0).collect();
+    let sub = data.select(&keep);
+    let sub_scales: Vec<f64> = scales.iter().step_by(k).copied().collect();
+    let values = sub.values_channel_major();
+    let mp = ModelProblem::new(model, sub.pairs(), &values, &sub_scales)?;
+    use rayon::prelude::*;
+    let mut found: Vec<SolverReport> = starts
+        .par_iter()
+        .filter_map(|s| bounded_least_squares(&VarPro::new(&mp, true), s, nl_box, &opts.lm).ok())
+        .filter(|r| r.ssr.is_finite())
+        .collect();
+    found.sort_by(|a, b| a.ssr.total_cmp(&b.ssr));
+    let mut chosen: Vec<Vec<f64>> = Vec::new();
+    for r in found {
+        let distinct = chosen.iter().all(|c| {
+            c.iter()
+                .zip(&r.params)
+                .any(|(x, y)| (x - y).abs() > 1e-6 * x.abs().max(y.abs()).max(1e-12))
+        });
+        if distinct && chosen.len() < POLISHED_STARTS {
+            chosen.push(r.params);
+        }
+    }
+    if chosen.is_empty() {
+        return Ok(starts.to_vec());
+    }
+    Ok(chosen)
 }
 
 /// Fit an all-linear model channel by channel on rows scaled by `scales`:

@@ -1,0 +1,71 @@
+//! Per-sample-set geometry that does not change while a model is fitted:
+//! the half-vector cosines of every direction pair, computed once and read
+//! by the batch kernels of the models at every iteration.
+//!
+//! `H = (L + V)/|L + V|`; `nh = N.H` (clamped to `[-1, 1]`), `vh = V.H`
+//! (`= L.H`), `cos2_phi_h = H_x^2/(H_x^2 + H_y^2)` (1/2 when `H = N`).
+//! A pair with `L + V = 0` or either direction at or below the horizon is
+//! marked invalid (`valid[j] == false`); models return 0 there.
+
+use crate::samples::DirPairs;
+
+/// Structure-of-arrays half-vector geometry of a set of direction pairs.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PairGeometry {
+    /// `N.H`.
+    pub nh: Vec<f64>,
+    /// `V.H`.
+    pub vh: Vec<f64>,
+    /// `cos^2 phi_h`.
+    pub cos2_phi_h: Vec<f64>,
+    /// `ln(min(N.H, 1))` (`-inf` where `N.H <= 0`): powers `(N.H)^e` are
+    /// `exp(e ln N.H)`, so the logarithm is taken once per sample set.
+    pub ln_nh: Vec<f64>,
+    /// Both directions above the horizon and `L + V != 0`.
+    pub valid: Vec<bool>,
+}
+
+impl PairGeometry {
+    /// The geometry of every pair of `pairs`.
+    pub fn new(pairs: &DirPairs) -> Self {
+        let n = pairs.len();
+        let mut g = PairGeometry {
+            nh: vec![0.0; n],
+            vh: vec![0.0; n],
+            cos2_phi_h: vec![0.5; n],
+            ln_nh: vec![f64::NEG_INFINITY; n],
+            valid: vec![false; n],
+        };
+        for j in 0..n {
+            let (sx, sy, sz) = (
+                pairs.lx[j] + pairs.vx[j],
+                pairs.ly[j] + pairs.vy[j],
+                pairs.lz[j] + pairs.vz[j],
+            );
+            let len = (sx * sx + sy * sy + sz * sz).sqrt();
+            if !(len > 0.0) {
+                continue;
+            }
+            let (hx, hy, hz) = (sx / len, sy / len, sz / len);
+            let r2 = hx * hx + hy * hy;
+            g.nh[j] = hz.clamp(-1.0, 1.0);
+            g.vh[j] = pairs.vx[j] * hx + pairs.vy[j] * hy + pairs.vz[j] * hz;
+            g.cos2_phi_h[j] = if r2 > 0.0 { hx * hx / r2 } else { 0.5 };
+            if g.nh[j] > 0.0 {
+                g.ln_nh[j] = g.nh[j].min(1.0).ln();
+            }
+            g.valid[j] = pairs.lz[j] > 0.0 && pairs.vz[j] > 0.0;
+        }
+        g
+    }
+
+    /// Number of pairs.
+    pub fn len(&self) -> usize {
+        self.nh.len()
+    }
+
+    /// True when there are no pairs.
+    pub fn is_empty(&self) -> bool {
+        self.nh.is_empty()
+    }
+}
