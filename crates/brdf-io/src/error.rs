@@ -62,6 +62,15 @@ pub enum IoError {
         /// what is wrong
         reason: String,
     },
+    /// A file this crate cannot read as data (unknown format, a sample or
+    /// option that the format does not have).
+    #[error("{path}: {reason}")]
+    Unsupported {
+        /// the file
+        path: PathBuf,
+        /// what is wrong and what would work
+        reason: String,
+    },
     /// A requested sample is not in the file.
     #[error("{path}: no sample `{sample}` ({reason})")]
     NoSample {

@@ -15,15 +15,27 @@
 //! | [`csv_samples`] | generic CSV samples in and out | users | 1/sr, radians | NaN values kept, counted by filters |
 //! | [`rgl`] | RGL `.bsdf` tensor files, evaluated through the inverse VNDF warp | Dupuy & Jakob 2018 | 1/sr | out-of-gamut values clamped at 0 (as the authors) |
 //! | [`nist`] | NIST StRD non-linear regression `.dat` | NIST ITL | - | - |
+//!
+//! [`load`] detects the format by name (`PATH` or `PATH#SAMPLE`, see
+//! [`load::Format`]) and returns the sample set; [`load_dense`] gives an
+//! evaluable BRDF for the dense formats (MERL, RGL).
+//!
+//! ```no_run
+//! let samples = brdf_io::load("curet/abrdf.dat#25")?;
+//! println!("{} samples, {} channels", samples.len(), samples.channels());
+//! # Ok::<(), brdf_io::IoError>(())
+//! ```
 
 pub mod colour;
 pub mod cornell;
 pub mod csv_samples;
 pub mod curet;
 pub mod error;
+pub mod load;
 pub mod merl;
 pub mod nist;
 pub mod rgl;
 pub mod sopp_grid;
 
 pub use error::IoError;
+pub use load::{Format, format_of, load, load_dense, split_sample};

@@ -54,6 +54,8 @@ pub mod paint_shader;
 pub mod phong;
 #[cfg(feature = "sopp")]
 pub mod phong_fresnel;
+#[cfg(feature = "serde")]
+pub mod saved_model;
 #[cfg(feature = "microfacet")]
 pub mod torrance_sparrow;
 #[cfg(feature = "ward")]

@@ -21,6 +21,12 @@ pub enum StudyError {
     /// A solver was misused or given impossible input.
     #[error(transparent)]
     Solve(#[from] brdf_solve::SolveError),
+    /// Fitting failed.
+    #[error(transparent)]
+    Fit(#[from] brdf_fit::FitError),
+    /// A saved model could not be read, written or rebuilt.
+    #[error(transparent)]
+    SavedModel(#[from] brdf_models::saved_model::SavedModelError),
     /// JSON output failed.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),

@@ -161,7 +161,10 @@ pub fn write(sets: &[SampleSet], source: &str, out: &Path) -> Result<Vec<String>
                             "{} {:.4}{}",
                             q.name,
                             q.value,
-                            q.at_bound.map(|b| format!(" [{b}]")).unwrap_or_default()
+                            q.at_bound
+                                .as_ref()
+                                .map(|b| format!(" [{b}]"))
+                                .unwrap_or_default()
                         )
                     })
                     .collect();

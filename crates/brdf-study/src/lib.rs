@@ -12,20 +12,21 @@
 pub mod bias;
 pub mod cli;
 pub mod commands;
-pub mod data;
 pub mod dense_tables;
 pub mod error;
-pub mod fit;
 pub mod kurt_tables;
 pub mod nist;
-pub mod pipeline;
 #[cfg(feature = "plots")]
 pub mod plots;
 pub mod render;
 pub mod report;
-pub mod saved_model;
-pub mod select;
 pub mod sopp_tables;
 pub mod synthetic;
 
 pub use error::StudyError;
+
+// The fitting library, re-exported under the paths the study and its tests
+// have always used.
+pub use brdf_fit::{fit_linear as fit, pipeline, select};
+pub use brdf_io::load as data;
+pub use brdf_models::saved_model;

@@ -188,7 +188,7 @@ fn sopp_stage_two_keeps_linear_parameters_in_their_box() {
         );
         if s.name.starts_with("ks") {
             assert_eq!(fp.value, 1.0, "{}", fp.name);
-            assert_eq!(fp.at_bound, Some("upper"), "{}", fp.name);
+            assert_eq!(fp.at_bound.as_deref(), Some("upper"), "{}", fp.name);
         }
     }
 }

@@ -162,9 +162,15 @@ fn saved_polynomial_carries_its_pca_and_evaluates_identically() {
     let mut m = (e.build_for_data.unwrap())(&config, &dp).unwrap();
     let p: Vec<f64> = (0..m.n_params()).map(|c| 0.2 / (1.0 + c as f64)).collect();
     m.set_params(&p).unwrap();
-    let saved =
-        brdf_study::saved_model::SavedModel::capture(m.as_ref(), &config, &dp, "test".into())
-            .unwrap();
+    let saved = brdf_study::saved_model::SavedModel::capture(
+        m.as_ref(),
+        &config,
+        &dp,
+        None,
+        &["y".to_string()],
+        Default::default(),
+    )
+    .unwrap();
     let path = std::env::temp_dir().join(format!("poly-{}.json", std::process::id()));
     saved.save(&path).unwrap();
     let back = brdf_study::saved_model::SavedModel::load(&path)

@@ -4,11 +4,9 @@
 
 use std::path::PathBuf;
 
-use brdf_models::{ModelConfig, entry};
+use brdf_fit::{Channels, Fit, FitReport, Objective, Solver};
 
 use crate::StudyError;
-use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
-use crate::saved_model::SavedModel;
 
 /// Arguments of `brdf fit`.
 #[derive(Debug, clap::Args)]
@@ -55,28 +53,14 @@ pub struct FitArgs {
     pub degree: usize,
 }
 
-/// Run `brdf fit`.
+/// Run `brdf fit`: a thin layer over [`brdf_fit::Fit`].
 pub fn run(args: &FitArgs) -> Result<(), StudyError> {
-    if !(args.limit > 0.0 && args.limit <= 90.0) {
-        return Err(StudyError::Usage(format!(
-            "--limit {} must be in (0, 90] degrees",
-            args.limit
-        )));
-    }
-    let opts = FitOptions {
-        objective: Objective::parse(&args.metric)?,
-        solver: Solver::parse(&args.solver)?,
-        starts: args.starts,
-        ..FitOptions::default()
-    };
-    let data = crate::data::load(&args.data)?;
-    let (data, invalid) = data.filter_invalid(false);
-    let (data, angle) = data.filter_angle_limit(args.limit.to_radians());
+    let data = brdf_io::load(&args.data)?;
     let sets = match args.channels.as_str() {
-        "rgb" => vec![data.clone()],
-        "grey" => vec![data.mean_channel()],
+        "rgb" => vec![(data.clone(), Channels::All)],
+        "grey" => vec![(data.clone(), Channels::Grey)],
         "per-channel" => (0..data.channels())
-            .map(|c| data.single_channel(c))
+            .map(|c| (data.single_channel(c), Channels::All))
             .collect(),
         other => {
             return Err(StudyError::Usage(format!(
@@ -84,90 +68,88 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
             )));
         }
     };
-    let e = entry(&args.model).ok_or_else(|| {
-        StudyError::Usage(format!("no such model `{}`; see `brdf models`", args.model))
-    })?;
-    let mut reports: Vec<FitSummary> = Vec::new();
-    for set in &sets {
-        let config = ModelConfig {
-            channels: set.channels(),
-            lobes: args.lobes,
-            order: args.order,
-            degree: args.degree,
-        };
-        let build = |config: &ModelConfig| e.build_for(config, set.pairs());
-        let mut model = build(&config)?;
-        let report = if opts.solver == Solver::Sopp {
-            let mut grey = build(&ModelConfig {
-                channels: 1,
-                ..config
-            })?;
-            fit_sopp(grey.as_mut(), model.as_mut(), set, &opts)?
-        } else {
-            fit(model.as_mut(), set, &opts)?
-        };
+    if args.save.is_some() && sets.len() > 1 {
+        return Err(StudyError::Usage(
+            "--save needs one model: use --channels rgb or grey".into(),
+        ));
+    }
+    let mut reports = Vec::new();
+    for (set, channels) in &sets {
+        let fit = Fit::model(&args.model)?
+            .objective(Objective::parse(&args.metric)?)
+            .solver(Solver::parse(&args.solver)?)
+            .starts(args.starts)
+            .limit_deg(args.limit)
+            .channels(*channels)
+            .lobes(args.lobes)
+            .order(args.order)
+            .degree(args.degree);
+        let report = fit.run(set)?;
         if let Some(path) = &args.save {
-            if sets.len() > 1 {
-                return Err(StudyError::Usage(
-                    "--save needs one model: use --channels rgb or grey".into(),
-                ));
-            }
-            let prov = format!(
-                "{} on {}, {} = {:.6e}",
-                report.solver, report.data, report.objective, report.error
-            );
-            SavedModel::capture(model.as_ref(), &config, set.pairs(), prov)?.save(path)?;
+            report
+                .saved_model(&crate::report::data_name(&args.data))?
+                .save(path)?;
         }
         reports.push(report);
     }
     if args.json {
+        let first = &reports[0];
         let v = serde_json::json!({
-            "fits": reports,
-            "dropped_invalid": invalid.dropped(),
-            "dropped_angle": angle.dropped(),
+            "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
+            "samples_present": first.samples_present,
+            "dropped_invalid": first.dropped_invalid,
+            "dropped_angle": first.dropped_angle,
             "negative_values_kept": data.count_negative(),
         });
         say!("{}", serde_json::to_string_pretty(&v)?)?;
         return Ok(());
     }
-    for r in &reports {
-        say!(
-            "model {} on {} ({} samples; dropped {} invalid, {} beyond {} deg)",
-            r.model,
-            r.data,
-            r.samples,
-            invalid.dropped(),
-            angle.dropped(),
-            args.limit
-        )?;
-        say!("solver: {}", r.solver)?;
-        say!(
-            "iterations {}, {}; starts {} ({} converged, {} at the best cost)",
-            r.iterations,
-            r.termination,
-            r.starts.0,
-            r.starts.1,
-            r.starts.2
-        )?;
-        for p in &r.parameters {
-            let se = p
-                .std_error
-                .map(|s| format!("+- {s:.3e}"))
-                .unwrap_or_default();
-            let b = p
-                .at_bound
-                .map(|b| format!(" [at {b} bound]"))
-                .unwrap_or_default();
-            let pr = if p.projected { " (projected)" } else { "" };
-            say!("  {:<8} {:>14.6e} {se}{b}{pr}", p.name, p.value)?;
-        }
-        say!(
-            "{} error: {:.6e}  Ngan L2: {:.6e}  time: {:.3} ms",
-            r.objective,
-            r.error,
-            r.ngan_l2,
-            r.seconds * 1e3
-        )?;
+    for rep in &reports {
+        print_report(rep)?;
     }
+    Ok(())
+}
+
+fn print_report(rep: &FitReport) -> Result<(), StudyError> {
+    let r = &rep.summary;
+    say!(
+        "model {} on {} ({} of {} samples used; dropped {} invalid, {} beyond {} deg)",
+        r.model,
+        r.data,
+        r.samples,
+        rep.samples_present,
+        rep.dropped_invalid,
+        rep.dropped_angle,
+        rep.limit_deg
+    )?;
+    say!("solver: {}", r.solver)?;
+    say!(
+        "iterations {}, {}; starts {} ({} converged, {} at the best cost)",
+        r.iterations,
+        r.termination,
+        r.starts.0,
+        r.starts.1,
+        r.starts.2
+    )?;
+    for p in &r.parameters {
+        let se = p
+            .std_error
+            .map(|s| format!("+- {s:.3e}"))
+            .unwrap_or_default();
+        let b = p
+            .at_bound
+            .as_ref()
+            .map(|b| format!(" [at {b} bound]"))
+            .unwrap_or_default();
+        let pr = if p.projected { " (projected)" } else { "" };
+        say!("  {:<8} {:>14.6e} {se}{b}{pr}", p.name, p.value)?;
+    }
+    say!(
+        "{} error: {:.6e}  Ngan L2: {:.6e}  time: {:.3} ms",
+        r.objective,
+        r.error,
+        r.ngan_l2,
+        r.seconds * 1e3
+    )?;
     Ok(())
 }

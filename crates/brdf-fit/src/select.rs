@@ -14,7 +14,7 @@ use brdf_core::SampleSet;
 use brdf_models::{ModelConfig, catalogue};
 use serde::Serialize;
 
-use crate::StudyError;
+use crate::FitError;
 use crate::pipeline::{FitOptions, fit};
 
 /// One candidate's outcome.
@@ -93,9 +93,9 @@ pub fn select(
     data: &SampleSet,
     tolerance: f64,
     opts: &FitOptions,
-) -> Result<(Vec<SelectRow>, usize), StudyError> {
+) -> Result<(Vec<SelectRow>, usize), FitError> {
     if !(tolerance >= 0.0 && tolerance.is_finite()) {
-        return Err(StudyError::Usage(format!(
+        return Err(FitError::Usage(format!(
             "--tolerance {tolerance} must be >= 0"
         )));
     }
@@ -159,6 +159,6 @@ pub fn select(
                 .then(a.1.error.total_cmp(&b.1.error))
         })
         .map(|(i, _)| i)
-        .ok_or_else(|| StudyError::Usage("no candidate could be fitted".into()))?;
+        .ok_or_else(|| FitError::Usage("no candidate could be fitted".into()))?;
     Ok((rows, choice))
 }

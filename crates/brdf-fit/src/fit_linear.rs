@@ -15,7 +15,7 @@ use std::time::Instant;
 use brdf_core::metrics::ngan_l2;
 use brdf_core::{MetricValue, Parametric, SampleSet};
 
-use crate::StudyError;
+use crate::FitError;
 
 /// The outcome of a fit.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -42,14 +42,11 @@ pub struct FitReport {
 
 /// Fit an all-linear model to `samples` (same channel count) on Ngan's
 /// objective; `model` is left at the fitted parameters.
-pub fn fit_linear(
-    model: &mut dyn Parametric,
-    samples: &SampleSet,
-) -> Result<FitReport, StudyError> {
+pub fn fit_linear(model: &mut dyn Parametric, samples: &SampleSet) -> Result<FitReport, FitError> {
     let start = Instant::now();
     let specs = model.param_specs().to_vec();
     if let Some(s) = specs.iter().find(|s| !s.linear) {
-        return Err(StudyError::Usage(format!(
+        return Err(FitError::Usage(format!(
             "model `{}` has the non-linear parameter `{}`: only all-linear models can be fitted so far",
             model.name(),
             s.name
@@ -57,14 +54,14 @@ pub fn fit_linear(
     }
     let (n, nc, np) = (samples.len(), model.channels(), specs.len());
     if nc != samples.channels() {
-        return Err(StudyError::Usage(format!(
+        return Err(FitError::Usage(format!(
             "model has {nc} channels but `{}` has {}",
             samples.name,
             samples.channels()
         )));
     }
     if n < np / nc.max(1) {
-        return Err(StudyError::Usage(format!(
+        return Err(FitError::Usage(format!(
             "{n} samples are fewer than the {} parameters per channel of `{}`",
             np / nc.max(1),
             model.name()

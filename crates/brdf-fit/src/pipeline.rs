@@ -39,7 +39,7 @@ use brdf_solve::{
 use faer::Mat;
 use serde::Serialize;
 
-use crate::StudyError;
+use crate::FitError;
 
 /// The fitting objective (see `fitting.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -60,7 +60,7 @@ pub enum Objective {
 
 impl Objective {
     /// Parse `ngan|sopp|sopp-unweighted|lafortune|log`.
-    pub fn parse(s: &str) -> Result<Self, StudyError> {
+    pub fn parse(s: &str) -> Result<Self, FitError> {
         Ok(match s {
             "ngan" => Objective::Ngan,
             "sopp" => Objective::Sopp { weighted: true },
@@ -68,7 +68,7 @@ impl Objective {
             "lafortune" => Objective::Lafortune,
             "log" => Objective::Log,
             other => {
-                return Err(StudyError::Usage(format!(
+                return Err(FitError::Usage(format!(
                     "unknown metric `{other}`: ngan, sopp, sopp-unweighted, lafortune or log"
                 )));
             }
@@ -105,7 +105,7 @@ impl Objective {
     }
 
     /// The objective's error of `fitted` (channel-major) on `s`.
-    pub fn error(self, s: &SampleSet, fitted: &[f64]) -> Result<MetricValue, StudyError> {
+    pub fn error(self, s: &SampleSet, fitted: &[f64]) -> Result<MetricValue, FitError> {
         let m = s.values_channel_major();
         let p = s.pairs();
         Ok(match self {
@@ -138,7 +138,7 @@ pub enum Solver {
 
 impl Solver {
     /// Parse `auto|sqp|lm|sopp|ols|irls[:weight]`.
-    pub fn parse(s: &str) -> Result<Self, StudyError> {
+    pub fn parse(s: &str) -> Result<Self, FitError> {
         Ok(match s {
             "auto" => Solver::Auto,
             "sqp" => Solver::Sqp,
@@ -147,9 +147,9 @@ impl Solver {
             "ols" => Solver::Ols,
             "irls" => Solver::Irls(RobustWeight::Bisquare),
             other => match other.strip_prefix("irls:") {
-                Some(w) => Solver::Irls(w.parse().map_err(|e| StudyError::Usage(format!("{e}")))?),
+                Some(w) => Solver::Irls(w.parse().map_err(|e| FitError::Usage(format!("{e}")))?),
                 None => {
-                    return Err(StudyError::Usage(format!(
+                    return Err(FitError::Usage(format!(
                         "unknown solver `{other}`: auto, sqp, lm, sopp, ols, irls or irls:WEIGHT"
                     )));
                 }
@@ -186,20 +186,9 @@ impl Default for FitOptions {
     }
 }
 
-/// One fitted parameter.
-#[derive(Clone, Debug, Serialize)]
-pub struct FittedParam {
-    /// Name as in the model's documentation.
-    pub name: String,
-    /// Value.
-    pub value: f64,
-    /// Standard error (from the Jacobian at the solution), if computable.
-    pub std_error: Option<f64>,
-    /// `lower`/`upper` when on that bound.
-    pub at_bound: Option<&'static str>,
-    /// Whether it was projected out (linear) by the outer solver.
-    pub projected: bool,
-}
+/// One fitted parameter: name, value, standard error, bound status and
+/// whether it was projected out (the saved-model schema's parameter).
+pub type FittedParam = brdf_models::saved_model::SavedParam;
 
 /// What a fit reports.
 #[derive(Clone, Debug, Serialize)]
@@ -241,10 +230,10 @@ pub fn fit(
     model: &mut dyn Parametric,
     data: &SampleSet,
     opts: &FitOptions,
-) -> Result<FitSummary, StudyError> {
+) -> Result<FitSummary, FitError> {
     let t0 = Instant::now();
     if model.channels() != data.channels() {
-        return Err(StudyError::Usage(format!(
+        return Err(FitError::Usage(format!(
             "model `{}` has {} channels, data `{}` has {}",
             model.name(),
             model.channels(),
@@ -255,7 +244,7 @@ pub fn fit(
     let specs = model.param_specs().to_vec();
     let np = specs.len();
     if data.len() * data.channels() <= np {
-        return Err(StudyError::Usage(format!(
+        return Err(FitError::Usage(format!(
             "{} samples x {} channels are not more than the {np} parameters of `{}`",
             data.len(),
             data.channels(),
@@ -283,7 +272,7 @@ pub fn fit(
     } else {
         match opts.solver {
             Solver::Ols | Solver::Irls(_) => {
-                return Err(StudyError::Usage(format!(
+                return Err(FitError::Usage(format!(
                     "--solver ols/irls need an all-linear model; `{}` has the non-linear parameter `{}`",
                     model.name(),
                     specs
@@ -293,7 +282,7 @@ pub fn fit(
                         .unwrap_or("?")
                 )));
             }
-            Solver::Sopp => return Err(StudyError::Usage(
+            Solver::Sopp => return Err(FitError::Usage(
                 "Sopp's two-stage procedure needs a one-channel model for stage 1: use fit_sopp"
                     .into(),
             )),
@@ -325,7 +314,7 @@ pub fn fit_sopp(
     model: &mut dyn Parametric,
     data: &SampleSet,
     opts: &FitOptions,
-) -> Result<FitSummary, StudyError> {
+) -> Result<FitSummary, FitError> {
     let t0 = Instant::now();
     let mean = data.mean_channel();
     let scales = opts.objective.row_scales(&mean);
@@ -381,7 +370,7 @@ pub fn fit_sopp(
 
 /// Box constraints of a model's parameters (open lower ends moved inside by
 /// `1e-9` of the box width).
-pub fn box_constraints(model: &dyn Parametric) -> Result<Constraints, StudyError> {
+pub fn box_constraints(model: &dyn Parametric) -> Result<Constraints, FitError> {
     let specs = model.param_specs();
     let lower = specs
         .iter()
@@ -448,7 +437,7 @@ fn fit_nonlinear(
     values: &[f64],
     scales: &[f64],
     opts: &FitOptions,
-) -> Result<NonlinearFit, StudyError> {
+) -> Result<NonlinearFit, FitError> {
     let full = box_constraints(model)?;
     let log_problem;
     let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
@@ -553,7 +542,7 @@ fn coarse_starts(
     starts: &[Vec<f64>],
     nl_box: &Constraints,
     opts: &FitOptions,
-) -> Result<Vec<Vec<f64>>, StudyError> {
+) -> Result<Vec<Vec<f64>>, FitError> {
     if data.len() <= COARSE_ABOVE {
         return Ok(starts.to_vec());
     }
@@ -595,7 +584,7 @@ pub(crate) fn fit_all_linear(
     data: &SampleSet,
     scales: &[f64],
     solver: Solver,
-) -> Result<(Vec<f64>, String, usize), StudyError> {
+) -> Result<(Vec<f64>, String, usize), FitError> {
     let specs = model.param_specs();
     let (n, nc, np) = (data.len(), model.channels(), specs.len());
     let zero = vec![0.0; np];
@@ -676,7 +665,7 @@ fn summarise(
     rep: Option<SolverReport>,
     starts: (usize, usize, usize),
     t0: Instant,
-) -> Result<FitSummary, StudyError> {
+) -> Result<FitSummary, FitError> {
     let seconds = t0.elapsed().as_secs_f64();
     let n = data.len();
     let mut fitted = vec![0.0; n * model.channels()];
@@ -696,8 +685,8 @@ fn summarise(
             std_error: se.as_ref().map(|v| v[k]).filter(|v| v.is_finite()),
             at_bound: match status[k] {
                 BoundStatus::Free => None,
-                BoundStatus::AtLower => Some("lower"),
-                BoundStatus::AtUpper => Some("upper"),
+                BoundStatus::AtLower => Some("lower".to_string()),
+                BoundStatus::AtUpper => Some("upper".to_string()),
             },
             projected: s.linear && matches!(opts.solver, Solver::Sqp),
         })
@@ -771,7 +760,7 @@ struct LogProblem<'a> {
 }
 
 impl<'a> LogProblem<'a> {
-    fn new(inner: &'a ModelProblem<'a>, data: &SampleSet) -> Result<Self, StudyError> {
+    fn new(inner: &'a ModelProblem<'a>, data: &SampleSet) -> Result<Self, FitError> {
         let n = data.len();
         let values = data.values_channel_major();
         let cos_i: Vec<f64> = (0..values.len()).map(|i| data.pairs().lz[i % n]).collect();

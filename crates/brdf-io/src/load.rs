@@ -1,4 +1,5 @@
-//! Loading a data set named on the command line: `PATH` or `PATH#SAMPLE`
+//! Loading a data set by name, with the format detected: [`load`] gives a
+//! [`SampleSet`] from `PATH` or `PATH#SAMPLE`
 //! (a material inside a multi-material file, e.g. `curet/abrdf.dat#25`),
 //! with the format chosen by the file name:
 //!
@@ -7,7 +8,7 @@
 //! | `abrdf.dat#N` (with `table.txt` beside it) | CUReT | grey |
 //! | `*.brdf` | Cornell (`#y` for luminance) | linear sRGB |
 //! | `*.bsdf` | RGL (resampled onto Sopp's goniometric grid, cell weights) | RGB |
-//! | `*.binary` | MERL (valid bins, solid-angle weights; `#STRIDE` keeps every STRIDE-th bin, default 50) | RGB |
+//! | `*.binary` | MERL (valid bins, solid-angle weights; every valid bin; `#STRIDE` keeps every STRIDE-th) | RGB |
 //! | `*.csv` with a `light_theta_deg` header | Sopp's goniometric grid (cell weights) | RGB |
 //! | other `*.csv` | generic samples | as in the header |
 
@@ -15,18 +16,26 @@ use std::path::{Path, PathBuf};
 
 use brdf_core::{Brdf, SampleSet};
 
-use crate::StudyError;
+use crate::IoError;
 
-/// Split `PATH#SAMPLE`.
+/// Split `PATH#SAMPLE`. A `#` inside a folder or file name stays part of
+/// the path: only a suffix without a path separator splits, and not when
+/// the whole text names an existing file.
 pub fn split_sample(spec: &str) -> (PathBuf, Option<String>) {
+    if Path::new(spec).is_file() {
+        return (PathBuf::from(spec), None);
+    }
     match spec.rsplit_once('#') {
-        Some((p, s)) if !s.is_empty() => (PathBuf::from(p), Some(s.to_string())),
+        Some((p, s)) if !s.is_empty() && !s.contains(['/', '\\']) => {
+            (PathBuf::from(p), Some(s.to_string()))
+        }
         _ => (PathBuf::from(spec), None),
     }
 }
 
 /// The format of a path, by name (and, for CSV, its header).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum Format {
     /// CUReT `abrdf.dat`.
     Curet,
@@ -43,7 +52,7 @@ pub enum Format {
 }
 
 /// Detect the format of `path`.
-pub fn format_of(path: &Path) -> Result<Format, StudyError> {
+pub fn format_of(path: &Path) -> Result<Format, IoError> {
     let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     Ok(match (name, ext) {
@@ -52,8 +61,8 @@ pub fn format_of(path: &Path) -> Result<Format, StudyError> {
         (_, "binary") => Format::Merl,
         (_, "bsdf") => Format::Rgl,
         (_, "csv") => {
-            let text = std::fs::read_to_string(path).map_err(|e| StudyError::Io {
-                path: path.display().to_string(),
+            let text = std::fs::read_to_string(path).map_err(|e| IoError::Io {
+                path: path.to_path_buf(),
                 source: e,
             })?;
             if text.starts_with("light_theta_deg") {
@@ -63,10 +72,10 @@ pub fn format_of(path: &Path) -> Result<Format, StudyError> {
             }
         }
         _ => {
-            return Err(StudyError::Usage(format!(
-                "{}: unknown data format (CUReT abrdf.dat#N, Cornell .brdf, RGL .bsdf, MERL .binary, grid or sample .csv)",
-                path.display()
-            )));
+            return Err(IoError::Unsupported {
+                path: path.to_path_buf(),
+                reason: "unknown data format (CUReT abrdf.dat#N, Cornell .brdf, RGL .bsdf, MERL .binary, grid or sample .csv)".into(),
+            });
         }
     })
 }
@@ -74,57 +83,64 @@ pub fn format_of(path: &Path) -> Result<Format, StudyError> {
 /// A dense data set that can be evaluated at any direction pair (for
 /// resampling and rendering): MERL tables and RGL materials are, scattered
 /// sets are not.
-pub fn load_dense(spec: &str) -> Result<Option<Box<dyn Brdf>>, StudyError> {
+pub fn load_dense(spec: &str) -> Result<Option<Box<dyn Brdf>>, IoError> {
     let (path, _) = split_sample(spec);
     Ok(match format_of(&path)? {
-        Format::Merl => Some(Box::new(brdf_io::merl::read(&path)?)),
-        Format::Rgl => Some(Box::new(brdf_io::rgl::Rgl::read(&path)?)),
+        Format::Merl => Some(Box::new(crate::merl::read(&path)?)),
+        Format::Rgl => Some(Box::new(crate::rgl::Rgl::read(&path)?)),
         _ => None,
     })
 }
 
 /// Load the sample set named by `spec`.
-pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
+pub fn load(spec: &str) -> Result<SampleSet, IoError> {
     let (path, sample) = split_sample(spec);
     match format_of(&path)? {
         Format::Curet => {
             let table = path.parent().unwrap_or(Path::new(".")).join("table.txt");
-            let sets = brdf_io::curet::read_grey(&path, &table)?;
+            let sets = crate::curet::read_grey(&path, &table)?;
             let Some(s) = sample else {
-                return Err(StudyError::Usage(format!(
-                    "{}: name a sample, e.g. {}#25 (CUReT samples 1-61)",
-                    path.display(),
-                    path.display()
-                )));
+                return Err(IoError::Unsupported {
+                    path: path.clone(),
+                    reason: format!(
+                        "name a sample, e.g. {}#25 (CUReT samples 1-61)",
+                        path.display()
+                    ),
+                });
             };
             let prefix = format!("curet#{s} ");
             sets.into_iter()
                 .find(|set| set.name.starts_with(&prefix))
-                .ok_or_else(|| {
-                    StudyError::Usage(format!("{}: no CUReT sample `{s}`", path.display()))
+                .ok_or_else(|| IoError::NoSample {
+                    path: path.clone(),
+                    sample: s.clone(),
+                    reason: "CUReT samples are 1-61".into(),
                 })
         }
         Format::Cornell => {
             let colour = match sample.as_deref() {
-                Some("y") | Some("Y") => brdf_io::cornell::CornellColour::Luminance,
-                None | Some("rgb") => brdf_io::cornell::CornellColour::Rgb,
+                Some("y") | Some("Y") => crate::cornell::CornellColour::Luminance,
+                None | Some("rgb") => crate::cornell::CornellColour::Rgb,
                 Some(other) => {
-                    return Err(StudyError::Usage(format!(
-                        "{}: `#{other}`: use #rgb or #y",
-                        path.display()
-                    )));
+                    return Err(IoError::Unsupported {
+                        path: path.clone(),
+                        reason: format!("`#{other}`: use #rgb or #y"),
+                    });
                 }
             };
-            Ok(brdf_io::cornell::read(&path, colour)?)
+            Ok(crate::cornell::read(&path, colour)?)
         }
         Format::Merl => {
             let stride = match sample.as_deref() {
-                None => 50,
-                Some(s) => s.parse().map_err(|_| {
-                    StudyError::Usage(format!("{}: `#{s}` is not a stride", path.display()))
+                None => 1,
+                Some(s) => s.parse().ok().filter(|k: &usize| *k >= 1).ok_or_else(|| {
+                    IoError::Unsupported {
+                        path: path.clone(),
+                        reason: format!("`#{s}` is not a stride (a whole number >= 1)"),
+                    }
                 })?,
             };
-            let m = brdf_io::merl::read(&path)?;
+            let m = crate::merl::read(&path)?;
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
@@ -132,8 +148,8 @@ pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
             Ok(m.to_samples(&format!("merl#{name}"), stride).0)
         }
         Format::Rgl => {
-            let m = brdf_io::rgl::Rgl::read(&path)?;
-            let g = brdf_io::sopp_grid::SoppGrid::resample(&m);
+            let m = crate::rgl::Rgl::read(&path)?;
+            let g = crate::sopp_grid::SoppGrid::resample(&m);
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
@@ -141,13 +157,13 @@ pub fn load(spec: &str) -> Result<SampleSet, StudyError> {
             Ok(g.to_samples(&format!("rgl#{name}"), 90.0, true))
         }
         Format::SoppGrid => {
-            let g = brdf_io::sopp_grid::read(&path)?;
+            let g = crate::sopp_grid::read(&path)?;
             let name = path
                 .file_stem()
                 .map(|s| s.to_string_lossy().into_owned())
                 .unwrap_or_default();
             Ok(g.to_samples(&format!("grid#{name}"), 90.0, true))
         }
-        Format::Csv => Ok(brdf_io::csv_samples::read(&path)?),
+        Format::Csv => Ok(crate::csv_samples::read(&path)?),
     }
 }

@@ -1,0 +1,53 @@
+//! # brdf-fit
+//!
+//! Fit any analytic BRDF model of [`brdf_models`] to any measured data set
+//! that [`brdf_io`] reads, with no hand-picked start values: the linear
+//! parameters (`kd`, `ks` per channel) are projected out (variable
+//! projection), the bounded solver of [`brdf_solve`] optimises the rest
+//! from deterministic multi-starts, and the result is polished on every
+//! parameter inside its box. Then select the smallest adequate model, and
+//! save the fit in the versioned schema of
+//! [`brdf_models::saved_model`], which a renderer loads with only
+//! `brdf-models` compiled.
+//!
+//! ## Quick start
+//!
+//! ```no_run
+//! use brdf_fit::{Channels, Fit, Objective};
+//! use brdf_models::saved_model::SavedModel;
+//! // Any format brdf-io detects: CUReT `abrdf.dat#N`, Cornell, RGL, MERL, CSV.
+//! let samples = brdf_io::load("rgl/paper_white_rgb.bsdf")?;
+//! let report = Fit::model("Ashikhmin-Shirley")?     // forgiving names
+//!     .objective(Objective::Ngan)
+//!     .limit_deg(80.0)
+//!     .channels(Channels::All)                    // RGB: shared lobe, per-channel kd, ks
+//!     .starts(12)
+//!     .run(&samples)?;
+//! for p in &report.summary.parameters {
+//!     println!("{} = {} {:?}", p.name, p.value, p.at_bound);
+//! }
+//! report.saved_model("rgl/paper_white_rgb.bsdf")?.save("paper.json".as_ref())?;
+//! let model = SavedModel::load_model("paper.json".as_ref())?; // a brdf_core::Brdf
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! | module | what |
+//! | --- | --- |
+//! | [`builder`] | [`Fit`] (the builder) and [`FitReport`] |
+//! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
+//! | [`fit_linear`] | all-linear models by (non-negative) least squares |
+//! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
+//! | [`names`] | forgiving model names with suggestions |
+//! | [`error`] | [`FitError`] |
+
+pub mod builder;
+pub mod error;
+pub mod fit_linear;
+pub mod names;
+pub mod pipeline;
+pub mod select;
+
+pub use builder::{Channels, Fit, FitReport};
+pub use error::FitError;
+pub use names::resolve;
+pub use pipeline::{FitOptions, FitSummary, FittedParam, Objective, Solver};
