@@ -55,7 +55,8 @@ def problem_section(folder):
     rows = res["rust"] + res["scipy_fits"]
     trf = next(r for r in res["scipy_fits"] if r["solver"].startswith("scipy trf (box, default"))
     trf_tight = next((r for r in res["scipy_fits"] if "1e-12" in r["solver"]), None)
-    best = min(r["cost"] for r in rows if r["cost"] == r["cost"])
+    inside = [r["cost"] for r in rows if r["inside_box"] and r["cost"] == r["cost"]]
+    best = min(inside) if inside else float("nan")
     out = [
         f"### {meta['name']}",
         "",
@@ -77,7 +78,7 @@ def problem_section(folder):
         f"(Rust {res['checks']['cost_at_start_rust']:.12e}).",
         "",
         "| solver | time per fit (s) | CPU per fit (s) | runs timed | residual evals | Jacobian evals | passes / Jacobian | "
-        "final cost (shared) | cost / best - 1 | inside box | time / SciPy trf | CPU / SciPy trf | time / SciPy trf 1e-12 | stopped |",
+        "final cost (shared) | cost / best in box - 1 | inside box | time / SciPy trf | CPU / SciPy trf | time / SciPy trf 1e-12 | stopped |",
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | ---: | ---: | --- |",
     ]
     for r in rows:
@@ -101,6 +102,70 @@ def problem_section(folder):
         out.append(f"| {r['solver']} | " + " | ".join(ps) + " |")
     out.append("")
     return out, res
+
+
+def perf_entries(text):
+    """(percent, symbol) of `perf report --stdio --sort symbol` lines."""
+    out = []
+    for line in text.splitlines():
+        m = re.match(r"\s*([0-9.]+)%\s+(\[[.k]\]\s+.*?)(\s+-\s+-)?\s*$", line)
+        if m:
+            out.append((float(m.group(1)), m.group(2)))
+    return out
+
+
+KINDS = [
+    ("kernel (page faults, page zeroing, mapping, scheduling)", r"^\[k\]"),
+    ("model evaluation (brdf-models, exp/log/pow)",
+     r"brdf_models::|brdf_core::brdf::Parametric::eval|ieee754_(exp|log|pow)|^\[\.\] (exp|log|pow)(@|f?$)"),
+    ("dense linear algebra (faer, gemm, pulp)", r"faer|gemm|pulp|equator"),
+    ("memory copy / fill / allocation", r"mem(move|set|cpy)|malloc|free|alloc::|realloc|from_iter|_int_"),
+    ("brdf-solve (solver, problem assembly, NNLS, LSI)", r"brdf_solve::"),
+    ("rayon / threads", r"rayon|crossbeam|futex|pthread"),
+]
+
+
+def buckets(entries):
+    sums = {k: 0.0 for k, _ in KINDS}
+    other = 0.0
+    for pct, sym in entries:
+        for k, rx in KINDS:
+            if re.search(rx, sym):
+                sums[k] += pct
+                break
+        else:
+            other += pct
+    return sorted(sums.items(), key=lambda kv: -kv[1]) + [("other", other)]
+
+
+def targets(d):
+    """The issue-16 targets this harness measures, checked on this run."""
+    def load(name):
+        f = d / name / "python_results.json"
+        return json.loads(f.read_text()) if f.exists() else None
+
+    grey, rgb = load("paper_white_grey_as"), load("paper_white_rgb_as")
+    if not grey:
+        return []
+    out = ["### Targets of issue 16 measured here", "",
+           "| target | Rust path | measured | reached |", "| --- | --- | ---: | --- |"]
+    trf = next(r for r in grey["scipy_fits"] if r["solver"].startswith("scipy trf (box, default"))
+    for r in grey["rust"]:
+        if not r["solver"].startswith("rust"):
+            continue
+        ratio = r["seconds"] / trf["seconds"]
+        ok = ratio <= 0.2 and r["cost"] <= trf["cost"] * (1 + 1e-9) and r["inside_box"]
+        out.append(f"| full-grid grey AS: <= 0.2 x SciPy trf time, cost <= trf's, inside the box | {r['solver']} | "
+                   f"{ratio:.3g} x | {'yes' if ok else 'no'} |")
+    if rgb:
+        for r in rgb["rust"]:
+            g = next((x for x in grey["rust"] if x["solver"] == r["solver"]), None)
+            if g is None or not r["solver"].startswith("rust"):
+                continue
+            ratio = r["seconds"] / g["seconds"]
+            out.append(f"| full-grid RGB AS: <= 3.5 x the grey time | {r['solver']} | {ratio:.3g} x | "
+                       f"{'yes' if ratio <= 3.5 else 'no'} |")
+    return out + [""]
 
 
 def main(argv):
@@ -149,6 +214,8 @@ def main(argv):
         "- SciPy: `least_squares` with the NumPy model and its analytic Jacobian; `trf` inside the box (default "
         "tolerances 1e-8, and 1e-12), `lm` unbounded (MINPACK). The NumPy model is checked against the Rust values "
         "and Jacobian at the start to 1e-10 relative before any fit.",
+        "- `cost / best in box - 1`: against the lowest shared cost reached inside the box in the same table; "
+        "negative for the unbounded solvers that leave the box (a lower cost at parameters the model does not allow).",
         "- Passes: every residual evaluation and every Jacobian evaluation is a pass over all samples; "
         "`passes / Jacobian` = (residual + Jacobian evaluations) / Jacobian evaluations, against the limit of one "
         "fused pass per iteration. For the variable-projection paths one outer Jacobian costs one model "
@@ -175,6 +242,7 @@ def main(argv):
     if res0:
         lines.insert(lines.index("## Commands") - 1,
                      f"- Python {res0['python']}, NumPy {res0['numpy']}, SciPy {res0['scipy']}")
+    lines += targets(d)
     lines += [
         "### Summary: Rust time over SciPy trf (default tolerances) time",
         "",
@@ -192,8 +260,9 @@ def main(argv):
     lines += ["## Where the time goes", ""]
     prof = (d / "profiler.txt").read_text().strip() if (d / "profiler.txt").exists() else "none"
     if prof == "perf":
-        lines.append("`perf record -F 499` (user and kernel samples, self time per symbol, >= 1%) of one fit on "
-                     "`paper_white_grey_as`, the problem export skipped; then `/usr/bin/time` of the same command.")
+        lines.append("`perf record -F 499` (user and kernel samples, self time per symbol) of one run of `peer_fits` "
+                     "on `paper_white_grey_as` with one solver (the problem build "
+                     "included, its export skipped); then `/usr/bin/time` of the same command.")
     else:
         lines.append("perf was not usable here: `valgrind --tool=callgrind` on `curet25_as` (instructions per "
                      "function).")
@@ -206,7 +275,17 @@ def main(argv):
         t = d / f"time_{s}.txt"
         if t.exists():
             lines += [f"Whole process (problem build included): {t.read_text().strip()}", ""]
-        lines += ["```text", scrub(p.read_text().rstrip(), [str(d)]), "```", ""]
+        if prof == "perf":
+            entries = perf_entries(p.read_text())
+            lines += ["Share of the samples by kind (every symbol counted, the problem build included):", "",
+                      "| kind | share |", "| --- | ---: |"]
+            for kind, share in buckets(entries):
+                lines.append(f"| {kind} | {share:.1f}% |")
+            lines += ["", "Top symbols (self time):", "", "```text"]
+            lines += [f"{pct:6.2f}%  {scrub(sym, [str(d)])}" for pct, sym in entries[:25]]
+            lines += ["```", ""]
+        else:
+            lines += ["```text", scrub(p.read_text().rstrip(), [str(d)]), "```", ""]
     print("\n".join(lines))
 
 

@@ -76,7 +76,7 @@ if perf record -q -o "$out/perf.data" -- true >/dev/null 2>&1; then
 		echo "perf record -F 499 -- peer_fits --only paper_white_grey_as --no-export --solvers $s" >>"$out/commands.txt"
 		perf record -q -F 499 -o "$out/perf_$s.data" -- "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null 2>&1
 		perf report -i "$out/perf_$s.data" --stdio --no-children --sort symbol \
-			--percent-limit 1 2>/dev/null | grep -v '^#' | grep -v '^$' | head -25 >"$out/profile_$s.txt"
+			2>/dev/null | grep -v '^#' | grep -v '^$' >"$out/profile_$s.txt"
 		/usr/bin/time -f "%e s elapsed, %U s user, %S s system, %F major + %R minor page faults, %M KiB max RSS" \
 			-o "$out/time_$s.txt" "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null
 	done
