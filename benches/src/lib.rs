@@ -21,3 +21,5 @@ pub fn fixed_pairs(n: usize) -> DirPairs {
     }
     p
 }
+
+pub mod peers;

@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# Regenerate results/performance.md: the peer comparison of issue 16.
+#
+#   BRDF_DATA=... benches/peers/run.sh
+#
+# 1. a Python venv OUTSIDE the repository ($PEERS_VENV, default
+#    /work/venvs/peers) with benches/peers/requirements.txt;
+# 2. peer_fits (release): builds the problems, exports them to the scratch
+#    folder ($PEERS_OUT, default $CARGO_TARGET_DIR/peers or target/peers)
+#    and fits them with the Rust solvers;
+# 3. peers.py: checks the NumPy model against Rust's, fits with SciPy
+#    (trf in the box, lm unbounded) and evaluates the one shared cost at
+#    every solver's result;
+# 4. statsmodels IRLS timing (benches/peers/irls_*.py), if present;
+# 5. profiles of the full-grid grey fit (perf, else callgrind on CUReT);
+# 6. report.py writes results/performance.md.
+set -euo pipefail
+
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+: "${BRDF_DATA:?set BRDF_DATA to the measured data folder}"
+venv="${PEERS_VENV:-/work/venvs/peers}"
+case "$(realpath -m "$venv")/" in
+"$repo"/*)
+	echo "run.sh: PEERS_VENV ($venv) must lie outside the repository" >&2
+	exit 1
+	;;
+esac
+target="${CARGO_TARGET_DIR:-$repo/target}"
+# Threads of both sides: rayon (faer inside our solvers) and the BLAS under
+# NumPy. One by default: the machine is shared, and on a busy machine faer's
+# thread pool stalls at its barriers (issue 16). PEERS_THREADS=default
+# leaves every library its own default.
+threads="${PEERS_THREADS:-1}"
+if [ "$threads" != default ]; then
+	export RAYON_NUM_THREADS="$threads" OPENBLAS_NUM_THREADS="$threads" OMP_NUM_THREADS="$threads" MKL_NUM_THREADS="$threads"
+fi
+out="${PEERS_OUT:-$target/peers}"
+mkdir -p "$out"
+cd "$repo"
+
+if [ ! -x "$venv/bin/python" ]; then
+	python3 -m venv "$venv"
+fi
+"$venv/bin/pip" install -q -r benches/peers/requirements.txt
+py="$venv/bin/python"
+
+{
+	echo 'cargo build --release -p brdf-benches --bin peer_fits'
+	echo 'peer_fits --out $PEERS_OUT'
+	echo 'python benches/peers/peers.py $PEERS_OUT'
+} >"$out/commands.txt"
+
+uptime >"$out/load_before.txt"
+echo "$threads" >"$out/threads.txt"
+cargo build --release -p brdf-benches --bin peer_fits
+bin="$target/release/peer_fits"
+"$bin" --out "$out" | tee "$out/rust.log"
+"$py" benches/peers/peers.py "$out" | tee "$out/python.log"
+
+# statsmodels IRLS timing, written by another part of issue 16.
+rm -f "$out/irls.log"
+for s in benches/peers/irls_*.py; do
+	[ -f "$s" ] || continue
+	echo "python $s" >>"$out/commands.txt"
+	if ! "$py" "$s" >>"$out/irls.log" 2>&1; then
+		echo "($s failed; its output is above)" >>"$out/irls.log"
+	fi
+done
+
+# Where the time goes: a flat profile (self time per function) of the two
+# Rust paths on the full-grid grey problem.
+rm -f "$out"/profile_*.txt
+profile_cmd=(--out "$out" --only paper_white_grey_as --no-export)
+if perf record -q -o "$out/perf.data" -- true >/dev/null 2>&1; then
+	for s in bounded varpro; do
+		echo "perf record -F 499 -- peer_fits --only paper_white_grey_as --no-export --solvers $s" >>"$out/commands.txt"
+		perf record -q -F 499 -o "$out/perf_$s.data" -- "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null 2>&1
+		perf report -i "$out/perf_$s.data" --stdio --no-children --sort symbol \
+			2>/dev/null | grep -v '^#' | grep -v '^$' >"$out/profile_$s.txt"
+		/usr/bin/time -f "%e s elapsed, %U s user, %S s system, %F major + %R minor page faults, %M KiB max RSS" \
+			-o "$out/time_$s.txt" "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null
+	done
+	echo perf >"$out/profiler.txt"
+else
+	for s in bounded varpro; do
+		echo "valgrind --tool=callgrind -- peer_fits --only curet25_as --no-export --solvers $s" >>"$out/commands.txt"
+		valgrind --tool=callgrind --callgrind-out-file="$out/callgrind_$s.out" \
+			"$bin" --out "$out" --only curet25_as --no-export --solvers "$s" >/dev/null 2>&1
+		callgrind_annotate "$out/callgrind_$s.out" 2>/dev/null | head -40 >"$out/profile_$s.txt"
+	done
+	echo callgrind >"$out/profiler.txt"
+fi
+# Optional: the full-grid grey bounded fit with the libraries' default
+# thread counts, against the same fit on one thread (minutes on a busy
+# machine).
+rm -f "$out/thread_check.txt"
+if [ "${PEERS_THREAD_CHECK:-0}" = 1 ]; then
+	echo "peer_fits --only paper_white_grey_as --no-export --solvers bounded   # RAYON_NUM_THREADS=1, then unset" >>"$out/commands.txt"
+	for t in 1 default; do
+		if [ "$t" = 1 ]; then
+			line=$(RAYON_NUM_THREADS=1 "$bin" --out "$out" --only paper_white_grey_as --no-export --solvers bounded | tail -1)
+		else
+			line=$(env -u RAYON_NUM_THREADS "$bin" --out "$out" --only paper_white_grey_as --no-export --solvers bounded | tail -1)
+		fi
+		echo "rayon threads $t: $line" >>"$out/thread_check.txt"
+	done
+fi
+uptime >"$out/load_after.txt"
+
+echo 'python benches/peers/report.py $PEERS_OUT > results/performance.md' >>"$out/commands.txt"
+"$py" benches/peers/report.py "$out" >results/performance.md
+echo "wrote results/performance.md"
