@@ -32,7 +32,7 @@
 //! ## Crate features
 //!
 //! - `serde`: serialize sample sets, parameter specs and angles.
-//! - `proptest-support`: proptest strategies for directions ([`proptest`]).
+//! - `proptest-support`: proptest strategies for directions (module `proptest`).
 
 pub mod brdf;
 pub mod direction;

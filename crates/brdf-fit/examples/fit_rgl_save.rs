@@ -9,9 +9,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("BRDF_DATA is not set: skipped (it names the folder with rgl/)");
         return Ok(());
     };
-    let out = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| std::env::temp_dir().join("paper_white_as.json").display().to_string());
+    let out = std::env::args().nth(1).unwrap_or_else(|| {
+        std::env::temp_dir()
+            .join("paper_white_as.json")
+            .display()
+            .to_string()
+    });
     let samples = brdf_io::load(&format!("{root}/rgl/paper_white_rgb.bsdf"))?;
     let report = Fit::model("ashikhmin_shirley")?.starts(12).run(&samples)?;
     println!(

@@ -21,10 +21,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             SavedModel::from_json(text, "built-in example")?.build()?
         }
     };
-    let out = args
-        .get(1)
-        .cloned()
-        .unwrap_or_else(|| std::env::temp_dir().join("sphere.ppm").display().to_string());
+    let out = args.get(1).cloned().unwrap_or_else(|| {
+        std::env::temp_dir()
+            .join("sphere.ppm")
+            .display()
+            .to_string()
+    });
     let size = 128;
     let light = Vector3::new(0.4, 0.3, 1.0).normalize();
     let view = Vector3::z();

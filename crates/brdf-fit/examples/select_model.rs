@@ -17,7 +17,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (rows, chosen) = select(&samples, 0.05, &FitOptions::default())?;
     for (k, r) in rows.iter().enumerate() {
         let mark = if k == chosen { "  <- chosen" } else { "" };
-        println!("{:<28} {:>3} numbers  L2 {:.5}{mark}", r.label, r.stored_numbers, r.error);
+        println!(
+            "{:<28} {:>3} numbers  L2 {:.5}{mark}",
+            r.label, r.stored_numbers, r.error
+        );
     }
     Ok(())
 }

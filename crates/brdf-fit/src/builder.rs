@@ -25,7 +25,7 @@ use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Channels {
     /// Every channel of the data, shared non-linear and per-channel linear
-    /// parameters [default].
+    /// parameters (default).
     #[default]
     All,
     /// The mean of the channels (one grey channel).
@@ -83,49 +83,49 @@ impl Fit {
         }
     }
 
-    /// Objective and metric [Ngan].
+    /// Objective and metric (default Ngan).
     pub fn objective(mut self, objective: Objective) -> Self {
         self.options.objective = objective;
         self
     }
 
-    /// Solver [Auto].
+    /// Solver (default Auto).
     pub fn solver(mut self, solver: Solver) -> Self {
         self.options.solver = solver;
         self
     }
 
-    /// Multi-start count [12]; 0 is refused by [`Fit::run`].
+    /// Multi-start count (default 12); 0 is refused by [`Fit::run`].
     pub fn starts(mut self, starts: usize) -> Self {
         self.options.starts = starts;
         self
     }
 
-    /// Angle limit in degrees, in `(0, 90]` [80].
+    /// Angle limit in degrees, in `(0, 90]` (default 80).
     pub fn limit_deg(mut self, limit: f64) -> Self {
         self.limit_deg = limit;
         self
     }
 
-    /// Channels [All].
+    /// Channels (default All).
     pub fn channels(mut self, channels: Channels) -> Self {
         self.channels = channels;
         self
     }
 
-    /// Specular lobes (Lafortune, Cook-Torrance) [1].
+    /// Specular lobes (Lafortune, Cook-Torrance) (default 1).
     pub fn lobes(mut self, lobes: usize) -> Self {
         self.config.lobes = lobes;
         self
     }
 
-    /// Koenderink order [8].
+    /// Koenderink order (default 8).
     pub fn order(mut self, order: usize) -> Self {
         self.config.order = order;
         self
     }
 
-    /// Kurt's polynomial degree [7].
+    /// Kurt's polynomial degree (default 7).
     pub fn degree(mut self, degree: usize) -> Self {
         self.config.degree = degree;
         self

@@ -161,11 +161,11 @@ impl Solver {
 /// Options of [`fit`].
 #[derive(Clone, Debug)]
 pub struct FitOptions {
-    /// Objective [Ngan].
+    /// Objective (default Ngan).
     pub objective: Objective,
-    /// Solver [Auto].
+    /// Solver (default Auto).
     pub solver: Solver,
-    /// Multi-start count [12].
+    /// Multi-start count (default 12).
     pub starts: usize,
     /// Solver options of the non-linear stages.
     pub lm: LmOptions,

@@ -16,7 +16,7 @@
 //! | [`rgl`] | RGL `.bsdf` tensor files, evaluated through the inverse VNDF warp | Dupuy & Jakob 2018 | 1/sr | out-of-gamut values clamped at 0 (as the authors) |
 //! | [`nist`] | NIST StRD non-linear regression `.dat` | NIST ITL | - | - |
 //!
-//! [`load`] detects the format by name (`PATH` or `PATH#SAMPLE`, see
+//! [`load`](fn@load) detects the format by name (`PATH` or `PATH#SAMPLE`, see
 //! [`load::Format`]) and returns the sample set; [`load_dense`] gives an
 //! evaluable BRDF for the dense formats (MERL, RGL).
 //!

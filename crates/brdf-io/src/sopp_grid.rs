@@ -164,7 +164,7 @@ pub fn write(path: &Path, g: &SoppGrid) -> Result<(), IoError> {
     })
 }
 
-/// Read a grid written by [`write`] (every node exactly once, in any order).
+/// Read a grid written by [`write`](fn@write) (every node exactly once, in any order).
 pub fn read(path: &Path) -> Result<SoppGrid, IoError> {
     let text = std::fs::read_to_string(path).map_err(|source| IoError::Io {
         path: path.to_path_buf(),

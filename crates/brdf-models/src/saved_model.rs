@@ -98,13 +98,13 @@ pub enum SavedModelError {
 pub struct Structure {
     /// Colour channels.
     pub channels: usize,
-    /// Specular lobes [1].
+    /// Specular lobes (default 1).
     #[serde(default = "one")]
     pub lobes: usize,
-    /// Koenderink order [8].
+    /// Koenderink order (default 8).
     #[serde(default = "eight")]
     pub order: usize,
-    /// Polynomial degree [7].
+    /// Polynomial degree (default 7).
     #[serde(default = "seven")]
     pub degree: usize,
 }

@@ -1,13 +1,13 @@
 //! The bounded solver in the SQP family (Ngan and Kurt fitted with MATLAB's
 //! constrained SQP): every iteration solves the damped Gauss-Newton model of
 //! `1/2 ||r||^2` as a quadratic programme with the box and the linear
-//! inequalities as constraints (an LSI problem, [`crate::lsi`], solved exactly
+//! inequalities as constraints (an LSI problem, [`crate::lsi`](fn@crate::lsi), solved exactly
 //! by the Lawson-Hanson LDP/NNLS reduction), and accepts the step on the cost
 //! as merit function with Levenberg-Marquardt control of the damping. The
 //! iterates never leave the feasible set; the report says which parameters
 //! sit on a bound.
 //!
-//! The options are [`LmOptions`](crate::LmOptions); the stopping gradient is
+//! The options are [`crate::LmOptions`]; the stopping gradient is
 //! the projected one (components pushing against an active bound removed).
 
 use crate::SolveError;

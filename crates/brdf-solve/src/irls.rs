@@ -8,7 +8,7 @@
 //! 3. Loop: `r = y - X b`; `r_adj = r / sqrt(1 - h)`; scale `s`;
 //!    `u = r_adj / (tune s)`; `w = psi_weight(u)`; `b` = weighted least
 //!    squares with `w`. Stop when every
-//!    `|b - b_old| <= sqrt(eps) max(|b|, |b_old|)` or after the cap [50].
+//!    `|b - b_old| <= sqrt(eps) max(|b|, |b_old|)` or after the cap (default 50).
 //!
 //! Scale conventions ([`ScaleConvention`]); `a` = `|r_adj|` sorted with the
 //! `p - 1` smallest dropped (`p` = number of coefficients):
@@ -59,13 +59,13 @@ impl ScaleConvention {
 /// Options of [`irls`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct IrlsOptions {
-    /// Weight function [bisquare].
+    /// Weight function (default bisquare).
     pub weight: RobustWeight,
     /// Tuning constant; `None` uses the weight function's default.
     pub tune: Option<f64>,
-    /// Scale convention [Matlab2004].
+    /// Scale convention (default Matlab2004).
     pub scale: ScaleConvention,
-    /// Iteration cap [50].
+    /// Iteration cap (default 50).
     pub max_iterations: usize,
 }
 

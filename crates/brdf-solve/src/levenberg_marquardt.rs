@@ -9,7 +9,7 @@
 //! (faer). `[J | r]` is factored once per Jacobian ([`crate::tall_qr`]), so
 //! each trial damping solves only the `2n x n` system `[R; sqrt(lambda) D]
 //! d = [-Q^T r; 0]`, whatever the number of residuals. With constraints the same stacked problem is solved as a
-//! least-squares problem with linear inequalities ([`crate::lsi`]) so every
+//! least-squares problem with linear inequalities ([`crate::lsi`](fn@crate::lsi)) so every
 //! iterate stays feasible.
 //!
 //! Scaling `D`: Marquardt's `D^2 = diag(J^T J)`, with MINPACK's rule of
@@ -73,9 +73,9 @@ pub enum Scaling {
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LmOptions {
-    /// Iteration cap [1000].
+    /// Iteration cap (default 1000).
     pub max_iterations: usize,
-    /// Residual-evaluation cap [10000].
+    /// Residual-evaluation cap (default 10000).
     pub max_evaluations: usize,
     /// Relative cost-reduction tolerance [1e-15].
     pub ftol: f64,
@@ -83,14 +83,14 @@ pub struct LmOptions {
     pub xtol: f64,
     /// Scaled gradient tolerance [1e-15].
     pub gtol: f64,
-    /// Damping schedule [Nielsen].
+    /// Damping schedule (default Nielsen).
     pub damping: Damping,
-    /// Scaling [Marquardt].
+    /// Scaling (default Marquardt).
     pub scaling: Scaling,
     /// Initial damping; `None` uses `1e-3` (times `max diag(J^T J)` with the
     /// identity scaling).
     pub initial_damping: Option<f64>,
-    /// Geodesic acceleration (unconstrained problems only) [false].
+    /// Geodesic acceleration (unconstrained problems only) (default false).
     pub geodesic_acceleration: bool,
 }
 

@@ -7,19 +7,19 @@
 //! | module | what |
 //! | --- | --- |
 //! | [`linear`] | dense (weighted) least squares: pivoted QR with a rank report, SVD, normal equations as an option; leverages |
-//! | [`nnls`] | Lawson-Hanson non-negative least squares |
-//! | [`lsi`] | least squares with linear inequality constraints (LDP through NNLS) |
+//! | [`nnls`](mod@nnls) | Lawson-Hanson non-negative least squares |
+//! | [`lsi`](mod@lsi) | least squares with linear inequality constraints (LDP through NNLS) |
 //! | [`robust_weights`] | the eight robust weight functions with their tuning constants |
-//! | [`irls`] | robust regression by IRLS (MATLAB `robustfit`; three scale conventions) |
+//! | [`irls`](mod@irls) | robust regression by IRLS (MATLAB `robustfit`; three scale conventions) |
 //! | [`problem`] | [`LeastSquaresProblem`]: what a non-linear solver needs from a problem |
-//! | [`levenberg_marquardt`] | Levenberg-Marquardt: stacked-QR steps, Marquardt scaling, Nielsen's or Sopp's damping, geodesic acceleration |
+//! | [`levenberg_marquardt`](mod@levenberg_marquardt) | Levenberg-Marquardt: stacked-QR steps, Marquardt scaling, Nielsen's or Sopp's damping, geodesic acceleration |
 //! | [`covariance`] | parameter covariance and standard errors (SVD of `J`) |
 //! | [`constraints`] | box bounds and linear inequalities |
 //! | [`bounded`] | the bounded SQP-style solver (LSI subproblem per iteration) |
 //! | [`report`] | [`SolverReport`], [`Termination`], [`BoundStatus`] |
 //! | [`varpro`] | variable projection: linear coefficients (NNLS) projected out, Golub-Pereyra Jacobian |
 //! | [`model_problem`] | least-squares problems from any `Parametric` model and samples (full and separable) |
-//! | [`multistart`] | deterministic Halton multi-start, best result and spread |
+//! | [`multistart`](mod@multistart) | deterministic Halton multi-start, best result and spread |
 //! | [`tall_qr`] | the triangular factor of tall, skinny matrices (row-block TSQR on faer's kernels) |
 //! | [`scratch`] | reusable buffers for problems shared between threads |
 //! | [`strd`] | the 27 NIST StRD model functions with analytic gradients, LRE |

@@ -43,7 +43,7 @@ pub trait SeparableProblem {
     fn n_linear(&self) -> usize;
     /// Number of rows of `Phi` (rows per block).
     fn n_rows(&self) -> usize;
-    /// Number of right-hand sides sharing `Phi` [1].
+    /// Number of right-hand sides sharing `Phi` (default 1).
     fn n_blocks(&self) -> usize {
         1
     }
@@ -98,7 +98,7 @@ impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
     /// `lower <= c <= upper` (one entry per coefficient of every block;
     /// infinite ends impose nothing; with `nonneg` the lower ends are at
     /// least 0), by least squares with inequality constraints
-    /// ([`crate::lsi`]) on each block's reduced triangle. For a stage that
+    /// ([`crate::lsi`](fn@crate::lsi)) on each block's reduced triangle. For a stage that
     /// fixes `a` and must return coefficients inside the model's box, which
     /// NNLS alone does not guarantee (it knows no upper bounds).
     pub fn linear_coefficients_in_box(

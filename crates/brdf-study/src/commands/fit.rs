@@ -30,7 +30,7 @@ pub struct FitArgs {
     /// Solver: auto (default: IRLS bisquare for the polynomial, direct least
     /// squares for other linear models, sqp otherwise), sqp (linear
     /// parameters projected out), lm, sopp (Sopp's two stages), ols or
-    /// irls[:WEIGHT] (all-linear models).
+    /// irls or irls:WEIGHT (all-linear models).
     #[arg(long, default_value = "auto")]
     pub solver: String,
     /// Multi-start count.
