@@ -24,6 +24,8 @@ pub enum Command {
     Fit(crate::commands::fit::FitArgs),
     /// Certify the solver on the NIST StRD non-linear regression problems.
     Nist(crate::commands::nist::NistArgs),
+    /// Fit every material x model of a database (resumable, shardable).
+    Batch(crate::commands::batch::BatchArgs),
     /// Fit the candidate models and choose the smallest adequate one.
     Select(crate::commands::select::SelectArgs),
     /// Describe a data file: format, samples, channels, invalid values, ranges.

@@ -13,6 +13,7 @@ fn run() -> Result<(), StudyError> {
         Command::Models(a) => commands::models::run(&a),
         Command::Eval(a) => commands::eval::run(&a),
         Command::Fit(a) => commands::fit::run(&a),
+        Command::Batch(a) => commands::batch::run(&a),
         Command::Nist(a) => commands::nist::run(&a),
         Command::Select(a) => commands::select::run(&a),
         Command::Info(a) => commands::info::run(&a),

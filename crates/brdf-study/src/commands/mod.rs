@@ -39,6 +39,7 @@ macro_rules! say_raw {
     };
 }
 
+pub mod batch;
 pub mod eval;
 pub mod fit;
 pub mod info;
