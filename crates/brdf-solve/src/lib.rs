@@ -52,7 +52,7 @@ pub mod varpro;
 pub use bounded::bounded_least_squares;
 pub use constraints::Constraints;
 pub use error::SolveError;
-pub use irls::{IrlsOptions, IrlsSolution, ScaleConvention, irls};
+pub use irls::{IrlsOptions, IrlsSolution, IrlsTermination, ScaleConvention, StoppingTest, irls};
 pub use levenberg_marquardt::{Damping, LmOptions, Scaling, levenberg_marquardt};
 pub use linear::{LstsqMethod, LstsqSolution, lstsq};
 pub use lsi::lsi;

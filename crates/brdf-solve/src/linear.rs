@@ -221,17 +221,31 @@ fn svd_solve(a: &Mat<f64>, b: &Mat<f64>, tol: f64) -> Result<(Mat<f64>, usize, f
     ))
 }
 
-/// Leverages `h_i = [A (A^T A)^+ A^T]_ii = ||Q_i||^2` of the rows of `A`, from
-/// the thin Q of its QR factorisation (used by robust regression).
+/// Leverages `h_i = [A (A^T A)^+ A^T]_ii = ||Q_i||^2` of the rows of `A`
+/// (used by robust regression): `Q` = the first `rank` columns of the thin Q
+/// of the column-pivoted QR, the numerical rank counted as in [`lstsq`]
+/// (`|R_kk| > max(m, n) eps |R_00|`), so that a rank-deficient design gets
+/// the leverages of its column space (summing to the rank, as MATLAB's
+/// `robustfit` computes them from its pivoted QR).
 pub fn leverages(a: MatRef<'_, f64>) -> Result<Vec<f64>, SolveError> {
-    if a.nrows() == 0 || a.ncols() == 0 {
+    let (m, n) = (a.nrows(), a.ncols());
+    if m == 0 || n == 0 {
         return Err(SolveError::Empty {
             what: "design matrix",
         });
     }
     check_finite("A", a)?;
-    let q = a.to_owned().qr().compute_thin_Q();
-    Ok((0..a.nrows())
-        .map(|i| (0..q.ncols()).map(|j| q[(i, j)] * q[(i, j)]).sum())
-        .collect())
+    let qr = a.to_owned().col_piv_qr();
+    let r = qr.thin_R();
+    let tol = (m.max(n) as f64) * f64::EPSILON * r[(0, 0)].abs();
+    let rank = (0..m.min(n)).filter(|&k| r[(k, k)].abs() > tol).count();
+    let q = qr.compute_thin_Q();
+    let mut h = vec![0.0; m];
+    for j in 0..rank {
+        let col = q.col(j);
+        for (i, hi) in h.iter_mut().enumerate() {
+            *hi += col[i] * col[i];
+        }
+    }
+    Ok(h)
 }

@@ -14,6 +14,22 @@
 //! | welsch | `exp(-u^2)` | 2.985 |
 //!
 //! `sin(u)/u` and `tanh(u)/u` take their limit 1 at `u = 0`.
+//!
+//! Each weight has its loss `rho(u) = int_0^u t w(t) dt` ([`RobustWeight::rho`],
+//! so that `rho'(u) = psi(u) = u w(u)` and `rho(u) ~ u^2 / 2` at 0): the
+//! objective IRLS decreases at a fixed scale, and (times `tune^2`) the
+//! deviance statsmodels' stopping test watches.
+//!
+//! | weight | rho(u) |
+//! | --- | --- |
+//! | andrews | `1 - cos(u)` for `abs(u) < pi`, else 2 |
+//! | bisquare | `(1 - (1 - u^2)^3) / 6` for `abs(u) < 1`, else 1/6 |
+//! | cauchy | `ln(1 + u^2) / 2` |
+//! | fair | `abs(u) - ln(1 + abs(u))` |
+//! | huber | `u^2 / 2` for `abs(u) <= 1`, else `abs(u) - 1/2` |
+//! | logistic | `ln(cosh(u))` |
+//! | talwar | `min(u^2, 1) / 2` |
+//! | welsch | `(1 - exp(-u^2)) / 2` |
 
 use std::f64::consts::PI;
 
@@ -110,6 +126,58 @@ impl RobustWeight {
                 }
             }
             RobustWeight::Welsch => (-u * u).exp(),
+        }
+    }
+
+    /// The loss `rho(u) = int_0^u t w(t) dt` (a NaN or infinite `u` gives the
+    /// loss's supremum, infinity where it is unbounded).
+    pub fn rho(self, u: f64) -> f64 {
+        let a = u.abs();
+        if !a.is_finite() {
+            return match self {
+                RobustWeight::Andrews => 2.0,
+                RobustWeight::Bisquare => 1.0 / 6.0,
+                RobustWeight::Talwar | RobustWeight::Welsch => 0.5,
+                _ => f64::INFINITY,
+            };
+        }
+        // Forms without cancellation at small |u| (the objective sums many
+        // small losses): 1 - cos a = 2 sin^2(a/2), 1 - t^3 = a^2 (1 + t + t^2),
+        // cosh a - 1 = 2 sinh^2(a/2).
+        match self {
+            RobustWeight::Andrews => {
+                if a < PI {
+                    2.0 * (0.5 * a).sin().powi(2)
+                } else {
+                    2.0
+                }
+            }
+            RobustWeight::Bisquare => {
+                if a < 1.0 {
+                    let t = 1.0 - a * a;
+                    a * a * (1.0 + t + t * t) / 6.0
+                } else {
+                    1.0 / 6.0
+                }
+            }
+            RobustWeight::Cauchy => 0.5 * (a * a).ln_1p(),
+            RobustWeight::Fair => a - a.ln_1p(),
+            RobustWeight::Huber => {
+                if a <= 1.0 {
+                    0.5 * a * a
+                } else {
+                    a - 0.5
+                }
+            }
+            RobustWeight::Logistic => {
+                if a < 20.0 {
+                    (2.0 * (0.5 * a).sinh().powi(2)).ln_1p()
+                } else {
+                    a + (-2.0 * a).exp().ln_1p() - std::f64::consts::LN_2
+                }
+            }
+            RobustWeight::Talwar => 0.5 * (a * a).min(1.0),
+            RobustWeight::Welsch => -0.5 * (-a * a).exp_m1(),
         }
     }
 
