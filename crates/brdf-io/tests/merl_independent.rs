@@ -8,10 +8,13 @@
 use brdf_io::merl::{self, BINS};
 use nalgebra::Vector3;
 
+/// `(L, V, flat index, expected RGB or None when invalid)`.
+type Query = (Vector3<f64>, Vector3<f64>, usize, Option<[f64; 3]>);
+
 struct Known {
     background: [f64; 3],
     bins: Vec<(usize, [f64; 3])>,
-    queries: Vec<(Vector3<f64>, Vector3<f64>, usize, Option<[f64; 3]>)>,
+    queries: Vec<Query>,
 }
 
 fn nums(f: &[&str]) -> Vec<f64> {

@@ -11,7 +11,12 @@ use nalgebra::Vector3;
 /// `(il, it, ip)`, `L`, `V`: by hand, `L = (-sin 5il, 0, cos 5il)`,
 /// `V = (sin t cos p, sin t sin p, cos t)` with `t = 2.5 it`, `p = ip 180/35`
 /// (degrees), evaluated on a calculator.
-const NODES: [((usize, usize, usize), [f64; 3], [f64; 3]); 6] = [
+/// `((il, it, ip), L, V)`.
+type Node = ((usize, usize, usize), [f64; 3], [f64; 3]);
+
+// The literals are the hand-computed values, 1/sqrt(2) included.
+#[allow(clippy::approx_constant)]
+const NODES: [Node; 6] = [
     ((0, 0, 0), [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]),
     (
         (2, 4, 7),

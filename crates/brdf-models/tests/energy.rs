@@ -407,8 +407,14 @@ fn plausible_samples() -> (brdf_core::DirPairs, Vec<f64>) {
                 (j as f64 + 0.5) / 30.0,
                 (0.414 * (i * 30 + j) as f64).fract(),
             ];
-            let l = spherical_to_cartesian(u[0].sqrt() * 80f64.to_radians(), 6.283 * u[1]);
-            let v = spherical_to_cartesian(w[0].sqrt() * 80f64.to_radians(), 6.283 * w[1]);
+            let l = spherical_to_cartesian(
+                u[0].sqrt() * 80f64.to_radians(),
+                std::f64::consts::TAU * u[1],
+            );
+            let v = spherical_to_cartesian(
+                w[0].sqrt() * 80f64.to_radians(),
+                std::f64::consts::TAU * w[1],
+            );
             on.eval(&l, &v, &mut a);
             ph.eval(&l, &v, &mut b);
             pairs.push(&l, &v);

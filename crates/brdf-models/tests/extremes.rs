@@ -46,7 +46,10 @@ fn half_pair(delta: f64) -> (Vector3<f64>, Vector3<f64>) {
 
 /// `(model, lobes, parameter overrides by name)`: every other parameter at
 /// its default.
-fn cases() -> Vec<(&'static str, usize, Vec<(&'static str, f64)>)> {
+/// `(model, lobes, parameter overrides)`.
+type Case = (&'static str, usize, Vec<(&'static str, f64)>);
+
+fn cases() -> Vec<Case> {
     let mut v = Vec::new();
     for n in [1e6, 5e5] {
         v.push(("phong", 1, vec![("n", n)]));
