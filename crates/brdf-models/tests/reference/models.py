@@ -3,7 +3,15 @@ spec/models.md written out again in plain Python (angles and explicit
 vectors, no shared code with the Rust implementation), evaluated at fixed
 direction pairs including the pole and within 1e-6 rad of the horizon.
 
-Run: python3 models.py > models.json   (standard library only)
+Beyond the one-channel cases it covers: Koenderink's Zernike basis of
+orders 2, 4 and 8 at pairs with phi_i != 0 (enumerated from the formula of
+spec/models.md, radial polynomials by the factorial sum); Kurt's polynomial
+(features W1 = ux vx + uy vy, W2 = uz vz and X1..X3, PCA over a fixed
+training set with numpy's eigh, scores, design rows and values at new pairs,
+degrees 1, 3 and 7); two-lobe Lafortune and Cook-Torrance; three-channel
+models; F0 = 0.999; pairs on and below the horizon (value 0).
+
+Run: python3 models.py > models.json   (needs numpy for the PCA only)
 """
 import json
 import math
@@ -186,9 +194,230 @@ MODELS = [
      * ashikhmin(l, v, 0.2, 0.5, 40.0, 40.0, 0.0, False, fresnel_on=False)),
 ]
 
-out = []
+# ---------------------------------------------------------------------------
+# Per-channel cases: every model value is a list, one entry per channel.
+# kd and ks are per channel; all other parameters are shared (models.md).
+
+PAIRS_EXTRA = [(35, 120, 55, 250), (80, 300, 40, 60), (20, 200, 75, 190)]
+BELOW = [
+    ([0.6, 0.0, -0.8], [0.0, 0.6, 0.8]),
+    ([0.0, 0.6, 0.8], [0.8, 0.0, -0.6]),
+    ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+    ([0.0, 0.0, 1.0], [0.0, -1.0, 0.0]),
+]
+
+
+def split(params, nc):
+    return params[:nc], params[nc:]
+
+
+def per_channel(kd, f_of_kd_ks, ks=None):
+    return [f_of_kd_ks(kd[c], None if ks is None else ks[c]) for c in range(len(kd))]
+
+
+def lobes_model(name, nc, nlobes, per_lobe, make):
+    """Parameters kd[nc], then per lobe ks[nc] and `per_lobe` shape values."""
+    def f(params, l, v):
+        kd = params[:nc]
+        lobes = []
+        for k in range(nlobes):
+            b = nc + k * (nc + per_lobe)
+            lobes.append((params[b:b + nc], params[b + nc:b + nc + per_lobe]))
+        return [make(l, v, kd[c], [(ks[c], q) for ks, q in lobes]) for c in range(nc)]
+    return f
+
+
+def laf(l, v, kd, lobes):
+    out = []
+    for ks, q in lobes:
+        if len(q) == 3:
+            cxy, cz, n = q
+            out.append((ks, cxy, cxy, cz, n))
+        else:
+            cx, cy, cz, n = q
+            out.append((ks, cx, cy, cz, n))
+    return lafortune(l, v, kd, out)
+
+
+def ct(l, v, kd, lobes):
+    return cook_torrance(l, v, kd, [(ks, q[0], q[1]) for ks, q in lobes])
+
+
+def diffuse_lobe(nc, shape):
+    """kd[nc], ks[nc], q: f_c = kd_c/pi + ks_c S(q)."""
+    def f(params, l, v):
+        kd, ks, q = params[:nc], params[nc:2 * nc], params[2 * nc:]
+        return [shape(l, v, kd[c], ks[c], q) for c in range(nc)]
+    return f
+
+
+def kd_only(nc, g):
+    def f(params, l, v):
+        return [g(l, v, params[c], params[nc:]) for c in range(nc)]
+    return f
+
+
+RGB = [0.1, 0.3, 0.6]
+KS3 = [0.5, 0.4, 0.2]
+CASES = [
+    # (name, channels, lobes, params, function)
+    ("lafortune", 1, 2, [0.2, 0.4, -0.9, 0.8, 20.0, 0.3, 0.6, 0.9, 3.0], lobes_model("lafortune", 1, 2, 3, laf)),
+    ("lafortune-aniso", 1, 2, [0.1, 0.4, -0.9, -0.5, 0.8, 15.0, 0.3, -0.95, -0.9, 0.4, 4.0],
+     lobes_model("lafortune-aniso", 1, 2, 4, laf)),
+    ("lafortune", 3, 2, RGB + KS3 + [-0.9, 0.8, 20.0] + [0.2, 0.1, 0.3] + [0.6, 0.9, 3.0],
+     lobes_model("lafortune", 3, 2, 3, laf)),
+    ("cook-torrance", 1, 2, [0.2, 0.3, 0.1, 0.9, 0.1, 0.5, 0.05], lobes_model("cook-torrance", 1, 2, 2, ct)),
+    ("cook-torrance", 3, 2, RGB + KS3 + [0.15, 0.999] + [0.05, 0.1, 0.08] + [0.6, 0.3],
+     lobes_model("cook-torrance", 3, 2, 2, ct)),
+    ("cook-torrance", 1, 1, [0.0, 0.4, 0.25, 0.999], lobes_model("cook-torrance", 1, 1, 2, ct)),
+    ("lambert", 3, 1, RGB, kd_only(3, lambda l, v, kd, q: kd / PI)),
+    ("phong", 3, 1, RGB + KS3 + [45.0], diffuse_lobe(3, lambda l, v, kd, ks, q: kd / PI + ks * phong_lobe(l, v, q[0]))),
+    ("ward-aniso", 3, 1, RGB + KS3 + [0.12, 0.35],
+     diffuse_lobe(3, lambda l, v, kd, ks, q: ward(l, v, kd, ks, q[0], q[1], False))),
+    ("ward-duer", 3, 1, RGB + KS3 + [0.2], diffuse_lobe(3, lambda l, v, kd, ks, q: ward(l, v, kd, ks, q[0], q[0], True))),
+    ("ashikhmin-shirley", 3, 1, RGB + KS3 + [60.0, 0.999],
+     diffuse_lobe(3, lambda l, v, kd, ks, q: ashikhmin(l, v, kd, ks, q[0], q[0], q[1], False))),
+    ("ashikhmin-shirley-coupled", 1, 1, [0.6, 0.3, 25.0, 0.999],
+     diffuse_lobe(1, lambda l, v, kd, ks, q: ashikhmin(l, v, kd, ks, q[0], q[0], q[1], True))),
+    ("ashikhmin-shirley-coupled-aniso", 3, 1, RGB + KS3 + [5.0, 120.0, 0.999],
+     diffuse_lobe(3, lambda l, v, kd, ks, q: ashikhmin(l, v, kd, ks, q[0], q[1], q[2], True))),
+    ("torrance-sparrow", 3, 1, RGB + KS3 + [0.2, 0.999],
+     diffuse_lobe(3, lambda l, v, kd, ks, q: torrance_sparrow(l, v, kd, ks, q[0], q[1]))),
+    ("oren-nayar", 3, 1, RGB + [0.7], kd_only(3, lambda l, v, kd, q: oren_nayar(l, v, kd, q[0]))),
+    ("oren-nayar-full", 3, 1, [0.2, 0.5, 0.9, 0.8], kd_only(3, lambda l, v, kd, q: oren_nayar_full(l, v, kd, q[0]))),
+    ("phong-fresnel", 3, 1, RGB + KS3 + [12.0, 2.2],
+     diffuse_lobe(3, lambda l, v, kd, ks, q: kd / PI + ks * phong_lobe(l, v, q[0]) * (1 - fresnel(l[2], q[1])))),
+    ("as-paint", 3, 1, RGB + KS3 + [80.0],
+     diffuse_lobe(3, lambda l, v, kd, ks, q: ashikhmin(l, v, kd, ks, q[0], q[0], 0.0, False, fresnel_on=False))),
+    ("clear-coat", 3, 1, RGB + KS3 + [80.0],
+     diffuse_lobe(3, lambda l, v, kd, ks, q: fresnel(l[2], 1.5) + (1 - fresnel(l[2], 1.5))
+                  * ashikhmin(l, v, kd, ks, q[0], q[0], 0.0, False, fresnel_on=False))),
+]
+
+
+def case(name, nc, nlobes, params, l, v, value):
+    return {"model": name, "channels": nc, "lobes": nlobes, "params": params, "wi": l, "wo": v,
+            "value": value}
+
+
+cases = []
 for name, params, f in MODELS:
     for ti, pi_, to, po in PAIRS:
         l, v = vec(ti, pi_), vec(to, po)
-        out.append({"model": name, "params": params, "wi": l, "wo": v, "value": f(l, v)})
-print(json.dumps(out, indent=0))
+        cases.append(case(name, 1, 1, params, l, v, [f(l, v)]))
+    # Below and on the horizon every model returns 0.
+    for l, v in BELOW:
+        cases.append(case(name, 1, 1, params, l, v, [0.0]))
+for name, nc, nlobes, params, f in CASES:
+    for ti, pi_, to, po in PAIRS + PAIRS_EXTRA:
+        l, v = vec(ti, pi_), vec(to, po)
+        cases.append(case(name, nc, nlobes, params, l, v, f(params, l, v)))
+    for l, v in BELOW:
+        cases.append(case(name, nc, nlobes, params, l, v, [0.0] * nc))
+
+# ---------------------------------------------------------------------------
+# Koenderink: the basis in the documented order (m, then n, then n'), each
+# R_n^m from the factorial sum, at pairs with phi_i != 0.
+
+
+def zernike(n, m, rho):
+    f = math.factorial
+    return sum((-1) ** k * f(n - k) / (f(k) * f((n + m) // 2 - k) * f((n - m) // 2 - k)) * rho ** (n - 2 * k)
+               for k in range((n - m) // 2 + 1))
+
+
+def koenderink_basis(order, l, v):
+    ti, to = math.acos(l[2]), math.acos(v[2])
+    ri, ro = math.sqrt(2) * math.sin(ti / 2), math.sqrt(2) * math.sin(to / 2)
+    pi_, po = math.atan2(l[1], l[0]), math.atan2(v[1], v[0])
+    out = []
+    for m in range(order + 1):
+        for n in range(m, order + 1, 2):
+            for n2 in range(n, order + 1, 2):
+                r = zernike(n, m, ri) * zernike(n2, m, ro)
+                if n != n2:
+                    r += zernike(n2, m, ri) * zernike(n, m, ro)
+                out.append(r * math.cos(m * (pi_ - po)))
+    return out
+
+
+K_PAIRS = [(30, 40, 50, 100), (60, 170, 20, 300), (75, 250, 65, 10), (15, 90, 85, 200),
+           (45, 315, 45, 135), (5, 100, 70, 350)]
+koenderink = []
+for order in (2, 4, 8):
+    for j, (ti, pi_, to, po) in enumerate(K_PAIRS):
+        l, v = vec(ti, pi_), vec(to, po)
+        b = koenderink_basis(order, l, v)
+        # Coefficients: a constant that keeps the sum positive plus a
+        # deterministic pattern over the higher functions.
+        coef = [0.5] + [0.05 * math.sin(1.3 * k + j) for k in range(1, len(b))]
+        koenderink.append({"order": order, "wi": l, "wo": v, "basis": b, "coef": coef,
+                           "value": max(0.0, sum(c * x for c, x in zip(coef, b)))})
+
+# ---------------------------------------------------------------------------
+# Kurt's polynomial: features from the formulas, PCA (centre, covariance,
+# eigh, decreasing eigenvalue, sign: largest-magnitude component positive).
+import numpy as np  # noqa: E402
+
+
+def features(aniso, l, v):
+    if aniso:
+        return [l[0] * v[0], l[1] * v[1], l[2] * v[2]]
+    return [l[0] * v[0] + l[1] * v[1], l[2] * v[2]]
+
+
+TRAIN = []
+for i in range(40):
+    # A fixed, irregular set of pairs over the hemisphere.
+    ti, pi_ = 5 + (37 * i) % 80, (53 * i + 11) % 360
+    to, po = 3 + (61 * i + 7) % 84, (97 * i + 200) % 360
+    TRAIN.append((vec(ti, pi_), vec(to, po)))
+TEST = [vec_pair for vec_pair in [(vec(25, 35), vec(50, 190)), (vec(70, 300), vec(10, 80)),
+                                   (vec(40, 0), vec(40, 180)), (vec(85, 120), vec(60, 250)),
+                                   (vec(0, 0), vec(30, 45)), (vec(55, 210), vec(75, 215))]]
+
+
+def pca(aniso):
+    w = np.array([features(aniso, l, v) for l, v in TRAIN])
+    mean = w.mean(axis=0)
+    cov = np.cov((w - mean).T, ddof=1)
+    vals, vecs = np.linalg.eigh(cov)
+    order = np.argsort(-vals)
+    axes = []
+    for i in order:
+        e = vecs[:, i]
+        if e[np.argmax(np.abs(e))] < 0:
+            e = -e
+        axes.append(e)
+    return mean, np.array(axes), vals[order]
+
+
+polynomial = {"train": [{"wi": l, "wo": v} for l, v in TRAIN], "cases": []}
+for aniso in (False, True):
+    mean, axes, variances = pca(aniso)
+    d = len(mean)
+    name = "polynomial-aniso" if aniso else "polynomial"
+    polynomial[name] = {"mean": mean.tolist(), "axes": axes.flatten().tolist(),
+                        "variances": variances.tolist()}
+    for degree in (1, 3, 7):
+        for nc in (1, 3):
+            per = d * degree + 1
+            coef = [0.3 + 0.1 * c if k == 0 else 0.2 * math.cos(0.7 * k + c) / k
+                    for c in range(nc) for k in range(per)]
+            for l, v in TEST:
+                w = features(aniso, l, v)
+                z = axes @ (np.array(w) - mean)
+                row = [1.0]
+                for k in range(1, degree + 1):
+                    row += [float(zi ** k) for zi in z]
+                value = [max(0.0, sum(a * b for a, b in zip(row, coef[c * per:(c + 1) * per])))
+                         for c in range(nc)]
+                polynomial["cases"].append({"model": name, "degree": degree, "channels": nc,
+                                            "params": coef, "wi": l, "wo": v, "features": w,
+                                            "scores": z.tolist(), "row": row, "value": value})
+
+# One record per line, so a regenerated file diffs readably.
+lines = ['{"cases": [', ",\n".join(json.dumps(c) for c in cases), '], "koenderink": [',
+         ",\n".join(json.dumps(c) for c in koenderink), '], "polynomial": {',
+         ",\n".join(f"{json.dumps(k)}: {json.dumps(v)}" for k, v in polynomial.items()), "}}"]
+print("\n".join(lines))
