@@ -67,7 +67,8 @@ fn principled(fit: &Fitted) -> Result<Node, ExportError> {
 /// A blend component: a fixed weight, or a node whose reflectance scales.
 enum Part {
     Fixed(f64, Node),
-    Scaled(Box<dyn Fn(f64) -> Node>),
+    /// The node at a reflectance scale, and its largest unscaled value.
+    Scaled(Box<dyn Fn(f64) -> Node>, f64),
 }
 
 fn ggx(fit: &Fitted, g: &GgxFit) -> Result<Node, ExportError> {
@@ -80,9 +81,10 @@ fn ggx(fit: &Fitted, g: &GgxFit) -> Result<Node, ExportError> {
     let mut parts = Vec::new();
     if g.kd.iter().any(|&x| x != 0.0) {
         let kd = g.kd;
-        parts.push(Part::Scaled(Box::new(move |s| {
-            bsdf("diffuse").child(rgb("reflectance", &kd.map(|x| x * s)))
-        })));
+        parts.push(Part::Scaled(
+            Box::new(move |s| bsdf("diffuse").child(rgb("reflectance", &kd.map(|x| x * s)))),
+            kd.iter().fold(0.0, |a: f64, &b| a.max(b)),
+        ));
     }
     for lobe in g.lobes.iter().filter(|l| l.ks.iter().any(|&x| x != 0.0)) {
         parts.push(lobe_part(fit, lobe)?);
@@ -94,22 +96,25 @@ fn lobe_part(fit: &Fitted, lobe: &LobeFit) -> Result<Part, ExportError> {
     match lobe.fresnel {
         LobeFresnel::Complex { eta, k } => {
             let l = *lobe;
-            Ok(Part::Scaled(Box::new(move |s| {
-                let mut n = bsdf("roughconductor").child(
-                    Node::new("string")
-                        .attr("name", "distribution")
-                        .attr("value", "ggx"),
-                );
-                n = if l.ax == l.ay {
-                    n.child(float("alpha", l.ax))
-                } else {
-                    n.child(float("alpha_u", l.ax))
-                        .child(float("alpha_v", l.ay))
-                };
-                n.child(float("eta", eta))
-                    .child(float("k", k))
-                    .child(rgb("specular_reflectance", &l.ks.map(|x| x * s)))
-            })))
+            Ok(Part::Scaled(
+                Box::new(move |s| {
+                    let mut n = bsdf("roughconductor").child(
+                        Node::new("string")
+                            .attr("name", "distribution")
+                            .attr("value", "ggx"),
+                    );
+                    n = if l.ax == l.ay {
+                        n.child(float("alpha", l.ax))
+                    } else {
+                        n.child(float("alpha_u", l.ax))
+                            .child(float("alpha_v", l.ay))
+                    };
+                    n.child(float("eta", eta))
+                        .child(float("k", k))
+                        .child(rgb("specular_reflectance", &l.ks.map(|x| x * s)))
+                }),
+                lobe.ks.iter().fold(0.0, |a: f64, &b| a.max(b)),
+            ))
         }
         LobeFresnel::Schlick(f0) => {
             if lobe.ks[0] != lobe.ks[1] || lobe.ks[1] != lobe.ks[2] {
@@ -138,7 +143,7 @@ fn lobe_part(fit: &Fitted, lobe: &LobeFit) -> Result<Part, ExportError> {
 }
 
 /// Nest `parts` in `blendbsdf`s: fixed parts get their weights, scaled ones
-/// share the rest equally and scale their reflectance back up.
+/// share the rest in proportion to their largest value and scale their reflectance back up.
 fn blend(fit: &Fitted, parts: Vec<Part>) -> Result<Node, ExportError> {
     let fixed: f64 = parts
         .iter()
@@ -146,28 +151,41 @@ fn blend(fit: &Fitted, parts: Vec<Part>) -> Result<Node, ExportError> {
         .sum();
     let n_scaled = parts
         .iter()
-        .filter(|p| matches!(p, Part::Scaled(_)))
+        .filter(|p| matches!(p, Part::Scaled(..)))
         .count();
+    let total: f64 = parts
+        .iter()
+        .map(|p| if let Part::Scaled(_, m) = p { *m } else { 0.0 })
+        .sum();
     let rest = 1.0 - fixed;
-    if rest < 0.0 || (n_scaled > 0 && rest <= 0.0) {
+    // Scaled parts share `rest` in proportion to their largest value, so
+    // every reflectance stays at most 1 (Mitsuba rejects larger ones).
+    if rest < 0.0 || total > rest {
         return Err(fit.no_equivalent(
             T,
-            format!("blend weights of the Schlick lobes sum to {fixed} > 1"),
+            format!(
+                "lobe strengths sum to {} > 1: a blendbsdf cannot add them",
+                fixed + total
+            ),
         ));
     }
     let mut items: Vec<(f64, Node)> = Vec::new();
     for p in parts {
         match p {
             Part::Fixed(w, n) => items.push((w, n)),
-            Part::Scaled(f) => {
-                let w = rest / n_scaled as f64;
+            Part::Scaled(f, m) => {
+                let w = rest * m / total;
                 items.push((w, f(1.0 / w)));
             }
         }
     }
-    if n_scaled == 0 && rest > 0.0 {
+    let filled: f64 = items.iter().map(|(w, _)| w).sum();
+    if n_scaled == 0 || filled < 1.0 {
+        let rest = 1.0 - filled;
         // Fill the remaining weight with a black surface.
-        items.push((rest, bsdf("diffuse").child(rgb("reflectance", &[0.0; 3]))));
+        if rest > 0.0 {
+            items.push((rest, bsdf("diffuse").child(rgb("reflectance", &[0.0; 3]))));
+        }
     }
     Ok(nest(items))
 }
