@@ -28,6 +28,7 @@
 //! | [`quadrature`] | adaptive Gauss-Kronrod, directional albedo |
 //! | [`plausibility`] | reciprocity, non-negativity and energy scans |
 //! | [`fresnel`] | Schlick and exact dielectric Fresnel terms |
+//! | [`fresnel_conductor`] | exact conductor Fresnel (`eta + i k`) with derivatives |
 //!
 //! ## Crate features
 //!
@@ -39,6 +40,7 @@ pub mod direction;
 pub mod error;
 pub mod frame;
 pub mod fresnel;
+pub mod fresnel_conductor;
 pub mod half_diff;
 pub mod metrics;
 pub mod pair_geometry;

@@ -310,6 +310,114 @@ pub fn catalogue() -> Vec<ModelEntry> {
             }),
         });
     }
+    #[cfg(feature = "renderer")]
+    {
+        v.push(ModelEntry {
+            name: <crate::ggx::GgxLobe as crate::combinators::Lobe>::NAME,
+            family: "renderer",
+            summary: "kd/pi + sum_k ks_k D G F / (4 N.L N.V): GGX, height-correlated Smith, Schlick F, K lobes",
+            paper: "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            has_lobes: true,
+            build: |c| Ok(Box::new(crate::Ggx::new(c.lobes, c.channels)?)),
+            build_for_data: None,
+        });
+        v.push(ModelEntry {
+            name: <crate::ggx::GgxSeparableLobe as crate::combinators::Lobe>::NAME,
+            family: "renderer",
+            summary: "GGX with the separable Smith G1(L) G1(V) (Mitsuba 3), Schlick F, K lobes",
+            paper: "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            has_lobes: true,
+            build: |c| Ok(Box::new(crate::GgxSeparable::new(c.lobes, c.channels)?)),
+            build_for_data: None,
+        });
+        lobe_model!(
+            crate::GgxAniso,
+            "renderer",
+            "kd/pi + ks D G F / (4 N.L N.V): anisotropic GGX (ax, ay), height-correlated Smith, Schlick F",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxAnisoSeparable,
+            "renderer",
+            "anisotropic GGX, separable Smith, Schlick F",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxDielectric,
+            "renderer",
+            "kd/pi + ks D G F_dielectric(eta) / (4 N.L N.V): GGX, height-correlated Smith",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxDielectricSeparable,
+            "renderer",
+            "GGX, separable Smith, exact dielectric F(eta)",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxDielectricAniso,
+            "renderer",
+            "anisotropic GGX, height-correlated Smith, exact dielectric F(eta)",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxDielectricAnisoSeparable,
+            "renderer",
+            "anisotropic GGX, separable Smith, exact dielectric F(eta)",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxConductor,
+            "renderer",
+            "kd/pi + ks D G F_conductor(eta, k) / (4 N.L N.V): GGX, height-correlated Smith",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxConductorSeparable,
+            "renderer",
+            "GGX, separable Smith, exact conductor F(eta, k) (Mitsuba 3 roughconductor)",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxConductorAniso,
+            "renderer",
+            "anisotropic GGX, height-correlated Smith, exact conductor F(eta, k)",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        lobe_model!(
+            crate::GgxConductorAnisoSeparable,
+            "renderer",
+            "anisotropic GGX, separable Smith, exact conductor F(eta, k)",
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+        );
+        v.push(ModelEntry {
+            name: <crate::principled::PrincipledFormula as crate::dual_model::DualFormula>::NAME,
+            family: "renderer",
+            summary: "Disney principled BRDF (reflection) as Mitsuba 3's principled: base_color, metallic, specular, spec_tint, roughness, anisotropic, sheen, sheen_tint, clearcoat, clearcoat_gloss",
+            paper: "Burley 2012, SIGGRAPH course; Burley 2015; Mitsuba 3 principled",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::Principled::with_channels(c.channels)?)),
+            build_for_data: None,
+        });
+        v.push(ModelEntry {
+            name: <crate::gltf_pbr::GltfFormula as crate::dual_model::DualFormula>::NAME,
+            family: "renderer",
+            summary: "glTF 2.0 metallic-roughness: Lambert + GGX (height-correlated), F0 = 0.04 mixed with base_color by metallic",
+            paper: "Khronos glTF 2.0 specification, Appendix B",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::GltfPbr::with_channels(c.channels)?)),
+            build_for_data: None,
+        });
+        v.push(ModelEntry {
+            name: <crate::gltf_pbr::GltfExtFormula as crate::dual_model::DualFormula>::NAME,
+            family: "renderer",
+            summary: "glTF 2.0 with KHR_materials_ior, _specular and _clearcoat (coat Fresnel in N.V: not reciprocal)",
+            paper: "Khronos glTF 2.0 specification, Appendix B; KHR_materials_ior/_specular/_clearcoat",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::GltfPbrExt::with_channels(c.channels)?)),
+            build_for_data: None,
+        });
+    }
     v
 }
 

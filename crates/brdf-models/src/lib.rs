@@ -18,6 +18,7 @@
 //! | `sopp` | [`PhongFresnel`], [`AsPaint`] / [`PaintShader`] (with the `Rs` conversion), [`ClearCoat`] over any base |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
+//! | `renderer` | [`Ggx`] (K lobes) and the [`ggx`] family (anisotropic; separable Smith; dielectric and conductor Fresnel), [`Principled`] (Disney, as Mitsuba 3), [`GltfPbr`], [`GltfPbrExt`] |
 //!
 //! [`catalogue()`] lists the models compiled into this build; [`build`]
 //! constructs one by name.
@@ -37,6 +38,14 @@ pub mod clear_coat;
 pub mod combinators;
 #[cfg(feature = "microfacet")]
 pub mod cook_torrance;
+#[cfg(feature = "renderer")]
+pub mod dual;
+#[cfg(feature = "renderer")]
+pub mod dual_model;
+#[cfg(feature = "renderer")]
+pub mod ggx;
+#[cfg(feature = "renderer")]
+pub mod gltf_pbr;
 #[cfg(feature = "koenderink")]
 pub mod koenderink;
 #[cfg(feature = "polynomial")]
@@ -54,6 +63,8 @@ pub mod paint_shader;
 pub mod phong;
 #[cfg(feature = "sopp")]
 pub mod phong_fresnel;
+#[cfg(feature = "renderer")]
+pub mod principled;
 #[cfg(feature = "serde")]
 pub mod saved_model;
 #[cfg(feature = "microfacet")]
@@ -72,6 +83,14 @@ pub use catalogue::{ModelConfig, ModelEntry, build, build_for, catalogue, entry}
 pub use clear_coat::ClearCoat;
 #[cfg(feature = "microfacet")]
 pub use cook_torrance::CookTorrance;
+#[cfg(feature = "renderer")]
+pub use ggx::{
+    Ggx, GgxAniso, GgxAnisoSeparable, GgxConductor, GgxConductorAniso, GgxConductorAnisoSeparable,
+    GgxConductorSeparable, GgxDielectric, GgxDielectricAniso, GgxDielectricAnisoSeparable,
+    GgxDielectricSeparable, GgxSeparable,
+};
+#[cfg(feature = "renderer")]
+pub use gltf_pbr::{GltfPbr, GltfPbrExt};
 #[cfg(feature = "koenderink")]
 pub use koenderink::Koenderink;
 #[cfg(feature = "polynomial")]
@@ -87,6 +106,8 @@ pub use paint_shader::{AsPaint, PaintShader};
 pub use phong::Phong;
 #[cfg(feature = "sopp")]
 pub use phong_fresnel::PhongFresnel;
+#[cfg(feature = "renderer")]
+pub use principled::Principled;
 #[cfg(feature = "microfacet")]
 pub use torrance_sparrow::TorranceSparrow;
 #[cfg(feature = "ward")]

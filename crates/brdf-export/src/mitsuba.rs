@@ -1,0 +1,208 @@
+//! Mitsuba 3 `<bsdf>` XML (`mitsuba.load_string` loads it).
+//!
+//! - `principled` is Mitsuba's own `principled` BSDF with the same
+//!   parameters (the model is defined by it).
+//! - `lambert` is `diffuse`.
+//! - The separable-Smith GGX models: each conductor or dielectric lobe is a
+//!   `roughconductor` (`distribution = ggx`, its `eta`, `k`, with `k = 0`
+//!   for a dielectric, whose reflectance is the same for light arriving from
+//!   outside) with `specular_reflectance` carrying `ks`; each Schlick lobe a
+//!   `principled` with `metallic = 1`, `base_color = F0` and the widths
+//!   mapped back to `roughness`, `anisotropic`; the Lambert term a
+//!   `diffuse`; the sum a nest of `blendbsdf`s whose weights add to 1.
+//!   A Schlick lobe cannot be scaled per channel (its strength is its blend
+//!   weight), so it needs a grey `ks`.
+//!
+//! No exact equivalent (an error): the height-correlated GGX models
+//! (Mitsuba's microfacet `G` is separable), glTF (Mitsuba has no glTF
+//! material: `principled` uses Burley's diffuse and the exact dielectric
+//! Fresnel), and the other catalogue models.
+
+use crate::fitted::{Fitted, GgxFit, LobeFit, LobeFresnel, rgb_string};
+use crate::xml::Node;
+use crate::{ExportError, Target};
+
+const T: Target = Target::Mitsuba;
+
+fn float(name: &str, v: f64) -> Node {
+    Node::new("float").attr("name", name).attr("value", v)
+}
+
+fn rgb(name: &str, c: &[f64; 3]) -> Node {
+    Node::new("rgb")
+        .attr("name", name)
+        .attr("value", rgb_string(c))
+}
+
+fn bsdf(kind: &str) -> Node {
+    Node::new("bsdf").attr("type", kind)
+}
+
+/// The Mitsuba document for `fit`.
+pub fn write(fit: &Fitted) -> Result<String, ExportError> {
+    let node = match fit.name.as_str() {
+        "lambert" => bsdf("diffuse").child(rgb("reflectance", &fit.colour("kd")?)),
+        "principled" => principled(fit)?,
+        _ => match fit.ggx()? {
+            Some(g) => ggx(fit, &g)?,
+            None => {
+                return Err(fit.no_equivalent(T, "Mitsuba 3 has no BSDF with this formula"));
+            }
+        },
+    };
+    // Only the root carries the scene-format version.
+    let mut root = Node::new("bsdf").attr("version", "3.0.0");
+    root = root.attr_from(&node);
+    Ok(root.to_document(false))
+}
+
+fn principled(fit: &Fitted) -> Result<Node, ExportError> {
+    let mut n = bsdf("principled").child(rgb("base_color", &fit.colour("base_color")?));
+    for name in brdf_models::principled::PRINCIPLED_SCALARS {
+        n = n.child(float(name, fit.get(name)?));
+    }
+    Ok(n)
+}
+
+/// A blend component: a fixed weight, or a node whose reflectance scales.
+enum Part {
+    Fixed(f64, Node),
+    /// The node at a reflectance scale, and its largest unscaled value.
+    Scaled(Box<dyn Fn(f64) -> Node>, f64),
+}
+
+fn ggx(fit: &Fitted, g: &GgxFit) -> Result<Node, ExportError> {
+    if !g.separable {
+        return Err(fit.no_equivalent(
+            T,
+            "Mitsuba 3's GGX uses the separable Smith G; fit the `-separable` variant",
+        ));
+    }
+    let mut parts = Vec::new();
+    if g.kd.iter().any(|&x| x != 0.0) {
+        let kd = g.kd;
+        parts.push(Part::Scaled(
+            Box::new(move |s| bsdf("diffuse").child(rgb("reflectance", &kd.map(|x| x * s)))),
+            kd.iter().fold(0.0, |a: f64, &b| a.max(b)),
+        ));
+    }
+    for lobe in g.lobes.iter().filter(|l| l.ks.iter().any(|&x| x != 0.0)) {
+        parts.push(lobe_part(fit, lobe)?);
+    }
+    blend(fit, parts)
+}
+
+fn lobe_part(fit: &Fitted, lobe: &LobeFit) -> Result<Part, ExportError> {
+    match lobe.fresnel {
+        LobeFresnel::Complex { eta, k } => {
+            let l = *lobe;
+            Ok(Part::Scaled(
+                Box::new(move |s| {
+                    let mut n = bsdf("roughconductor").child(
+                        Node::new("string")
+                            .attr("name", "distribution")
+                            .attr("value", "ggx"),
+                    );
+                    n = if l.ax == l.ay {
+                        n.child(float("alpha", l.ax))
+                    } else {
+                        n.child(float("alpha_u", l.ax))
+                            .child(float("alpha_v", l.ay))
+                    };
+                    n.child(float("eta", eta))
+                        .child(float("k", k))
+                        .child(rgb("specular_reflectance", &l.ks.map(|x| x * s)))
+                }),
+                lobe.ks.iter().fold(0.0, |a: f64, &b| a.max(b)),
+            ))
+        }
+        LobeFresnel::Schlick(f0) => {
+            if lobe.ks[0] != lobe.ks[1] || lobe.ks[1] != lobe.ks[2] {
+                return Err(fit.no_equivalent(
+                    T,
+                    "a Schlick lobe becomes a metallic `principled`, which cannot be tinted: ks must be grey",
+                ));
+            }
+            let (ax, ay) = (lobe.ax, lobe.ay);
+            if ax.min(ay) < 0.001 || ay > ax || ay < 0.1 * ax {
+                return Err(fit.no_equivalent(
+                    T,
+                    format!(
+                        "principled widths need 0.001 <= ay <= ax <= 10 ay (have ax {ax}, ay {ay})"
+                    ),
+                ));
+            }
+            let node = bsdf("principled")
+                .child(rgb("base_color", &[f0; 3]))
+                .child(float("metallic", 1.0))
+                .child(float("roughness", (ax * ay).sqrt().sqrt()))
+                .child(float("anisotropic", (1.0 - ay / ax) / 0.9));
+            Ok(Part::Fixed(lobe.ks[0], node))
+        }
+    }
+}
+
+/// Nest `parts` in `blendbsdf`s: fixed parts get their weights, scaled ones
+/// share the rest in proportion to their largest value and scale their reflectance back up.
+fn blend(fit: &Fitted, parts: Vec<Part>) -> Result<Node, ExportError> {
+    let fixed: f64 = parts
+        .iter()
+        .map(|p| if let Part::Fixed(w, _) = p { *w } else { 0.0 })
+        .sum();
+    let n_scaled = parts
+        .iter()
+        .filter(|p| matches!(p, Part::Scaled(..)))
+        .count();
+    let total: f64 = parts
+        .iter()
+        .map(|p| if let Part::Scaled(_, m) = p { *m } else { 0.0 })
+        .sum();
+    let rest = 1.0 - fixed;
+    // Scaled parts share `rest` in proportion to their largest value, so
+    // every reflectance stays at most 1 (Mitsuba rejects larger ones).
+    if rest < 0.0 || total > rest {
+        return Err(fit.no_equivalent(
+            T,
+            format!(
+                "lobe strengths sum to {} > 1: a blendbsdf cannot add them",
+                fixed + total
+            ),
+        ));
+    }
+    let mut items: Vec<(f64, Node)> = Vec::new();
+    for p in parts {
+        match p {
+            Part::Fixed(w, n) => items.push((w, n)),
+            Part::Scaled(f, m) => {
+                let w = rest * m / total;
+                items.push((w, f(1.0 / w)));
+            }
+        }
+    }
+    let filled: f64 = items.iter().map(|(w, _)| w).sum();
+    if n_scaled == 0 || filled < 1.0 {
+        let rest = 1.0 - filled;
+        // Fill the remaining weight with a black surface.
+        if rest > 0.0 {
+            items.push((rest, bsdf("diffuse").child(rgb("reflectance", &[0.0; 3]))));
+        }
+    }
+    Ok(nest(items))
+}
+
+fn nest(mut items: Vec<(f64, Node)>) -> Node {
+    if items.is_empty() {
+        return bsdf("diffuse").child(rgb("reflectance", &[0.0; 3]));
+    }
+    if items.len() == 1 {
+        return items.remove(0).1;
+    }
+    let (w0, first) = items.remove(0);
+    let t = 1.0 - w0;
+    let rest: Vec<(f64, Node)> = items.into_iter().map(|(w, n)| (w / t, n)).collect();
+    // blendbsdf: (1 - weight) first + weight second.
+    bsdf("blendbsdf")
+        .child(float("weight", t))
+        .child(first)
+        .child(nest(rest))
+}

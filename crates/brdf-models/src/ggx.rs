@@ -1,0 +1,459 @@
+//! GGX / Trowbridge-Reitz microfacet models (Walter, Marschner, Li &
+//! Torrance 2007, "Microfacet models for refraction through rough
+//! surfaces", EGSR; Trowbridge & Reitz 1975), isotropic and anisotropic,
+//! with Smith masking-shadowing in its height-correlated form (Heitz 2014,
+//! "Understanding the masking-shadowing function in microfacet-based
+//! BRDFs", JCGT 3(2)) or the separable form, and a Schlick, exact
+//! dielectric or exact conductor Fresnel term:
+//!
+//! `f = kd/pi + sum_k ks_k D(H) G(L, V) F(V.H) / (4 (N.L)(N.V))`,
+//!
+//! `D(H) = 1 / (pi ax ay (Hx^2/ax^2 + Hy^2/ay^2 + Hz^2)^2)`,
+//! `Lambda(W) = (sqrt(1 + (ax^2 Wx^2 + ay^2 Wy^2)/Wz^2) - 1) / 2`,
+//! height-correlated `G = 1 / (1 + Lambda(L) + Lambda(V))`,
+//! separable `G = 1 / ((1 + Lambda(L)) (1 + Lambda(V)))`;
+//! `F` is Schlick's `F0 + (1 - F0)(1 - V.H)^5`, the exact dielectric
+//! reflectance for index `eta`, or the exact conductor reflectance for
+//! `eta + i k` ([`brdf_core::fresnel_conductor`]). `alpha = ax = ay` for the
+//! isotropic models; `ax` acts along the tangent `+x`.
+//!
+//! These are the specular lobes renderers use: pbrt-v4's
+//! `TrowbridgeReitzDistribution` uses the height-correlated `G`, Mitsuba 3's
+//! `roughconductor` (`distribution = "ggx"`) the separable one; the glTF
+//! BRDF appendix the height-correlated one with Schlick's `F`. `alpha` is
+//! the distribution's own width (Mitsuba's `alpha`), not the perceptual
+//! roughness (`alpha = roughness^2` in glTF and Disney's model).
+//!
+//! | model | parameters after `kd`, `ks` (per channel, linear, `[0, 1]`) |
+//! | --- | --- |
+//! | `ggx`, `ggx-separable` (K lobes: `ks{k}`, `alpha{k}`, `f0_{k}`) | `alpha`, `f0` |
+//! | `ggx-aniso`, `ggx-aniso-separable` | `ax`, `ay`, `f0` |
+//! | `ggx-dielectric[-aniso][-separable]` | `alpha` (or `ax`, `ay`), `eta` |
+//! | `ggx-conductor[-aniso][-separable]` | `alpha` (or `ax`, `ay`), `eta`, `k` |
+//!
+//! | parameter | meaning | default box | linear |
+//! | --- | --- | --- | --- |
+//! | `kd` (per channel) | diffuse albedo | `[0, 1]` | yes |
+//! | `ks` (per channel) | specular strength | `[0, 1]` | yes |
+//! | `alpha`, `ax`, `ay` | GGX width | `(0, 1]` | no |
+//! | `f0` | Schlick reflectance at normal incidence | `[0, 1]` | no |
+//! | `eta` (dielectric) | relative index of refraction | `[1, 3]` | no |
+//! | `eta` (conductor) | real part of the complex index | `[0.01, 5]` | no |
+//! | `k` (conductor) | extinction coefficient | `[0, 10]` | no |
+//!
+//! Properties: reciprocal (`V.H = L.H`, `D` and `G` symmetric); non-negative;
+//! finite above the horizon (at `alpha = 1e-6` `D(N) = 1/(pi alpha^2)`;
+//! `G / (N.L)` stays bounded near the horizon since `Lambda` grows like
+//! `1/N.L`). Energy: `G <= min(G1(L), G1(V))` and the GGX `D` is normalised
+//! for the visible projected area, so each lobe's albedo is at most
+//! `max F <= 1`; the model conserves energy for `kd + sum ks <= 1` (tested
+//! in `tests/renderer_models.rs`).
+//!
+//! ```
+//! use brdf_core::{Brdf, Parametric};
+//! use brdf_models::GgxAniso;
+//! use nalgebra::Vector3;
+//! // kd, ks, ax, ay, f0
+//! let m = GgxAniso::new(&[0.0], &[1.0], &[0.2, 0.4, 0.5]).unwrap();
+//! let mut f = [0.0];
+//! m.eval(&Vector3::z(), &Vector3::z(), &mut f);
+//! // At the pole: D = 1/(pi ax ay), G = 1, F = F0: f = F0 / (4 pi ax ay).
+//! let expect = 0.5 / (4.0 * std::f64::consts::PI * 0.2 * 0.4);
+//! assert!((f[0] - expect).abs() < 1e-12);
+//! ```
+
+use std::f64::consts::PI;
+
+use brdf_core::ParamSpec;
+use brdf_core::fresnel::{fresnel_dielectric_d_eta, schlick, schlick_d_f0};
+use brdf_core::fresnel_conductor::fresnel_conductor_grad;
+use nalgebra::Vector3;
+
+use crate::combinators::{DiffuseLobe, Lobe, MultiLobe};
+
+/// Form of the Smith masking-shadowing term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Masking {
+    /// `1 / (1 + Lambda(L) + Lambda(V))` (Heitz 2014).
+    HeightCorrelated,
+    /// `G1(L) G1(V)`, `G1 = 1 / (1 + Lambda)` (Walter et al. 2007).
+    Separable,
+}
+
+/// `D(h)` of GGX for a unit half vector `h` and `(d ln D/d ax, d ln D/d ay)`.
+#[inline]
+pub fn ggx_d(h: &Vector3<f64>, ax: f64, ay: f64) -> (f64, f64, f64) {
+    let x2 = h.x * h.x / (ax * ax);
+    let y2 = h.y * h.y / (ay * ay);
+    let s = x2 + y2 + h.z * h.z;
+    let d = 1.0 / (PI * ax * ay * s * s);
+    (
+        d,
+        -1.0 / ax + 4.0 * x2 / (ax * s),
+        -1.0 / ay + 4.0 * y2 / (ay * s),
+    )
+}
+
+/// Smith's `Lambda(w)` for GGX and `(dLambda/d ax, dLambda/d ay)`, for `w`
+/// above the horizon; `t / (2 (sqrt(1 + t) + 1))` avoids cancellation for
+/// small `t = (ax^2 wx^2 + ay^2 wy^2) / wz^2`.
+#[inline]
+pub fn smith_lambda(w: &Vector3<f64>, ax: f64, ay: f64) -> (f64, f64, f64) {
+    let z2 = w.z * w.z;
+    let t = (ax * ax * w.x * w.x + ay * ay * w.y * w.y) / z2;
+    let r = (1.0 + t).sqrt();
+    let lam = t / (2.0 * (r + 1.0));
+    let dt = 1.0 / (4.0 * r);
+    (
+        lam,
+        dt * 2.0 * ax * w.x * w.x / z2,
+        dt * 2.0 * ay * w.y * w.y / z2,
+    )
+}
+
+/// Smith `G(L, V)` in the given form and `(dG/d ax, dG/d ay)`.
+#[inline]
+pub fn smith_g(
+    l: &Vector3<f64>,
+    v: &Vector3<f64>,
+    ax: f64,
+    ay: f64,
+    masking: Masking,
+) -> (f64, f64, f64) {
+    let (ll, lx, ly) = smith_lambda(l, ax, ay);
+    let (lv, vx, vy) = smith_lambda(v, ax, ay);
+    match masking {
+        Masking::HeightCorrelated => {
+            let g = 1.0 / (1.0 + ll + lv);
+            (g, -g * g * (lx + vx), -g * g * (ly + vy))
+        }
+        Masking::Separable => {
+            let (gl, gv) = (1.0 / (1.0 + ll), 1.0 / (1.0 + lv));
+            let g = gl * gv;
+            (g, -g * (lx * gl + vx * gv), -g * (ly * gl + vy * gv))
+        }
+    }
+}
+
+/// The Fresnel-free specular lobe `D G / (4 N.L N.V)` at one direction pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GgxSpecular {
+    /// `D G / (4 N.L N.V)`.
+    pub value: f64,
+    /// Its derivative in `ax`.
+    pub d_ax: f64,
+    /// Its derivative in `ay`.
+    pub d_ay: f64,
+    /// `V.H`, the Fresnel cosine.
+    pub vh: f64,
+    /// The unit half vector.
+    pub h: Vector3<f64>,
+}
+
+/// `D G / (4 N.L N.V)` for `L`, `V` above the horizon; `None` if `L + V = 0`.
+#[inline]
+pub fn ggx_specular(
+    l: &Vector3<f64>,
+    v: &Vector3<f64>,
+    ax: f64,
+    ay: f64,
+    masking: Masking,
+) -> Option<GgxSpecular> {
+    let s = l + v;
+    let len = s.norm();
+    if !(len > 0.0) {
+        return None;
+    }
+    let h = s / len;
+    let (d, dlx, dly) = ggx_d(&h, ax, ay);
+    let (g, gx, gy) = smith_g(l, v, ax, ay, masking);
+    let value = d * g / (4.0 * l.z * v.z);
+    let (d_ax, d_ay) = if g > 0.0 {
+        (value * (dlx + gx / g), value * (dly + gy / g))
+    } else {
+        (0.0, 0.0)
+    };
+    Some(GgxSpecular {
+        value,
+        d_ax,
+        d_ay,
+        vh: v.dot(&h).clamp(0.0, 1.0),
+        h,
+    })
+}
+
+/// A Fresnel term with its own parameters (one to two).
+pub trait GgxFresnel {
+    /// Number of parameters.
+    const NQ: usize;
+    /// Their descriptions.
+    fn specs() -> Vec<ParamSpec>;
+    /// `F(cos)` at parameters `q`, derivatives into `dq[..NQ]`.
+    fn eval(q: &[f64], cos: f64, dq: &mut [f64; 2]) -> f64;
+}
+
+/// Schlick's `F0 + (1 - F0)(1 - c)^5`, parameter `f0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SchlickF0;
+
+impl GgxFresnel for SchlickF0 {
+    const NQ: usize = 1;
+    fn specs() -> Vec<ParamSpec> {
+        vec![ParamSpec::new(
+            "f0",
+            "Fresnel reflectance at normal incidence",
+            0.0,
+            1.0,
+            0.04,
+            false,
+        )]
+    }
+    fn eval(q: &[f64], cos: f64, dq: &mut [f64; 2]) -> f64 {
+        dq[0] = schlick_d_f0(cos);
+        schlick(q[0], cos)
+    }
+}
+
+/// Exact dielectric reflectance, parameter `eta`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dielectric;
+
+impl GgxFresnel for Dielectric {
+    const NQ: usize = 1;
+    fn specs() -> Vec<ParamSpec> {
+        vec![ParamSpec::new(
+            "eta",
+            "relative index of refraction",
+            1.0,
+            3.0,
+            1.5,
+            false,
+        )]
+    }
+    fn eval(q: &[f64], cos: f64, dq: &mut [f64; 2]) -> f64 {
+        let (f, d) = fresnel_dielectric_d_eta(cos, q[0]);
+        dq[0] = d;
+        f
+    }
+}
+
+/// Exact conductor reflectance, parameters `eta`, `k`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Conductor;
+
+impl GgxFresnel for Conductor {
+    const NQ: usize = 2;
+    fn specs() -> Vec<ParamSpec> {
+        vec![
+            ParamSpec::new(
+                "eta",
+                "real part of the complex index",
+                0.01,
+                5.0,
+                0.2,
+                false,
+            ),
+            ParamSpec::new("k", "extinction coefficient", 0.0, 10.0, 3.0, false),
+        ]
+    }
+    fn eval(q: &[f64], cos: f64, dq: &mut [f64; 2]) -> f64 {
+        let (f, de, dk) = fresnel_conductor_grad(cos, q[0], q[1]);
+        dq[0] = de;
+        dq[1] = dk;
+        f
+    }
+}
+
+fn width_specs(aniso: bool) -> Vec<ParamSpec> {
+    let w = |name: &str, meaning: &str| {
+        ParamSpec::new(name, meaning, 0.0, 1.0, 0.2, false).open_below()
+    };
+    if aniso {
+        vec![
+            w("ax", "GGX width along the tangent"),
+            w("ay", "GGX width along the bitangent"),
+        ]
+    } else {
+        vec![w("alpha", "GGX width")]
+    }
+}
+
+/// The lobe `D G F / (4 N.L N.V)` with parameters `[alpha | ax, ay, F...]`.
+#[inline]
+pub(crate) fn ggx_shape<F: GgxFresnel>(
+    q: &[f64],
+    l: &Vector3<f64>,
+    v: &Vector3<f64>,
+    dq: Option<&mut [f64]>,
+    aniso: bool,
+    masking: Masking,
+) -> f64 {
+    let (ax, ay, nr) = if aniso {
+        (q[0], q[1], 2)
+    } else {
+        (q[0], q[0], 1)
+    };
+    let Some(sp) = ggx_specular(l, v, ax, ay, masking) else {
+        if let Some(dq) = dq {
+            dq.fill(0.0);
+        }
+        return 0.0;
+    };
+    let mut df = [0.0; 2];
+    let f = F::eval(&q[nr..], sp.vh, &mut df);
+    if let Some(dq) = dq {
+        if aniso {
+            dq[0] = sp.d_ax * f;
+            dq[1] = sp.d_ay * f;
+        } else {
+            dq[0] = (sp.d_ax + sp.d_ay) * f;
+        }
+        for k in 0..F::NQ {
+            dq[nr + k] = sp.value * df[k];
+        }
+    }
+    sp.value * f
+}
+
+macro_rules! ggx_lobe {
+    ($lobe:ident, $name:literal, $fresnel:ty, $aniso:expr, $masking:expr, $doc:literal) => {
+        #[doc = $doc]
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct $lobe;
+        impl Lobe for $lobe {
+            const NAME: &'static str = $name;
+            fn specs() -> Vec<ParamSpec> {
+                let mut s = width_specs($aniso);
+                s.extend(<$fresnel>::specs());
+                s
+            }
+            fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
+                ggx_shape::<$fresnel>(q, l, v, dq, $aniso, $masking)
+            }
+        }
+    };
+}
+
+use Masking::{HeightCorrelated as Hc, Separable as Sep};
+
+ggx_lobe!(
+    GgxLobe,
+    "ggx",
+    SchlickF0,
+    false,
+    Hc,
+    "Isotropic GGX, height-correlated Smith, Schlick `F`."
+);
+ggx_lobe!(
+    GgxSeparableLobe,
+    "ggx-separable",
+    SchlickF0,
+    false,
+    Sep,
+    "Isotropic GGX, separable Smith, Schlick `F`."
+);
+ggx_lobe!(
+    GgxAnisoLobe,
+    "ggx-aniso",
+    SchlickF0,
+    true,
+    Hc,
+    "Anisotropic GGX, height-correlated Smith, Schlick `F`."
+);
+ggx_lobe!(
+    GgxAnisoSeparableLobe,
+    "ggx-aniso-separable",
+    SchlickF0,
+    true,
+    Sep,
+    "Anisotropic GGX, separable Smith, Schlick `F`."
+);
+ggx_lobe!(
+    GgxDielectricLobe,
+    "ggx-dielectric",
+    Dielectric,
+    false,
+    Hc,
+    "Isotropic GGX, height-correlated Smith, exact dielectric `F`."
+);
+ggx_lobe!(
+    GgxDielectricSeparableLobe,
+    "ggx-dielectric-separable",
+    Dielectric,
+    false,
+    Sep,
+    "Isotropic GGX, separable Smith, exact dielectric `F`."
+);
+ggx_lobe!(
+    GgxDielectricAnisoLobe,
+    "ggx-dielectric-aniso",
+    Dielectric,
+    true,
+    Hc,
+    "Anisotropic GGX, height-correlated Smith, exact dielectric `F`."
+);
+ggx_lobe!(
+    GgxDielectricAnisoSeparableLobe,
+    "ggx-dielectric-aniso-separable",
+    Dielectric,
+    true,
+    Sep,
+    "Anisotropic GGX, separable Smith, exact dielectric `F`."
+);
+ggx_lobe!(
+    GgxConductorLobe,
+    "ggx-conductor",
+    Conductor,
+    false,
+    Hc,
+    "Isotropic GGX, height-correlated Smith, exact conductor `F`."
+);
+ggx_lobe!(
+    GgxConductorSeparableLobe,
+    "ggx-conductor-separable",
+    Conductor,
+    false,
+    Sep,
+    "Isotropic GGX, separable Smith, exact conductor `F`."
+);
+ggx_lobe!(
+    GgxConductorAnisoLobe,
+    "ggx-conductor-aniso",
+    Conductor,
+    true,
+    Hc,
+    "Anisotropic GGX, height-correlated Smith, exact conductor `F`."
+);
+ggx_lobe!(
+    GgxConductorAnisoSeparableLobe,
+    "ggx-conductor-aniso-separable",
+    Conductor,
+    true,
+    Sep,
+    "Anisotropic GGX, separable Smith, exact conductor `F`."
+);
+
+/// Lambert plus `K` isotropic GGX lobes (height-correlated Smith, Schlick).
+pub type Ggx = MultiLobe<GgxLobe>;
+/// Lambert plus `K` isotropic GGX lobes (separable Smith, Schlick).
+pub type GgxSeparable = MultiLobe<GgxSeparableLobe>;
+/// Lambert plus an anisotropic GGX lobe (height-correlated, Schlick).
+pub type GgxAniso = DiffuseLobe<GgxAnisoLobe>;
+/// Lambert plus an anisotropic GGX lobe (separable, Schlick).
+pub type GgxAnisoSeparable = DiffuseLobe<GgxAnisoSeparableLobe>;
+/// Lambert plus an isotropic GGX lobe with dielectric `F` (height-correlated).
+pub type GgxDielectric = DiffuseLobe<GgxDielectricLobe>;
+/// Lambert plus an isotropic GGX lobe with dielectric `F` (separable).
+pub type GgxDielectricSeparable = DiffuseLobe<GgxDielectricSeparableLobe>;
+/// Lambert plus an anisotropic GGX lobe with dielectric `F` (height-correlated).
+pub type GgxDielectricAniso = DiffuseLobe<GgxDielectricAnisoLobe>;
+/// Lambert plus an anisotropic GGX lobe with dielectric `F` (separable).
+pub type GgxDielectricAnisoSeparable = DiffuseLobe<GgxDielectricAnisoSeparableLobe>;
+/// Lambert plus an isotropic GGX lobe with conductor `F` (height-correlated).
+pub type GgxConductor = DiffuseLobe<GgxConductorLobe>;
+/// Lambert plus an isotropic GGX lobe with conductor `F` (separable).
+pub type GgxConductorSeparable = DiffuseLobe<GgxConductorSeparableLobe>;
+/// Lambert plus an anisotropic GGX lobe with conductor `F` (height-correlated).
+pub type GgxConductorAniso = DiffuseLobe<GgxConductorAnisoLobe>;
+/// Lambert plus an anisotropic GGX lobe with conductor `F` (separable).
+pub type GgxConductorAnisoSeparable = DiffuseLobe<GgxConductorAnisoSeparableLobe>;
