@@ -192,7 +192,7 @@ pub fn table(runs: &[NistRun], dir: &Path) -> Table {
          |certified|), capped at 15; runs that did not converge score 0. Minimum parameter \
          LRE over all runs: {:.2}; mean: {:.2}; mean RSS LRE: {:.2}; runs without \
          convergence: {}. Standard errors are sqrt(diag((J^T J)^-1) RSS / (n - p)).",
-        dir.display(),
+        crate::report::data_name(&dir.display().to_string()),
         runs.len() / 2,
         runs.len(),
         min,

@@ -1,15 +1,17 @@
 //! `brdf reproduce` on the built-in synthetic data writes the expected files,
-//! says it used synthetic data, and gives the same numbers when rerun.
+//! says it used synthetic data, writes into its own `synthetic/` folder
+//! (never over the measured results), and gives the same numbers when rerun.
 
 use std::process::Command;
 
 #[test]
 fn reproduce_on_synthetic_data_writes_tables_and_is_deterministic() {
-    let dir = std::env::temp_dir().join(format!("brdf-smoke-{}", std::process::id()));
+    let top = std::env::temp_dir().join(format!("brdf-smoke-{}", std::process::id()));
+    let dir = top.join("synthetic");
     let run = || {
         let out = Command::new(env!("CARGO_BIN_EXE_brdf"))
             .args(["reproduce", "--out"])
-            .arg(&dir)
+            .arg(&top)
             .env_remove("BRDF_DATA")
             .output()
             .unwrap();
@@ -30,5 +32,6 @@ fn reproduce_on_synthetic_data_writes_tables_and_is_deterministic() {
     assert_eq!(fig.lines().count(), 1 + 7);
     assert!(dir.join("kurt_9_5.svg").exists());
     assert_eq!(run(), first);
-    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(!top.join("kurt_9_1.csv").exists(), "synthetic results outside synthetic/");
+    std::fs::remove_dir_all(&top).unwrap();
 }

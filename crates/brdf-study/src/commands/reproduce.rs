@@ -63,10 +63,8 @@ fn load(data: Option<&Path>) -> Result<Materials, StudyError> {
             .collect();
         return Ok(Materials {
             sets,
-            source: format!(
-                "measured CUReT data (grey) from {}, angle limit 80 deg",
-                dir.display()
-            ),
+            source: "measured CUReT data (grey, `$BRDF_DATA/curet/abrdf.dat`), angle limit 80 deg"
+                .into(),
         });
     }
     let pairs = synthetic::scattered_pairs(205, limit);
@@ -86,11 +84,22 @@ pub fn run(args: &ReproduceArgs) -> Result<(), StudyError> {
         .data
         .clone()
         .or_else(|| std::env::var_os("BRDF_DATA").map(PathBuf::from));
-    if data.is_none() {
+    // The synthetic demonstration never writes over measured results: it
+    // goes to its own folder inside the output folder.
+    let synthetic_out;
+    let args = if data.is_none() {
+        synthetic_out = ReproduceArgs {
+            data: None,
+            out: args.out.join("synthetic"),
+        };
         eprintln!(
-            "brdf reproduce: no measured data (BRDF_DATA unset, no --data): running on built-in synthetic data"
+            "brdf reproduce: no measured data (BRDF_DATA unset, no --data): running on built-in synthetic data into {}",
+            synthetic_out.out.display()
         );
-    }
+        &synthetic_out
+    } else {
+        args
+    };
     let m = load(data.as_deref())?;
     std::fs::create_dir_all(&args.out).map_err(|e| StudyError::Io {
         path: args.out.display().to_string(),
