@@ -266,8 +266,12 @@ pub fn fit(
         solver: solver_kind,
         ..opts.clone()
     };
+    // An iterative linear fit (IRLS) says how it ended; a direct solve
+    // has nothing to report.
+    let mut irls_termination = None;
     let (p, solver, rep, starts_info) = if all_linear && opts.objective != Objective::Log {
         let (p, how, _) = fit_all_linear(model, data, &scales, opts.solver)?;
+        irls_termination = how.split_once("; ").map(|(_, t)| t.to_string());
         (p, how, None, (1, 1, 1))
     } else {
         match opts.solver {
@@ -293,7 +297,7 @@ pub fn fit(
         }
     };
     model.set_params(&p)?;
-    summarise(
+    let mut summary = summarise(
         model,
         data,
         opts,
@@ -304,7 +308,11 @@ pub fn fit(
         rep,
         starts_info,
         t0,
-    )
+    )?;
+    if let Some(t) = irls_termination {
+        summary.termination = format!("IRLS {t}");
+    }
+    Ok(summary)
 }
 
 /// Sopp's two-stage procedure: `grey` is a one-channel instance of the same
@@ -620,10 +628,10 @@ pub(crate) fn fit_all_linear(
                     },
                 )?;
                 how = format!(
-                    "IRLS ({}, MATLAB 2004 scale), {} iterations{}",
+                    "IRLS ({}, MATLAB 2004 scale), {} iterations; {}",
                     weight.name(),
                     s.iterations,
-                    if s.converged { "" } else { ", NOT converged" }
+                    s.termination.describe()
                 );
                 s.coef
             }

@@ -32,6 +32,9 @@ fn reproduce_on_synthetic_data_writes_tables_and_is_deterministic() {
     assert_eq!(fig.lines().count(), 1 + 7);
     assert!(dir.join("kurt_9_5.svg").exists());
     assert_eq!(run(), first);
-    assert!(!top.join("kurt_9_1.csv").exists(), "synthetic results outside synthetic/");
+    assert!(
+        !top.join("kurt_9_1.csv").exists(),
+        "synthetic results outside synthetic/"
+    );
     std::fs::remove_dir_all(&top).unwrap();
 }
