@@ -518,7 +518,12 @@ fn every_model_has_an_energy_test() {
         "polynomial",
         "polynomial-aniso",
     ];
+    // The renderer family (GGX, principled, glTF) has its energy tests in
+    // renderer_models.rs.
     for e in brdf_models::catalogue() {
+        if e.family == "renderer" {
+            continue;
+        }
         assert!(covered.contains(&e.name), "{} has no energy test", e.name);
     }
 }
