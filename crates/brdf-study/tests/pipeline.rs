@@ -26,6 +26,9 @@ fn truth(model: &dyn Parametric) -> Vec<f64> {
             } else if s.name.starts_with('c') {
                 // Lafortune axis weights: a forward-scattering lobe.
                 if s.name.starts_with("cz") { 0.8 } else { -0.9 }
+            } else if s.lower >= 1.0 {
+                // Indices of refraction: eta = 1 would switch the lobe off.
+                s.lower + 0.55 * (s.upper - s.lower)
             } else {
                 s.lower + 0.55 * (s.upper.min(1.0) - s.lower)
             }
