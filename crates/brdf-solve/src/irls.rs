@@ -90,7 +90,7 @@ impl ScaleConvention {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum StoppingTest {
     /// MATLAB `robustfit`: every `|b - b_old| <= tol max(|b|, |b_old|)`,
-    /// `tol` [`sqrt(eps)`] (default).
+    /// `tol` (default `sqrt(eps)`).
     #[default]
     Coefficients,
     /// statsmodels `RLM` (`conv='dev'`): `|D - D_old| <= tol` [1e-8], with
@@ -144,9 +144,9 @@ pub struct IrlsOptions {
     /// Tolerance of the stopping test; `None`: `sqrt(eps)` for the
     /// coefficient test, `1e-8` for the deviance test.
     pub tolerance: Option<f64>,
-    /// Safeguarded Anderson acceleration [true]; `false` is MATLAB's loop.
+    /// Safeguarded Anderson acceleration (default true); `false` is MATLAB's loop.
     pub acceleration: bool,
-    /// Steps remembered by the acceleration [5].
+    /// Steps remembered by the acceleration (default 5).
     pub anderson_memory: usize,
 }
 
