@@ -167,14 +167,17 @@ impl<'a> ModelProblem<'a> {
         self.pool.with(l * n, |phi| {
             self.pool.with(l * nq * n, |dphi| {
                 b.basis_batch(p, self.pairs, geom, phi, Some(dphi));
+                // Row by row, so the row-major Jacobian is written in order.
                 for c in 0..nc {
-                    for t in 0..l {
-                        let (k, x) = (b.coefficient_index(c, t), p[b.coefficient_index(c, t)]);
-                        for j in 0..n {
-                            let row = &mut jac[(c * n + j) * np..(c * n + j + 1) * np];
-                            row[k] = phi[t * n + j] * self.scale[j];
+                    let rows = jac[c * n * np..(c + 1) * n * np].chunks_exact_mut(np);
+                    for (j, row) in rows.enumerate() {
+                        let sj = self.scale[j];
+                        for t in 0..l {
+                            let k = b.coefficient_index(c, t);
+                            row[k] = phi[t * n + j] * sj;
+                            let x = p[k] * sj;
                             for (u, &ku) in self.nonlinear.iter().enumerate() {
-                                row[ku] += x * dphi[(t * nq + u) * n + j] * self.scale[j];
+                                row[ku] += x * dphi[(t * nq + u) * n + j];
                             }
                         }
                     }
