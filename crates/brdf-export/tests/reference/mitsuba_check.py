@@ -7,9 +7,10 @@ to 85 deg, uniform in cos(theta) and in phi; their components are rounded
 to single precision here, so Mitsuba (which computes in single precision)
 and the Rust test (double) evaluate at exactly the same directions.
 
-Run (venv with `pip install mitsuba numpy`):
+Run (venv with `pip install mitsuba numpy`; check_exports.sh does):
   cargo run -p brdf-export --example mitsuba_cases > mitsuba_cases.json
   python mitsuba_check.py mitsuba_cases.json > mitsuba_values.json
+Any JSON list of objects with an "xml" member works (paper_white/).
 """
 
 import json
