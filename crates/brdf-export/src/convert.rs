@@ -17,17 +17,17 @@
 //! | glTF 2.0 | `gltf` | the metallic-roughness material |
 //! | MaterialX | `gltf` | written as `gltf_pbr` |
 //!
-//! pbrt-v4's `mix` takes one amount for all channels, so for pbrt the
-//! fitted per-channel `ks` is replaced by its mean and `kd` re-solved per
-//! channel in closed form (the weighted least-squares value with the rest
-//! fixed, clipped to `[0, 1 - ks]` so the `mix` stays possible); the error
-//! reported is that of the material written.
+//! pbrt-v4's `mix` takes one amount for all channels and a diffuse
+//! reflectance of at most 1, so for pbrt (with a `ggx-conductor` or
+//! `ggx-dielectric` lobe, isotropic or `-aniso`) the model fitted is the mix
+//! itself ([`crate::pbrt_mix`]) and then written as its catalogue model.
 
 use brdf_core::half_diff::HalfDiff;
 use brdf_core::{DirPairs, Direction, Parametric, SampleSet};
-use brdf_fit::{Channels, Fit};
+use brdf_fit::{Channels, Fit, FitOptions, pipeline};
 use brdf_models::ModelConfig;
 
+use crate::pbrt_mix::PbrtMix;
 use crate::{ExportError, Target};
 
 /// How to convert.
@@ -129,23 +129,38 @@ pub fn convert(
         return Err(fail(format!("{} pairs: need at least 16", opts.pairs)));
     }
     let samples = sample_source(source, opts).map_err(fail)?;
-    let report = Fit::model(via)
-        .map_err(|e| fail(e.to_string()))?
-        .channels(Channels::All)
-        .starts(opts.starts)
-        // Every pair already lies inside the limit; 90 keeps them all.
-        .limit_deg(90.0)
-        .run(&samples)
-        .map_err(|e| fail(e.to_string()))?;
-    let mut model = report.model;
-    if target == Target::Pbrt && model.channels() > 1 {
-        grey_ks(model.as_mut(), &samples).map_err(fail)?;
-    }
+    let pbrt_lobe = matches!(
+        via,
+        "ggx-conductor" | "ggx-dielectric" | "ggx-conductor-aniso" | "ggx-dielectric-aniso"
+    );
+    let (model, config) = if target == Target::Pbrt && pbrt_lobe {
+        let mut mix = PbrtMix::new(via, source.channels()).map_err(|e| fail(e.to_string()))?;
+        let fit_opts = FitOptions {
+            starts: opts.starts,
+            ..FitOptions::default()
+        };
+        pipeline::fit(&mut mix, &samples, &fit_opts).map_err(|e| fail(e.to_string()))?;
+        let config = ModelConfig {
+            channels: source.channels(),
+            ..ModelConfig::default()
+        };
+        (mix.catalogue().map_err(|e| fail(e.to_string()))?, config)
+    } else {
+        let report = Fit::model(via)
+            .map_err(|e| fail(e.to_string()))?
+            .channels(Channels::All)
+            .starts(opts.starts)
+            // Every pair already lies inside the limit; 90 keeps them all.
+            .limit_deg(90.0)
+            .run(&samples)
+            .map_err(|e| fail(e.to_string()))?;
+        (report.model, report.config)
+    };
     let error = measure(source, model.as_ref(), &samples, opts.limit_deg).map_err(fail)?;
     Ok(Conversion {
         source: source.name().to_string(),
         model,
-        config: report.config,
+        config,
         pairs: samples.pairs().clone(),
         error,
     })
@@ -250,43 +265,4 @@ fn measure(
         ngan_l2,
         relative_l2: if norm > 0.0 { ngan_l2 / norm } else { 0.0 },
     })
-}
-
-/// Replace a per-channel `ks` by its mean and re-solve `kd` per channel
-/// with the rest fixed (see the module doc).
-fn grey_ks(m: &mut dyn Parametric, s: &SampleSet) -> Result<(), String> {
-    let nc = m.channels();
-    let index = |name: &str| {
-        m.param_specs()
-            .iter()
-            .position(|p| p.name == name)
-            .ok_or_else(|| format!("`{}` has no parameter `{name}`", m.name()))
-    };
-    let rgb = ["r", "g", "b"];
-    let kd: Vec<usize> = (0..nc)
-        .map(|c| index(&format!("kd_{}", rgb[c])))
-        .collect::<Result<_, _>>()?;
-    let ks: Vec<usize> = (0..nc)
-        .map(|c| index(&format!("ks_{}", rgb[c])))
-        .collect::<Result<_, _>>()?;
-    let mut p = m.params().to_vec();
-    let ks_grey = ks.iter().map(|&k| p[k]).sum::<f64>() / nc as f64;
-    // The specular part alone at the grey ks.
-    for c in 0..nc {
-        p[kd[c]] = 0.0;
-        p[ks[c]] = ks_grey;
-    }
-    m.set_params(&p).map_err(|e| e.to_string())?;
-    let spec = values(m, s);
-    let n = s.len();
-    // Ngan's rows are cos_i (R - kd/pi - S): kd/pi is the cos_i^2-weighted
-    // mean of R - S.
-    let w: Vec<f64> = (0..n).map(|j| s.pairs().l(j).z.powi(2)).collect();
-    let wsum: f64 = w.iter().sum();
-    for c in 0..nc {
-        let r = s.channel(c);
-        let mean = (0..n).map(|j| w[j] * (r[j] - spec[c * n + j])).sum::<f64>() / wsum;
-        p[kd[c]] = (std::f64::consts::PI * mean).clamp(0.0, 1.0 - ks_grey);
-    }
-    m.set_params(&p).map_err(|e| e.to_string())
 }

@@ -39,6 +39,7 @@ pub mod gltf;
 pub mod materialx;
 pub mod mitsuba;
 pub mod pbrt;
+pub mod pbrt_mix;
 mod xml;
 
 use brdf_core::Parametric;
