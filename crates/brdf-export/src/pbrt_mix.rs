@@ -119,6 +119,7 @@ impl Parametric for PbrtMix {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use brdf_core::Brdf;
 
     /// The mix equals its catalogue model (`kd = (1 - a) R`, `ks = a`) at
     /// random-ish pairs.
