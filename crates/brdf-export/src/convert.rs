@@ -228,6 +228,17 @@ pub fn sample_source(source: &dyn Parametric, opts: &ConvertOptions) -> Result<S
     ))
 }
 
+/// How far `converted` is from `source` on the pairs [`sample_source`]
+/// draws for `opts` (what [`convert`] reports).
+pub fn conversion_error(
+    source: &dyn Parametric,
+    converted: &dyn Parametric,
+    opts: &ConvertOptions,
+) -> Result<ConversionError, String> {
+    let samples = sample_source(source, opts)?;
+    measure(source, converted, &samples, opts.limit_deg)
+}
+
 /// Values of `m` at the pairs of `s`, channel-major.
 fn values(m: &dyn Parametric, s: &SampleSet) -> Vec<f64> {
     let (n, nc) = (s.len(), m.channels());
