@@ -229,7 +229,7 @@ pub fn sample_source(source: &dyn Parametric, opts: &ConvertOptions) -> Result<S
 }
 
 /// How far `converted` is from `source` on the pairs [`sample_source`]
-/// draws for `opts` (what [`convert`] reports).
+/// draws for `opts` (what [`convert()`] reports).
 pub fn conversion_error(
     source: &dyn Parametric,
     converted: &dyn Parametric,

@@ -5,7 +5,7 @@
 //! A material is written only where the target's BSDF equals the fitted
 //! BRDF; otherwise [`export`] returns [`ExportError::NoEquivalent`] naming
 //! why, and [`export_or_convert`] fits a model the target has to the
-//! model's values ([`convert`]) and writes that, with the conversion error
+//! model's values ([`convert()`]) and writes that, with the conversion error
 //! in the file itself (a comment, or glTF's `extras`) and in its answer:
 //! never a silently different material.
 //!
@@ -16,7 +16,7 @@
 //! | glTF 2.0 | [`gltf`] | `gltf`, `gltf-ext` (with `KHR_materials_ior`, `_specular`, `_clearcoat`); `lambert` |
 //! | MaterialX | [`materialx`] | `gltf`, `gltf-ext`, `lambert` as `gltf_pbr` |
 //!
-//! Any other model is converted by fitting (see [`convert`] for the model
+//! Any other model is converted by fitting (see [`mod@convert`] for the model
 //! each target gets).
 //!
 //! ```
