@@ -180,12 +180,26 @@ impl Factored {
     /// where they are accurate, else by QR in `ws`, the reused `m x (n+1)`
     /// workspace ([`tall_qr`]).
     fn new(jac: &[f64], r: &[f64], n: usize, ws: &mut Mat<f64>) -> Self {
+        Self::by_normal_equations(jac, r, n).unwrap_or_else(|| Self::by_qr(jac, r, n, ws))
+    }
+
+    /// The guarded normal equations; `None` where they are not accurate
+    /// (or `J` is not finite: a non-finite entry makes the Gram matrix
+    /// non-finite, which the guard refuses).
+    fn by_normal_equations(jac: &[f64], r: &[f64], n: usize) -> Option<Self> {
         let m = r.len();
         let jm = faer::MatRef::from_row_major_slice(jac, m, n);
         let rm = faer::MatRef::from_column_major_slice(r, m, 1);
-        if let Some((rr, qtr)) = tall_qr::gram_triangle(jm, rm) {
-            return Self::from_triangle(rr, (0..n).map(|i| qtr[(i, 0)]).collect());
-        }
+        let (rr, qtr) = tall_qr::gram_triangle(jm, rm)?;
+        Some(Self::from_triangle(
+            rr,
+            (0..n).map(|i| qtr[(i, 0)]).collect(),
+        ))
+    }
+
+    /// Householder QR of `[J | r]` in `ws`.
+    fn by_qr(jac: &[f64], r: &[f64], n: usize, ws: &mut Mat<f64>) -> Self {
+        let m = r.len();
         for k in 0..n {
             let col = ws
                 .col_mut(k)
@@ -328,7 +342,10 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
     let mut fac;
     let termination = 'outer: loop {
         problem.jacobian(&p, &mut jac);
-        if !all_finite(&jac) {
+        // The Gram path succeeds only for a finite Jacobian, so the scan for
+        // non-finite entries is needed only when it does not.
+        let by_gram = Factored::by_normal_equations(&jac, &r, n);
+        if by_gram.is_none() && !all_finite(&jac) {
             if iterations == 0 {
                 return Ok(report(
                     p,
@@ -349,7 +366,10 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
                 break Termination::NonFiniteStart;
             }
         }
-        let f = Factored::new(&jac, &r, n, &mut ws);
+        let f = match by_gram {
+            Some(f) => f,
+            None => Factored::new(&jac, &r, n, &mut ws),
+        };
         for k in 0..n {
             d[k] = match options.scaling {
                 Scaling::Marquardt => d[k].max(f.colnorm[k]),
