@@ -1,9 +1,14 @@
 //! Samples per second of every catalogue model's batch value and
 //! value-plus-derivatives, on the same 10,000 fixed direction pairs and at
-//! each model's default parameters.
+//! each model's default parameters (`models/...`, the general per-pair
+//! evaluation); and of the fitting kernels (`kernels/...`): the
+//! channel-shared basis of every model that has one, over geometry
+//! precomputed once per sample set (`PairGeometry`), as the solvers call it
+//! at every iteration, value only and with the basis derivatives.
 
 use std::hint::black_box;
 
+use brdf_core::PairGeometry;
 use brdf_models::{ModelConfig, catalogue};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 
@@ -38,5 +43,40 @@ fn models(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, models);
+fn kernels(c: &mut Criterion) {
+    let pairs = brdf_benches::fixed_pairs(10_000);
+    let geom = PairGeometry::new(&pairs);
+    let n = pairs.len();
+    let config = ModelConfig::default();
+    let mut g = c.benchmark_group("kernels");
+    g.throughput(Throughput::Elements(n as u64));
+    for entry in catalogue() {
+        let Ok(model) = (entry.build)(&config) else {
+            continue;
+        };
+        let Some(basis) = model.shared_basis() else {
+            continue;
+        };
+        let p = model.params().to_vec();
+        let nq = model.param_specs().iter().filter(|s| !s.linear).count();
+        let l = basis.basis_len();
+        let mut phi = vec![0.0; l * n];
+        let mut dphi = vec![0.0; l * nq * n];
+        g.bench_function(format!("{}/value", entry.name), |b| {
+            b.iter(|| {
+                basis.basis_batch(black_box(&p), &pairs, &geom, &mut phi, None);
+                black_box(phi[0])
+            })
+        });
+        g.bench_function(format!("{}/value+derivatives", entry.name), |b| {
+            b.iter(|| {
+                basis.basis_batch(black_box(&p), &pairs, &geom, &mut phi, Some(&mut dphi));
+                black_box(dphi[0])
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, models, kernels);
 criterion_main!(benches);
