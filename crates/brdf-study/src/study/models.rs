@@ -1,0 +1,148 @@
+//! Kurt's nine models and how the study fits them: built for the data,
+//! Lafortune in Kurt's box unless the wide box is asked for, fitted by the
+//! pipeline from automatic starts (the polynomial by robust IRLS as Kurt
+//! did, or by OLS when asked), and the parameters a fit leaves undetermined
+//! (the shape of a lobe switched off) named.
+
+use brdf_core::{Parametric, SampleSet};
+use brdf_fit::{FitOptions, FitSummary, Objective, Solver};
+use brdf_models::{ModelConfig, build_for};
+
+use super::spec::LafortuneBox;
+use crate::StudyError;
+
+/// The nine models of Table 9.2: `(label, catalogue name, config)`, with
+/// `lobes` lobes for Lafortune and Cook-Torrance.
+pub fn nine_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig)> {
+    let c = ModelConfig {
+        lobes,
+        ..ModelConfig::default()
+    };
+    vec![
+        ("Ashikhmin-Shirley", "ashikhmin-shirley", c),
+        ("Blinn-Phong", "blinn-phong", c),
+        ("Cook-Torrance", "cook-torrance", c),
+        ("Lafortune", "lafortune", c),
+        ("Oren-Nayar", "oren-nayar", c),
+        ("Ward", "ward", c),
+        ("Ward-Duer", "ward-duer", c),
+        (
+            "Koenderink (order 8)",
+            "koenderink",
+            ModelConfig { order: 8, ..c },
+        ),
+        (
+            "Polynomial (p = 7)",
+            "polynomial",
+            ModelConfig { degree: 7, ..c },
+        ),
+    ]
+}
+
+/// Build catalogue model `name` for `set`, in Kurt's box for Lafortune
+/// when `lbox` says so.
+pub fn build_model(
+    name: &str,
+    config: ModelConfig,
+    set: &SampleSet,
+    lbox: LafortuneBox,
+) -> Result<Box<dyn Parametric>, StudyError> {
+    let model = build_for(name, &config, set.pairs())?;
+    if name == "lafortune" && lbox == LafortuneBox::Kurt {
+        return Ok(Box::new(super::restricted_box::Restricted::kurt_lafortune(
+            model,
+        )?));
+    }
+    Ok(model)
+}
+
+/// How a fit is run: objective and (for the polynomial) OLS instead of IRLS.
+#[derive(Clone, Copy, Debug)]
+pub struct FitHow {
+    /// Objective.
+    pub objective: Objective,
+    /// Lafortune's box.
+    pub lbox: LafortuneBox,
+    /// Fit all-linear models by OLS (Kurt's polynomial otherwise by IRLS).
+    pub ols: bool,
+}
+
+impl Default for FitHow {
+    fn default() -> Self {
+        FitHow {
+            objective: Objective::Ngan,
+            lbox: LafortuneBox::Kurt,
+            ols: false,
+        }
+    }
+}
+
+/// Build and fit; the fitted model and its summary.
+pub fn fit_model(
+    name: &str,
+    config: ModelConfig,
+    set: &SampleSet,
+    how: FitHow,
+) -> Result<(Box<dyn Parametric>, FitSummary), StudyError> {
+    let mut model = build_model(name, config, set, how.lbox)?;
+    let opts = FitOptions {
+        objective: how.objective,
+        solver: if how.ols { Solver::Ols } else { Solver::Auto },
+        ..FitOptions::default()
+    };
+    let summary = brdf_fit::pipeline::fit(model.as_mut(), set, &opts)?;
+    Ok((model, summary))
+}
+
+/// Names of the non-linear parameters a fit leaves undetermined: the
+/// shape parameters of a specular lobe whose strengths (`ks`, `ks1`,
+/// `ks_r`, ...) are all zero — the model does not depend on them then.
+pub fn undetermined(summary: &FitSummary) -> Vec<String> {
+    fn strength(n: &str) -> Option<&str> {
+        let n = n.split('_').next().unwrap_or(n);
+        n.strip_prefix("ks")
+            .filter(|r| r.chars().all(|c| c.is_ascii_digit()))
+    }
+    let mut lobes: Vec<(String, bool)> = Vec::new();
+    for p in summary.parameters.iter() {
+        if let Some(k) = strength(&p.name) {
+            let off = p.value.abs() <= 0.0;
+            match lobes.iter_mut().find(|(l, _)| l == k) {
+                Some(e) => e.1 &= off,
+                None => lobes.push((k.to_string(), off)),
+            }
+        }
+    }
+    summary
+        .parameters
+        .iter()
+        .filter(|p| !p.projected && strength(&p.name).is_none())
+        .filter(|p| {
+            let lobe = lobe_number(&p.name);
+            lobes
+                .iter()
+                .any(|(l, off)| *off && (l.is_empty() || *l == lobe))
+        })
+        .map(|p| p.name.clone())
+        .collect()
+}
+
+/// Trailing lobe number of a shape parameter (`m1`, `f0_1`, `cxy2`): the
+/// digits after the last letter or underscore, "" when the name has none
+/// besides a built-in digit (`f0`).
+fn lobe_number(name: &str) -> String {
+    if let Some((_, k)) = name.rsplit_once('_') {
+        if k.chars().all(|c| c.is_ascii_digit()) {
+            return k.to_string();
+        }
+    }
+    if name == "f0" {
+        return String::new();
+    }
+    let digits: String = name
+        .chars()
+        .rev()
+        .take_while(char::is_ascii_digit)
+        .collect();
+    digits.chars().rev().collect()
+}
