@@ -32,6 +32,8 @@ pub enum Command {
     Info(crate::commands::info::InfoArgs),
     /// Convert data or a saved model to MERL, Sopp's grid or CSV samples.
     Resample(crate::commands::resample::ResampleArgs),
+    /// Render a labelled sphere of a saved model, dense data, or both side by side.
+    Render(crate::commands::render::RenderArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
 }

@@ -149,10 +149,10 @@ pub fn figure_9_2(study: &mut Study) -> Result<(), StudyError> {
     let how = study.how()?;
     let results = study.fits(&models, &sets, how)?;
     let mut grid = Grid {
-        title: format!(
+        title: study.title(format!(
             "Kurt Fig. 9.2: the models fitted to the Table 9.2 materials (grey CUReT, {})",
             how.objective.name()
-        ),
+        )),
         columns: models.iter().map(|m| m.0.to_string()).collect(),
         ..Grid::default()
     };

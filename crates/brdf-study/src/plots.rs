@@ -111,6 +111,18 @@ fn range(plot: &Plot, f: impl Fn(&(f64, f64)) -> f64, log: bool) -> (f64, f64) {
     }
 }
 
+/// A tick label: on a log axis only the 1-2-5 values are labelled (the
+/// others are drawn unlabelled, so labels never crowd).
+fn tick(v: f64, log: bool) -> String {
+    if log && v > 0.0 {
+        let m = v / 10f64.powf(v.log10().floor());
+        if ![1.0, 2.0, 5.0].iter().any(|k| (m - k).abs() < 1e-6) {
+            return String::new();
+        }
+    }
+    crate::report::fmt_sig(v, 2)
+}
+
 /// A marker of shape `style / 10` (circle, triangle, square, cross).
 fn marker<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -151,14 +163,20 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
         .x_label_area_size(45)
         .y_label_area_size(75);
     let integer = plot.integer_x;
+    let (log_x, log_y) = (plot.log_x, plot.log_y);
     let xfmt = move |x: &f64| {
         if integer {
-            format!("{:.0}", x)
+            // Only whole numbers are labelled (ranks, degrees).
+            if (x - x.round()).abs() < 1e-9 {
+                format!("{:.0}", x)
+            } else {
+                String::new()
+            }
         } else {
-            crate::report::fmt_sig(*x, 2)
+            tick(*x, log_x)
         }
     };
-    let yfmt = |y: &f64| crate::report::fmt_sig(*y, 2);
+    let yfmt = move |y: &f64| tick(*y, log_y);
     macro_rules! body {
         ($chart:expr) => {{
             let mut chart = $chart;
@@ -168,6 +186,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
                 .y_desc(plot.y_label.as_str())
                 .x_label_formatter(&xfmt)
                 .y_label_formatter(&yfmt)
+                .light_line_style(WHITE)
                 .draw()
                 .map_err(e)?;
             let ok = |(x, y): &(f64, f64)| {
@@ -200,11 +219,37 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
                         .map_err(e)?;
                 }
                 if s.marker > 0 {
-                    let area = chart.plotting_area();
-                    for p in &pts {
-                        let px = area.map_coordinate(p);
-                        marker(&area.strip_coord_spec(), px, shape(s.style), s.marker, c)?;
+                    let z = s.marker as i32;
+                    let at = |p: &(f64, f64)| EmptyElement::at(*p);
+                    match (shape(s.style) / 4) % 4 {
+                        0 => chart
+                            .draw_series(
+                                pts.iter()
+                                    .map(|p| at(p) + Circle::new((0, 0), z, c.filled())),
+                            )
+                            .map(|_| ()),
+                        1 => {
+                            chart
+                                .draw_series(pts.iter().map(|p| {
+                                    at(p) + TriangleMarker::new((0, 0), z + 1, c.filled())
+                                }))
+                                .map(|_| ())
+                        }
+                        2 => {
+                            chart
+                                .draw_series(pts.iter().map(|p| {
+                                    at(p) + Rectangle::new([(-z, -z), (z, z)], c.filled())
+                                }))
+                                .map(|_| ())
+                        }
+                        _ => chart
+                            .draw_series(
+                                pts.iter()
+                                    .map(|p| at(p) + Cross::new((0, 0), z, c.stroke_width(2))),
+                            )
+                            .map(|_| ()),
                     }
+                    .map_err(e)?;
                 }
             }
         }};

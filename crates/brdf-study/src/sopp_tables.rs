@@ -117,11 +117,11 @@ pub fn strips(measured: &SoppGrid, model: &SoppGrid) -> (Image, Image) {
     (cut(0), cut(1))
 }
 
+/// One material's rows of the table and its preview strips (measured, model).
+type MaterialRows = (Vec<Vec<Cell>>, Option<(Image, Image)>);
+
 /// One material's rows of the table and its preview (measured, model).
-fn material(
-    rgl_dir: &Path,
-    name: &str,
-) -> Result<(Vec<Vec<Cell>>, Option<(Image, Image)>), StudyError> {
+fn material(rgl_dir: &Path, name: &str) -> Result<MaterialRows, StudyError> {
     let path = rgl_dir.join(format!("{name}.bsdf"));
     let rgl = brdf_io::rgl::Rgl::read(&path)?;
     let grid = SoppGrid::resample(&rgl);

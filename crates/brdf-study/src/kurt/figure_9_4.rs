@@ -90,10 +90,10 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
         lafortune_note(how.lbox)
     );
     let mut plot = Plot {
-        title: format!(
+        title: study.title(format!(
             "Kurt Fig. 9.4: eight models on {} CUReT materials",
             sets.len()
-        ),
+        )),
         x_label: format!(
             "material rank by {} error (names in kurt_9_4.md)",
             models[ct].0

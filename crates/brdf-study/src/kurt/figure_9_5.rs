@@ -56,7 +56,7 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
         study.curet_source()
     );
     let mut plot = Plot {
-        title: "Kurt Fig. 9.5: the linear models on every CUReT material".into(),
+        title: study.title("Kurt Fig. 9.5: the linear models on every CUReT material"),
         x_label: "material rank by polynomial p=8 error (names in kurt_9_5.md)".into(),
         y_label: format!("{metric} error"),
         log_y: true,

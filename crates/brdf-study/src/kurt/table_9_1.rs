@@ -111,7 +111,7 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
         &hdr,
     );
     let mut plot = Plot {
-        title: "Kurt Table 9.1: polynomial error against degree".into(),
+        title: study.title("Kurt Table 9.1: polynomial error against degree"),
         x_label: "degree p".into(),
         y_label: format!("{} error", objective.name()),
         log_y: true,

@@ -60,7 +60,8 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
     );
     let mut means = Vec::new();
     let mut plot = Plot {
-        title: "Error against fit time: every material (small), mean per procedure (large)".into(),
+        title: study
+            .title("Error against fit time: every material (small), mean per procedure (large)"),
         x_label: "fit time (s)".into(),
         y_label: format!("{metric} error"),
         log_x: true,

@@ -153,7 +153,9 @@ impl Grid {
             .flatten()
             .any(|t| matches!(t.tone, Tone::Difference(_)));
         let width = LEFT + ncol * (cw + GAP) + if bar { BAR } else { GAP } + 10;
-        let height = TOP + self.tiles.len() * (ch + GAP) + (self.footer.len() + 1) * LINE;
+        let chars = (width.saturating_sub(16) / 7).max(30);
+        let footer: Vec<String> = self.footer.iter().flat_map(|l| wrap(l, chars)).collect();
+        let height = TOP + self.tiles.len() * (ch + GAP) + (footer.len() + 1) * LINE;
         let mut buf = vec![255u8; width * height * 3];
         for (r, row) in self.tiles.iter().enumerate() {
             for (c, tile) in row.iter().enumerate() {
@@ -166,10 +168,11 @@ impl Grid {
                     }
                 }
             }
-            if let Some(max) = row.iter().flatten().find_map(|t| match t.tone {
-                Tone::Difference(m) => Some(m),
-                _ => None,
-            }) {
+            if row
+                .iter()
+                .flatten()
+                .any(|t| matches!(t.tone, Tone::Difference(_)))
+            {
                 let x0 = LEFT + ncol * (cw + GAP);
                 let y0 = TOP + r * (ch + GAP);
                 for y in 0..ch {
@@ -179,10 +182,9 @@ impl Grid {
                         buf[o..o + 3].copy_from_slice(&col);
                     }
                 }
-                let _ = max;
             }
         }
-        self.draw_text(&mut buf, width, height, cw, ch, ncol)
+        self.draw_text(&mut buf, width, height, cw, ch, ncol, &footer)
             .map_err(|e| io_err(path, e))?;
         write_rgb_png(path, width, height, &buf)
     }
@@ -195,6 +197,7 @@ impl Grid {
         cw: usize,
         ch: usize,
         ncol: usize,
+        footer: &[String],
     ) -> Result<(), String> {
         let root =
             BitMapBackend::with_buffer(buf, (width as u32, height as u32)).into_drawing_area();
@@ -229,7 +232,7 @@ impl Grid {
             }
         }
         let y0 = TOP + self.tiles.len() * (ch + GAP) + 2;
-        for (k, line) in self.footer.iter().enumerate() {
+        for (k, line) in footer.iter().enumerate() {
             text(line, 8, y0 + k * LINE, 12)?;
         }
         root.present().map_err(|e| e.to_string())?;

@@ -107,6 +107,16 @@ impl Study {
         self.data.is_none()
     }
 
+    /// A figure title, marked when the data are synthetic.
+    pub fn title(&self, t: impl Into<String>) -> String {
+        let t = t.into();
+        if self.synthetic() {
+            format!("{t} [BUILT-IN SYNTHETIC DATA]")
+        } else {
+            t
+        }
+    }
+
     /// The data root's sub-folder `rel`, when it exists.
     pub fn data_dir(&self, rel: &str) -> Option<PathBuf> {
         self.data
@@ -135,10 +145,15 @@ impl Study {
         data: impl Into<String>,
     ) {
         let limit = format!("{} deg", self.variant.limit);
+        let data = if self.synthetic() {
+            "BUILT-IN SYNTHETIC DATA".to_string()
+        } else {
+            data.into()
+        };
         self.written.push(Written {
             file: file.into(),
             what: what.into(),
-            data: data.into(),
+            data,
             metric: self.variant.metric.clone(),
             limit,
         });

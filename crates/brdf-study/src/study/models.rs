@@ -117,6 +117,8 @@ pub fn undetermined(summary: &FitSummary) -> Vec<String> {
         .parameters
         .iter()
         .filter(|p| !p.projected && strength(&p.name).is_none())
+        // The coupled Ashikhmin-Shirley diffuse term depends on F0 too.
+        .filter(|p| !(summary.model.contains("coupled") && p.name.starts_with("f0")))
         .filter(|p| {
             let lobe = lobe_number(&p.name);
             lobes
@@ -145,4 +147,74 @@ fn lobe_number(name: &str) -> String {
         .take_while(char::is_ascii_digit)
         .collect();
     digits.chars().rev().collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use brdf_fit::FittedParam;
+
+    fn summary(params: &[(&str, f64, bool)]) -> FitSummary {
+        FitSummary {
+            model: String::new(),
+            data: String::new(),
+            samples: 0,
+            parameters: params
+                .iter()
+                .map(|(n, v, projected)| FittedParam {
+                    name: n.to_string(),
+                    value: *v,
+                    std_error: None,
+                    at_bound: None,
+                    projected: *projected,
+                })
+                .collect(),
+            objective: "ngan",
+            error: 0.0,
+            error_per_channel: vec![],
+            ngan_l2: 0.0,
+            ngan_l2_per_channel: vec![],
+            solver: String::new(),
+            iterations: 0,
+            termination: String::new(),
+            starts: (0, 0, 0),
+            seconds: 0.0,
+            stored_numbers: 0,
+        }
+    }
+
+    #[test]
+    fn a_switched_off_lobe_leaves_its_shape_undetermined() {
+        let ward = summary(&[("kd", 0.3, true), ("ks", 0.0, true), ("a", 0.0158, false)]);
+        assert_eq!(undetermined(&ward), vec!["a"]);
+        let on = summary(&[("kd", 0.3, true), ("ks", 0.01, true), ("a", 0.2, false)]);
+        assert!(undetermined(&on).is_empty());
+        // Two lobes, the second off: only its axes and exponent.
+        let laf = summary(&[
+            ("kd", 0.3, true),
+            ("ks1", 0.1, true),
+            ("cxy1", -0.5, false),
+            ("cz1", 0.4, false),
+            ("n1", 8.0, false),
+            ("ks2", 0.0, true),
+            ("cxy2", -0.9, false),
+            ("cz2", 0.1, false),
+            ("n2", 3.0, false),
+        ]);
+        assert_eq!(undetermined(&laf), vec!["cxy2", "cz2", "n2"]);
+        // RGB: one channel's strength keeps the lobe on.
+        let ct = summary(&[
+            ("ks1_r", 0.0, true),
+            ("ks1_g", 0.0, true),
+            ("ks1_b", 0.1, true),
+            ("m1", 0.3, false),
+            ("f0_1", 0.9, false),
+        ]);
+        assert!(undetermined(&ct).is_empty());
+        let ct_off = summary(&[("ks1", 0.0, true), ("m1", 0.3, false), ("f0_1", 0.9, false)]);
+        assert_eq!(undetermined(&ct_off), vec!["m1", "f0_1"]);
+        // Oren-Nayar has no lobe: sigma stays determined.
+        let on = summary(&[("kd", 0.3, true), ("sigma", 0.0, false)]);
+        assert!(undetermined(&on).is_empty());
+    }
 }

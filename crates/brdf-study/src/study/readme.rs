@@ -43,52 +43,69 @@ pub fn commit_of(dir: &Path) -> String {
     }
 }
 
-/// Write `README.md` into the output folder.
+/// Rows of an earlier README in `dir` (file name, whole line), kept when a
+/// partial run (`--only`) does not rewrite their files.
+fn earlier_rows(path: &Path) -> Vec<(String, String)> {
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return Vec::new();
+    };
+    text.lines()
+        .filter_map(|l| {
+            let rest = l.strip_prefix("| `")?;
+            let (file, _) = rest.split_once('`')?;
+            Some((file.to_string(), l.to_string()))
+        })
+        .collect()
+}
+
+/// Write `README.md` into the output folder: this run's files, then those
+/// of earlier runs that this run did not rewrite (each row names the
+/// version and commit that wrote it).
 pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
+    let path = study.out.join("README.md");
+    let earlier = earlier_rows(&path);
+    let version = format!("{} @ {}", env!("CARGO_PKG_VERSION"), commit_of(&study.out));
     let mut s = String::new();
+    let name = study
+        .out
+        .file_name()
+        .map_or("results".into(), |f| f.to_string_lossy().into_owned());
+    let _ = writeln!(s, "# {name}/\n");
     let _ = writeln!(
         s,
-        "# {}\n",
-        study
-            .out
-            .file_name()
-            .map_or("results".into(), |f| f.to_string_lossy().into_owned())
-            + "/"
+        "Written by `brdf reproduce` — this file too. Every number in this folder comes from a run of that command on the data named below; the thesis values printed beside ours are the targets from `spec/study.md`. Rerunning it rewrites the files; only measured fit times (`kurt_9_4_times`, `error_vs_time`) change between runs. A run of selected parts (`--only`, `--spec`) rewrites their rows and keeps the others.\n"
     );
-    let _ = writeln!(
-        s,
-        "Written by `{command}` — this file too. Every number here comes from that run; the thesis values printed beside them are the targets from `spec/study.md`. Rerunning the command rewrites everything; only measured times (`kurt_9_4_times`, `error_vs_time`) change between runs.\n"
-    );
-    let _ = writeln!(s, "- software: brdf-study {}", env!("CARGO_PKG_VERSION"));
-    let _ = writeln!(s, "- commit: {}", commit_of(&study.out));
+    let _ = writeln!(s, "- last run: `{command}`");
+    let _ = writeln!(s, "- software: brdf-study {version}");
     let data = if study.synthetic() {
-        "BUILT-IN SYNTHETIC DATA (no measured data: BRDF_DATA unset and no --data)".to_string()
+        "BUILT-IN SYNTHETIC DATA (no measured data: BRDF_DATA unset and no --data)"
     } else {
-        "measured data under `$BRDF_DATA` (paths below are relative to it)".to_string()
+        "measured data under `$BRDF_DATA` (paths below are relative to it)"
     };
-    let _ = writeln!(s, "- data: {data}");
-    let tables = if study.spec.tables.is_empty() {
-        "all".to_string()
-    } else {
-        study.spec.tables.join(", ")
-    };
-    let _ = writeln!(s, "- parts run: {tables}\n");
-    let _ = writeln!(s, "| file | what it holds | data | metric | angle limit |");
-    let _ = writeln!(s, "| --- | --- | --- | --- | --- |");
+    let _ = writeln!(s, "- data: {data}\n");
+    let _ = writeln!(
+        s,
+        "| file | what it holds | data | metric | angle limit | version @ commit |"
+    );
+    let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- |");
     for w in &study.written {
         let _ = writeln!(
             s,
-            "| `{}` | {} | {} | {} | {} |",
+            "| `{}` | {} | {} | {} | {} | {version} |",
             w.file, w.what, w.data, w.metric, w.limit
         );
     }
+    for (file, line) in &earlier {
+        if !study.written.iter().any(|w| &w.file == file) && line.matches(" | ").count() >= 5 {
+            let _ = writeln!(s, "{line}");
+        }
+    }
     if !study.skipped.is_empty() {
-        let _ = writeln!(s, "\nParts not run:\n");
+        let _ = writeln!(s, "\nParts of the last run that wrote nothing:\n");
         for (part, why) in &study.skipped {
             let _ = writeln!(s, "- `{part}`: {why}");
         }
     }
-    let path = study.out.join("README.md");
     std::fs::write(&path, s).map_err(|e| StudyError::Io {
         path: path.display().to_string(),
         source: e,

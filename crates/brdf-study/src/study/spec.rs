@@ -140,9 +140,11 @@ impl StudySpec {
             .strip_prefix("curet#")
             .and_then(|r| r.split(' ').next())
             .map(str::to_string);
-        self.materials
-            .iter()
-            .any(|m| number.as_deref() == Some(m.as_str()) || lower.contains(&m.to_lowercase()))
+        // A number names a CUReT sample only; other text is part of a name.
+        self.materials.iter().any(|m| match m.parse::<u32>() {
+            Ok(_) => number.as_deref() == Some(m.as_str()),
+            Err(_) => lower.contains(&m.to_lowercase()),
+        })
     }
 
     /// Whether a model (label and catalogue name) is selected.
@@ -168,6 +170,10 @@ mod tests {
         assert!(s.runs("kurt_9_1") && !s.runs("kurt_9_2"));
         assert!(s.has_material("curet#25 Quarry Tile"));
         assert!(!s.has_material("curet#2 Polyester"));
+        assert!(
+            !s.has_material("curet#10 Plaster_a"),
+            "a number matches only the sample number"
+        );
         assert!(s.has_material("curet#1 Felt"));
         assert!(s.has_model("Ward", "ward") && !s.has_model("Blinn-Phong", "blinn-phong"));
         assert_eq!(s.lafortune_box, LafortuneBox::Kurt);
