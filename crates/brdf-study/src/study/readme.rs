@@ -100,6 +100,38 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
             let _ = writeln!(s, "{line}");
         }
     }
+    let listed = |f: &str| {
+        let stem = f.split('.').next().unwrap_or(f);
+        study
+            .written
+            .iter()
+            .any(|w| w.file.split('.').next() == Some(stem))
+            || earlier
+                .iter()
+                .any(|(e, _)| e.split('.').next() == Some(stem))
+            || f == "README.md"
+    };
+    let mut others: Vec<String> = std::fs::read_dir(&study.out)
+        .map(|d| {
+            d.filter_map(|e| e.ok())
+                .filter(|e| e.path().is_file())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .filter(|f| !listed(f))
+                .collect()
+        })
+        .unwrap_or_default();
+    others.sort();
+    if !others.is_empty() {
+        let _ = writeln!(s, "\nOther files here, not written by `brdf reproduce`:\n");
+        for f in others {
+            let what = if f == "performance.md" {
+                "the peer comparison, written by `benches/peers/run.sh`"
+            } else {
+                "not from this command (check where it came from)"
+            };
+            let _ = writeln!(s, "- `{f}`: {what}");
+        }
+    }
     if !study.skipped.is_empty() {
         let _ = writeln!(s, "\nParts of the last run that wrote nothing:\n");
         for (part, why) in &study.skipped {
