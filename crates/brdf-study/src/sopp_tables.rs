@@ -22,7 +22,10 @@ use rayon::prelude::*;
 use crate::render::Image;
 use crate::report::{Cell, Table};
 use crate::study::grid_image::{Grid, Tile, Tone, exposure_for};
-use crate::study::{Study, progress};
+use crate::study::{Study, Written, progress};
+
+/// The metric of Sopp's fits, for the README.
+const SOPP_METRIC: &str = "Sopp's error (fitted weighted and unweighted; reported unweighted)";
 
 /// The RGL materials of the stand-in.
 pub const MATERIALS: [&str; 5] = [
@@ -332,16 +335,26 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
             };
             let file = format!("sopp_preview_{name}.png");
             grid.write_png(&study.path(&file))?;
-            study.wrote(
+            study.wrote_with(Written {
                 file,
-                "Sopp preview strip: measured, best two-stage fit, difference with colour bar",
-                format!("`rgl/{name}.bsdf`"),
-            );
+                what:
+                    "Sopp preview strip: measured, best two-stage fit, difference with colour bar"
+                        .into(),
+                data: format!("`rgl/{name}.bsdf` on Sopp's grid"),
+                metric: SOPP_METRIC.into(),
+                limit: "75 deg".into(),
+            });
         }
     }
     if !t.rows.is_empty() {
         t.write(&study.out, "sopp_a8")?;
-        study.wrote("sopp_a8.{csv,md}", "Sopp's Appendix A.8/A.9 layout: two-stage LM fits (Fresnel, weighting, limit, start), the automatic fit, clear-coat split", "`rgl/*.bsdf` on Sopp's grid (RGB)");
+        study.wrote_with(Written {
+            file: "sopp_a8.{csv,md}".into(),
+            what: "Sopp's Appendix A.8/A.9 layout: two-stage LM fits (Fresnel, weighting, limit, start), the automatic fit, clear-coat split".into(),
+            data: "`rgl/*.bsdf` on Sopp's grid (RGB)".into(),
+            metric: SOPP_METRIC.into(),
+            limit: "75 and 45 deg".into(),
+        });
     }
     Ok(())
 }
