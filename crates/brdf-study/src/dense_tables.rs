@@ -25,7 +25,7 @@ use crate::StudyError;
 use crate::figures::{QUANTILE, SIZE, light, sphere, tone_note};
 use crate::render::{Image, render_sphere};
 use crate::report::{Cell, Table};
-use crate::study::grid_image::{Grid, Tile, Tone, exposure_for};
+use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::models::{FitHow, fit_model};
 use crate::study::{Study, progress};
 
@@ -109,10 +109,12 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
             })];
             let mut diffs = vec![None];
             let images: Vec<Image> = fits.iter().map(|(m, _)| sphere(m.as_ref())).collect();
-            let max = images
-                .iter()
-                .map(|i| i.abs_difference(&reference).peak())
-                .fold(0.0, f64::max);
+            let max = difference_scale(
+                &images
+                    .iter()
+                    .map(|i| i.abs_difference(&reference))
+                    .collect::<Vec<_>>(),
+            );
             for ((label, _, _), ((m, r), img)) in models.iter().zip(fits.iter().zip(images)) {
                 row.push(Cell::Num(r.ngan_l2, 4));
                 row.push(Cell::Num(psnr(&reference.data, &img.data, peak)?, 4));

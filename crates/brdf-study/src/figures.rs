@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::render::{Image, render_sphere};
-use crate::study::grid_image::{Grid, Tile, Tone, exposure_for};
+use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::models::{FitHow, build_model, fit_model};
 use crate::study::{Study, progress};
 
@@ -34,7 +34,7 @@ pub fn sphere(m: &(impl brdf_core::Brdf + ?Sized)) -> Image {
 /// The tone mapping stated under every grid.
 pub fn tone_note(q: f64) -> String {
     format!(
-        "Sphere {SIZE} px, orthographic camera along -z, directional light from (0.5, 0.5, 0.707), pixel = f(L, V) cos(theta_i). Tone mapping: linear x exposure (per row: the {:.0}th percentile of the first sphere's non-zero values -> 0.8), clamped to [0, 1], gamma 2.2. Difference tiles: |model - measured| averaged over channels, Viridis from 0 to the bar's maximum.",
+        "Sphere {SIZE} px, orthographic camera along -z, directional light from (0.5, 0.5, 0.707), pixel = f(L, V) cos(theta_i). Tone mapping: linear x exposure (per row: the {:.0}th percentile of the first sphere's non-zero values -> 0.8), clamped to [0, 1], gamma 2.2. Difference tiles: |model - measured| averaged over channels, Viridis from 0 to the bar's maximum (the 99th percentile of the row's differences; larger ones saturate).",
         q * 100.0
     )
 }
@@ -103,10 +103,12 @@ pub fn figure_9_1(study: &mut Study) -> Result<(), StudyError> {
             })
             .collect();
         let images = fits.into_iter().collect::<Result<Vec<_>, _>>()?;
-        let max = images
-            .iter()
-            .map(|i| i.abs_difference(&reference).peak())
-            .fold(0.0, f64::max);
+        let max = difference_scale(
+            &images
+                .iter()
+                .map(|i| i.abs_difference(&reference))
+                .collect::<Vec<_>>(),
+        );
         let mut row = vec![Some(Tile {
             image: reference.clone(),
             tone: Tone::Exposure(exposure),

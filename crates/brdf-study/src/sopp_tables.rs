@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use crate::render::Image;
 use crate::report::{Cell, Table};
-use crate::study::grid_image::{Grid, Tile, Tone, exposure_for};
+use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::{Study, Written, progress};
 
 /// The metric of Sopp's fits, for the README.
@@ -303,7 +303,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
         if let Some((a, b)) = preview {
             let exposure = exposure_for(&a, 0.99);
             let d = a.abs_difference(&b);
-            let max = d.peak();
+            let max = difference_scale(std::slice::from_ref(&d));
             let grid = Grid {
                 title: format!("Sopp preview: {name}"),
                 columns: vec!["measured".into(), "model".into(), "|difference|".into()],
@@ -331,6 +331,8 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
                     "columns: camera azimuth mirrored.".into(),
                     "Linear x exposure (99th percentile".into(),
                     "of the measured -> 0.8), gamma 2.2.".into(),
+                    "Difference: Viridis to the 99th".into(),
+                    "percentile (larger ones saturate).".into(),
                 ],
             };
             let file = format!("sopp_preview_{name}.png");

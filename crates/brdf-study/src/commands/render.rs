@@ -12,7 +12,7 @@ use nalgebra::Vector3;
 use crate::StudyError;
 use crate::render::{Image, render_sphere};
 use crate::report::{data_name, fmt_sig};
-use crate::study::grid_image::{Grid, Tile, Tone, exposure_for};
+use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
 
 /// Arguments of `brdf render`.
 #[derive(Debug, clap::Args)]
@@ -97,7 +97,7 @@ pub fn run(args: &RenderArgs) -> Result<(), StudyError> {
         .collect();
     if tiles.len() == 2 {
         let d = tiles[0].abs_difference(&tiles[1]);
-        let max = d.peak();
+        let max = difference_scale(std::slice::from_ref(&d));
         row.push(Some(Tile {
             image: d,
             tone: Tone::Difference(max),
@@ -111,7 +111,7 @@ pub fn run(args: &RenderArgs) -> Result<(), StudyError> {
         tiles: vec![row],
         footer: vec![
             format!("Sphere {} px seen from +z, directional light at (theta, phi) = ({}) deg, pixel = f(L, V) cos(theta_i).", args.size, args.light),
-            "Tone mapping: linear x exposure (95th percentile of the first sphere's non-zero values -> 0.8), clamped, gamma 2.2; difference in Viridis from 0 to the bar's maximum.".into(),
+            "Tone mapping: linear x exposure (95th percentile of the first sphere's non-zero values -> 0.8), clamped, gamma 2.2; difference in Viridis from 0 to the bar's maximum (99th percentile of the differences; larger ones saturate).".into(),
         ],
     };
     grid.write_png(&args.out)?;

@@ -76,6 +76,23 @@ pub fn exposure_for(img: &Image, q: f64) -> f64 {
     0.8 / v[k].max(1e-300)
 }
 
+/// The colour-bar maximum of difference tiles: the 99th percentile of
+/// their non-zero values (one wild pixel, e.g. a model's spike at grazing
+/// angles, must not leave the rest of the map uniformly dark; larger
+/// differences saturate).
+pub fn difference_scale(images: &[Image]) -> f64 {
+    let mut v: Vec<f64> = images
+        .iter()
+        .flat_map(|i| i.data.iter().copied())
+        .filter(|x| x.is_finite() && *x > 0.0)
+        .collect();
+    if v.is_empty() {
+        return 1.0;
+    }
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * 0.99).round() as usize]
+}
+
 fn gamma(v: f64) -> u8 {
     (v.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0).round() as u8
 }
@@ -226,7 +243,12 @@ impl Grid {
                 _ => None,
             }) {
                 let x = LEFT + ncol * (cw + GAP) + 15;
-                text(&crate::report::fmt_sig(max, 2), x, y - 4, 11)?;
+                text(
+                    &format!(">= {}", crate::report::fmt_sig(max, 2)),
+                    x,
+                    y - 4,
+                    11,
+                )?;
                 text("0", x, y + ch - 16, 11)?;
                 text("|diff|", x, y + ch / 2 - 6, 11)?;
             }
@@ -327,6 +349,18 @@ mod tests {
 
     fn ab_glyph_ok() -> bool {
         plotters::style::register_font("test-sans", FontStyle::Normal, FONT).is_ok()
+    }
+
+    #[test]
+    fn the_difference_scale_is_the_99th_percentile_of_the_non_zero_values() {
+        let img = Image {
+            width: 101,
+            height: 1,
+            channels: 1,
+            data: (0..=100).map(f64::from).collect(),
+        };
+        // Non-zero values 1..=100: index round(99 * 0.99) = 98 holds 99.
+        assert_eq!(difference_scale(&[img]), 99.0);
     }
 
     #[test]
