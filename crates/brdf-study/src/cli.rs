@@ -34,6 +34,8 @@ pub enum Command {
     Resample(crate::commands::resample::ResampleArgs),
     /// Write a saved model as a Mitsuba 3, pbrt-v4, glTF or MaterialX material.
     Export(crate::commands::export::ExportArgs),
+    /// Render a labelled sphere of a saved model, dense data, or both side by side.
+    Render(crate::commands::render::RenderArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
 }

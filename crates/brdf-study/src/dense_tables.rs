@@ -1,35 +1,79 @@
-//! Kurt's Table 9.3 stand-in and his renderings (Figures 9.1-9.3, 9.6) on
-//! the dense measured materials available here: the nine models of Table
+//! Kurt's Table 9.3 stand-in and his renderings (Figures 9.3, 9.6) on the
+//! dense measured materials available here: the selected models of Table
 //! 9.2 fitted (RGB, automatic starts) to each RGL material (resampled onto
-//! Sopp's grid, 80-degree limit, cell weights, every 5th node) and to each Cornell paint
-//! (its scattered samples); L2 error for all, and for the RGL materials the
-//! PSNR of a sphere rendered with the fit against the sphere rendered with
-//! the measured data (Cornell data are scattered and cannot be rendered
-//! without an interpolation the project does not invent). The reciprocity
-//! check of Fig. 9.6: the polynomial fit rendered with `L` and `V` swapped
-//! must give the same image.
+//! Sopp's grid, 80-degree limit, cell weights, every 5th node) and to each
+//! Cornell paint (its scattered samples); L2 error for all, and for the RGL
+//! materials the PSNR of a sphere rendered with the fit against the sphere
+//! rendered with the measured data (Cornell data are scattered and cannot
+//! be rendered without an interpolation the project does not invent). The
+//! renderings are a labelled grid: measured and every model, and their
+//! difference images with a colour bar. The reciprocity check of Fig. 9.6:
+//! the polynomial fit rendered with `L` and `V` swapped must give the same
+//! image.
 
 use std::path::Path;
 
+use brdf_core::SampleSet;
 use brdf_core::metrics::psnr;
-
+use brdf_fit::FitSummary;
+use brdf_io::rgl::Rgl;
 use brdf_models::ModelConfig;
 use nalgebra::Vector3;
+use rayon::prelude::*;
 
 use crate::StudyError;
-use crate::kurt_tables::{fit_catalogue, nine_models};
+use crate::figures::{QUANTILE, SIZE, light, sphere, tone_note};
 use crate::render::{Image, render_sphere};
 use crate::report::{Cell, Table};
+use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
+use crate::study::models::{FitHow, fit_model};
+use crate::study::{Study, progress};
 
-const SIZE: usize = 96;
-
-fn light() -> Vector3<f64> {
-    Vector3::new(0.5, 0.5, 0.707).normalize()
+/// An RGL material and the samples the study fits: Sopp's grid within 80
+/// degrees, cell weights, every 5th node (about 4,000 samples).
+pub fn rgl_material(dir: &Path, name: &str) -> Result<(Rgl, SampleSet), StudyError> {
+    let rgl = Rgl::read(&dir.join(format!("{name}.bsdf")))?;
+    let full = brdf_io::sopp_grid::SoppGrid::resample(&rgl).to_samples(name, 80.0, true);
+    let keep: Vec<bool> = (0..full.len()).map(|j| j % 5 == 0).collect();
+    Ok((rgl, full.select(&keep)))
 }
 
-/// Fit, render and score every material; returns the files written.
-pub fn write(data_root: &Path, out: &Path) -> Result<Vec<String>, StudyError> {
-    let models = nine_models();
+type Fitted = (Box<dyn brdf_core::Parametric>, FitSummary);
+
+fn fit_all(
+    models: &[(&'static str, &'static str, ModelConfig)],
+    set: &SampleSet,
+    how: FitHow,
+    what: &str,
+) -> Result<Vec<Fitted>, StudyError> {
+    let bar = progress::bar(models.len(), what);
+    let r: Vec<Result<Fitted, StudyError>> = models
+        .par_iter()
+        .map(|(_, name, config)| {
+            let r = fit_model(
+                name,
+                ModelConfig {
+                    channels: 3,
+                    ..*config
+                },
+                set,
+                how,
+            );
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+    r.into_iter().collect()
+}
+
+/// Run the part.
+pub fn write(study: &mut Study) -> Result<(), StudyError> {
+    let models = study.models();
+    let how = FitHow {
+        lbox: study.spec.lafortune_box,
+        ..FitHow::default()
+    };
     let mut hdr = vec!["material".to_string()];
     for (label, _, _) in &models {
         hdr.push(format!("{label} L2"));
@@ -40,84 +84,97 @@ pub fn write(data_root: &Path, out: &Path) -> Result<Vec<String>, StudyError> {
         "Kurt Table 9.3 stand-in: dense materials, L2 error and rendering PSNR",
         &hdr_ref,
     );
-    let mut written = Vec::new();
+    let mut grid = Grid {
+        title: "Kurt Fig. 9.3 stand-in: measured RGL materials and the fitted models".into(),
+        columns: std::iter::once("measured".to_string())
+            .chain(models.iter().map(|m| m.0.to_string()))
+            .collect(),
+        ..Grid::default()
+    };
     let mut reciprocity_max = 0.0f64;
-    // RGL materials: rendered and scored.
-    for name in crate::sopp_tables::MATERIALS {
-        let path = data_root.join("rgl").join(format!("{name}.bsdf"));
-        if !path.exists() {
-            continue;
-        }
-        let rgl = brdf_io::rgl::Rgl::read(&path)?;
-        let full = brdf_io::sopp_grid::SoppGrid::resample(&rgl).to_samples(name, 80.0, true);
-        // Every 5th grid sample (about 4,000): the fits of nine models on
-        // five materials stay within minutes; the rendering compares the
-        // fitted models with the full measured material.
-        let keep: Vec<bool> = (0..full.len()).map(|j| j % 5 == 0).collect();
-        let set = full.select(&keep);
-        let reference = render_sphere(&rgl, SIZE, &light(), &Vector3::z(), false);
-        let peak = reference.peak().max(1e-12);
-        let mut row = vec![Cell::Text(name.to_string())];
-        let mut images = vec![reference.clone()];
-        for (label, model, config) in &models {
-            let (m, r) = fit_catalogue(
-                model,
-                ModelConfig {
-                    channels: 3,
-                    ..*config
-                },
-                &set,
-            )?;
-            let l2 = r.ngan_l2;
-            let img = render_sphere(m.as_ref(), SIZE, &light(), &Vector3::z(), false);
-            row.push(Cell::Num(l2, 4));
-            row.push(Cell::Num(psnr(&reference.data, &img.data, peak)?, 4));
-            if *label == "Polynomial (p = 7)" {
-                let swapped = render_sphere(m.as_ref(), SIZE, &light(), &Vector3::z(), true);
-                let d = img.abs_difference(&swapped);
-                reciprocity_max = reciprocity_max.max(d.peak());
+    if let Some(rgl_dir) = study.data_dir("rgl") {
+        for name in crate::sopp_tables::MATERIALS {
+            if !study.spec.has_material(name) || !rgl_dir.join(format!("{name}.bsdf")).exists() {
+                continue;
             }
-            images.push(img);
+            let (rgl, set) = rgl_material(&rgl_dir, name)?;
+            let reference = sphere(&rgl);
+            let peak = reference.peak().max(1e-12);
+            let exposure = exposure_for(&reference, QUANTILE);
+            let fits = fit_all(&models, &set, how, name)?;
+            let mut row = vec![Cell::Text(name.to_string())];
+            let mut tiles = vec![Some(Tile {
+                image: reference.clone(),
+                tone: Tone::Exposure(exposure),
+            })];
+            let mut diffs = vec![None];
+            let images: Vec<Image> = fits.iter().map(|(m, _)| sphere(m.as_ref())).collect();
+            let max = difference_scale(
+                &images
+                    .iter()
+                    .map(|i| i.abs_difference(&reference))
+                    .collect::<Vec<_>>(),
+            );
+            for ((label, _, _), ((m, r), img)) in models.iter().zip(fits.iter().zip(images)) {
+                row.push(Cell::Num(r.ngan_l2, 4));
+                row.push(Cell::Num(psnr(&reference.data, &img.data, peak)?, 4));
+                if *label == "Polynomial (p = 7)" {
+                    let swapped = render_sphere(m.as_ref(), SIZE, &light(), &Vector3::z(), true);
+                    reciprocity_max = reciprocity_max.max(img.abs_difference(&swapped).peak());
+                }
+                diffs.push(Some(Tile {
+                    image: img.abs_difference(&reference),
+                    tone: Tone::Difference(max),
+                }));
+                tiles.push(Some(Tile {
+                    image: img,
+                    tone: Tone::Exposure(exposure),
+                }));
+            }
+            t.rows.push(row);
+            grid.rows.push(format!(
+                "{name}\nexposure x{}",
+                crate::report::fmt_sig(exposure, 3)
+            ));
+            grid.rows.push(format!("{name}\n|difference|"));
+            grid.tiles.push(tiles);
+            grid.tiles.push(diffs);
         }
-        t.rows.push(row);
-        let refs: Vec<&Image> = images.iter().collect();
-        let strip = Image::hstack(&refs);
-        let file = format!("render_{name}.png");
-        strip.write_png(&out.join(&file), 0.8 / peak)?;
-        written.push(file);
     }
-    // Cornell paints: fitted and scored by L2 only.
-    for name in ["cayman", "mystique", "krylon_blue", "acryl_blue"] {
-        let path = data_root.join("cornell").join(format!("{name}.brdf"));
-        if !path.exists() {
-            continue;
+    if let Some(cornell) = study.data_dir("cornell") {
+        for name in ["cayman", "mystique", "krylon_blue", "acryl_blue"] {
+            let path = cornell.join(format!("{name}.brdf"));
+            if !study.spec.has_material(&format!("cornell {name}")) || !path.exists() {
+                continue;
+            }
+            let set = brdf_io::cornell::read(&path, brdf_io::cornell::CornellColour::Rgb)?;
+            let (set, _) = set.filter_angle_limit(80f64.to_radians());
+            let mut row = vec![Cell::Text(format!("cornell {name}"))];
+            for (_, r) in fit_all(&models, &set, how, name)? {
+                row.push(Cell::Num(r.ngan_l2, 4));
+                row.push(Cell::Text("n/a (scattered)".into()));
+            }
+            t.rows.push(row);
         }
-        let set = brdf_io::cornell::read(&path, brdf_io::cornell::CornellColour::Rgb)?;
-        let (set, _) = set.filter_angle_limit(80f64.to_radians());
-        let mut row = vec![Cell::Text(format!("cornell {name}"))];
-        for (_, model, config) in &models {
-            let l2 = fit_catalogue(
-                model,
-                ModelConfig {
-                    channels: 3,
-                    ..*config
-                },
-                &set,
-            )?
-            .1
-            .ngan_l2;
-            row.push(Cell::Num(l2, 4));
-            row.push(Cell::Text("n/a (scattered)".into()));
-        }
-        t.rows.push(row);
     }
     if t.rows.is_empty() {
-        return Ok(written);
+        study.skipped.push((
+            "kurt_9_3".into(),
+            "needs the dense materials ($BRDF_DATA/rgl, $BRDF_DATA/cornell)".into(),
+        ));
+        return Ok(());
     }
     t.note = format!(
-        "Kurt used five MERL materials (not available); the RGL materials and Cornell paints stand in. RGB fits, automatic starts; RGL materials sampled on Sopp's grid (every 5th node within 80 deg). Renderings: a sphere of {SIZE} px lit from (0.5, 0.5, 0.707), seen from +z, pixel value f(L, V) cos_i; PSNR against the sphere rendered from the measured RGL data (peak = its largest value). Images `render_<material>.png`: measured, then the nine models in table order. Fig. 9.6 reciprocity check: the polynomial fits rendered with L and V swapped differ from the unswapped renderings by at most {reciprocity_max:.3e}. Generated by `brdf reproduce`."
+        "Kurt used five MERL materials (not available); the RGL materials and Cornell paints stand in. RGB fits, automatic starts; RGL materials sampled on Sopp's grid (every 5th node within 80 deg). {} PSNR against the sphere rendered from the measured RGL data (peak = its largest value). Renderings: `kurt_fig_9_3.png`. Fig. 9.6 reciprocity check: the polynomial fits rendered with L and V swapped differ from the unswapped renderings by at most {reciprocity_max:.3e}. {} Generated by `brdf reproduce`.",
+        tone_note(QUANTILE),
+        crate::kurt::lafortune_note(how.lbox)
     );
-    t.write(out, "kurt_9_3")?;
-    written.push("kurt_9_3.{csv,md}".into());
-    Ok(written)
+    t.write(&study.out, "kurt_9_3")?;
+    study.wrote("kurt_9_3.{csv,md}", "Table 9.3 stand-in: L2 and rendering PSNR of the models on the RGL materials and Cornell paints; Fig. 9.6 reciprocity check", "`rgl/*.bsdf`, `cornell/*.brdf` (RGB)");
+    if !grid.tiles.is_empty() {
+        grid.footer = vec![tone_note(QUANTILE)];
+        grid.write_png(&study.path("kurt_fig_9_3.png"))?;
+        study.wrote("kurt_fig_9_3.png", "Figure 9.3 stand-in: measured RGL spheres, every model's sphere, difference images with colour bars", "`rgl/*.bsdf`");
+    }
+    Ok(())
 }

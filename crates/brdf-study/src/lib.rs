@@ -7,20 +7,22 @@
 //!
 //! ## Crate features
 //!
-//! - `plots` (default): SVG plots of the figures through plotters.
+//! - `plots` (default, kept for compatibility): the plots and labelled
+//!   images are always built (plotters with the bundled font).
 
 pub mod bias;
 pub mod cli;
 pub mod commands;
 pub mod dense_tables;
 pub mod error;
-pub mod kurt_tables;
+pub mod figures;
+pub mod kurt;
 pub mod nist;
-#[cfg(feature = "plots")]
 pub mod plots;
 pub mod render;
 pub mod report;
 pub mod sopp_tables;
+pub mod study;
 pub mod synthetic;
 
 pub use error::StudyError;

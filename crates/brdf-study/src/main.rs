@@ -19,6 +19,7 @@ fn run() -> Result<(), StudyError> {
         Command::Info(a) => commands::info::run(&a),
         Command::Resample(a) => commands::resample::run(&a),
         Command::Export(a) => commands::export::run(&a),
+        Command::Render(a) => commands::render::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
     }
 }

@@ -215,3 +215,26 @@ pub fn table(runs: &[NistRun], dir: &Path) -> Table {
     }
     t
 }
+
+/// The study's part: every problem of `$BRDF_DATA/nist_strd` from both
+/// starts, into `nist.{csv,md}`.
+pub fn part(study: &mut crate::study::Study) -> Result<(), StudyError> {
+    let Some(dir) = study.data_dir("nist_strd") else {
+        study
+            .skipped
+            .push(("nist".into(), "needs $BRDF_DATA/nist_strd".into()));
+        return Ok(());
+    };
+    let runs = run_dir(&dir, &strategies())?;
+    table(&runs, Path::new("$BRDF_DATA/nist_strd")).write(&study.out, "nist")?;
+    study.wrote_with(crate::study::Written {
+        file: "nist.{csv,md}".into(),
+        what:
+            "NIST StRD non-linear regression: log relative errors of every problem from both starts"
+                .into(),
+        data: "`nist_strd/*.dat`".into(),
+        metric: "LRE (digits agreeing with the certified values)".into(),
+        limit: "n/a".into(),
+    });
+    Ok(())
+}

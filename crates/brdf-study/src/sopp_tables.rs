@@ -17,8 +17,15 @@ use brdf_models::{ModelConfig, build};
 
 use crate::StudyError;
 use crate::pipeline::{FitOptions, FitSummary, Objective, fit, fit_sopp};
+use rayon::prelude::*;
+
 use crate::render::Image;
 use crate::report::{Cell, Table};
+use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
+use crate::study::{Study, Written, progress};
+
+/// The metric of Sopp's fits, for the README.
+const SOPP_METRIC: &str = "Sopp's error (fitted weighted and unweighted; reported unweighted)";
 
 /// The RGL materials of the stand-in.
 pub const MATERIALS: [&str; 5] = [
@@ -95,8 +102,164 @@ pub fn preview(measured: &SoppGrid, model: &SoppGrid) -> Image {
     Image::hstack(&[&a, &b, &d])
 }
 
-/// Run the Sopp study on the RGL materials under `rgl_dir`.
-pub fn write(rgl_dir: &Path, out: &Path) -> Result<Vec<String>, StudyError> {
+/// The measured and model strips of [`preview`], separately.
+pub fn strips(measured: &SoppGrid, model: &SoppGrid) -> (Image, Image) {
+    let full = preview(measured, model);
+    let w = full.width / 3;
+    let cut = |k: usize| Image {
+        width: w,
+        height: full.height,
+        channels: 3,
+        data: (0..full.height)
+            .flat_map(|y| {
+                let o = (y * full.width + k * w) * 3;
+                full.data[o..o + 3 * w].to_vec()
+            })
+            .collect(),
+    };
+    (cut(0), cut(1))
+}
+
+/// One material's rows of the table and its preview strips (measured, model).
+type MaterialRows = (Vec<Vec<Cell>>, Option<(Image, Image)>);
+
+/// One material's rows of the table and its preview (measured, model).
+fn material(rgl_dir: &Path, name: &str) -> Result<MaterialRows, StudyError> {
+    let path = rgl_dir.join(format!("{name}.bsdf"));
+    let rgl = brdf_io::rgl::Rgl::read(&path)?;
+    let grid = SoppGrid::resample(&rgl);
+    let mut rows: Vec<Vec<Cell>> = Vec::new();
+    let mut row = |proc_: &str,
+                   fresnel: &str,
+                   weighted: bool,
+                   limit: f64,
+                   start: Option<f64>,
+                   r: &FitSummary,
+                   m: &dyn Parametric,
+                   data: &SampleSet|
+     -> Result<(), StudyError> {
+        let (cd, cs) = if fresnel == "yes" {
+            (rgb(r, "kd"), rgb(r, "ks"))
+        } else {
+            (rgb(r, "cd"), rgb(r, "cs"))
+        };
+        let rs = cs.iter().fold(0.0f64, |a, v| a.max(*v));
+        let n = if fresnel == "yes" {
+            value(r, "n")
+        } else {
+            value(r, "ns")
+        };
+        let mut cells = vec![
+            Cell::Text(name.to_string()),
+            Cell::Text(proc_.into()),
+            Cell::Text(fresnel.into()),
+            Cell::Text(if weighted { "yes" } else { "no" }.into()),
+            Cell::Text(format!("{limit}")),
+            start.map_or(Cell::Text("auto".into()), |s| Cell::Num(s, 3)),
+            Cell::Num(n, 4),
+        ];
+        cells.extend(cd.iter().chain(&cs).map(|v| Cell::Num(*v, 4)));
+        cells.push(Cell::Num(rs, 4));
+        cells.push(Cell::Num(sopp_error(data, m)?, 4));
+        cells.push(Cell::Text(r.termination.clone()));
+        rows.push(cells);
+        Ok(())
+    };
+    let rgb_cfg = ModelConfig {
+        channels: 3,
+        ..ModelConfig::default()
+    };
+    let mut best: Option<(f64, Box<dyn Parametric>)> = None;
+    for weighted in [true, false] {
+        for limit in [75.0, 45.0] {
+            let data = grid.to_samples(name, limit, weighted);
+            let opts = FitOptions {
+                objective: Objective::Sopp { weighted },
+                ..FitOptions::default()
+            };
+            for start in [25.0, 50.0, 250.0] {
+                let mut grey = grey_start("as-paint", start)?;
+                let mut m = build("as-paint", &rgb_cfg)?;
+                let r = fit_sopp(grey.as_mut(), m.as_mut(), &data, &opts)?;
+                row(
+                    "Sopp two-stage",
+                    "no",
+                    weighted,
+                    limit,
+                    Some(start),
+                    &r,
+                    m.as_ref(),
+                    &data,
+                )?;
+                if weighted && limit == 75.0 {
+                    let e = sopp_error(&data, m.as_ref())?;
+                    if best.as_ref().is_none_or(|b| e < b.0) {
+                        best = Some((e, m.clone_box()));
+                    }
+                }
+            }
+            if weighted && limit == 75.0 {
+                // The project's automatic fit of the same model.
+                let mut m = build("as-paint", &rgb_cfg)?;
+                let r = fit(m.as_mut(), &data, &opts)?;
+                row(
+                    "automatic",
+                    "no",
+                    weighted,
+                    limit,
+                    None,
+                    &r,
+                    m.as_ref(),
+                    &data,
+                )?;
+                // With Fresnel, started from the best Sopp result.
+                let start_n = best.as_ref().map_or(50.0, |b| b.1.params()[6]);
+                let mut grey = grey_start("ashikhmin-shirley", start_n)?;
+                let mut mf = build("ashikhmin-shirley", &rgb_cfg)?;
+                let r = fit_sopp(grey.as_mut(), mf.as_mut(), &data, &opts)?;
+                row(
+                    "Sopp two-stage, from the result without Fresnel",
+                    "yes",
+                    weighted,
+                    limit,
+                    Some(start_n),
+                    &r,
+                    mf.as_ref(),
+                    &data,
+                )?;
+                // The clear-coat split: base fitted to data / (1 - Fr).
+                let base = brdf_models::clear_coat::divide_by_transmission(&data, 1.5)?;
+                let mut mb = build("as-paint", &rgb_cfg)?;
+                let r = fit(mb.as_mut(), &base, &opts)?;
+                row(
+                    "automatic, clear-coat split (eta 1.5)",
+                    "no",
+                    weighted,
+                    limit,
+                    None,
+                    &r,
+                    mb.as_ref(),
+                    &base,
+                )?;
+            }
+        }
+    }
+    let preview = best.map(|(_, m)| {
+        let model_grid = SoppGrid::resample(m.as_ref());
+        strips(&grid, &model_grid)
+    });
+    Ok((rows, preview))
+}
+
+/// Run the Sopp study on the selected RGL materials (in parallel).
+pub fn write(study: &mut Study) -> Result<(), StudyError> {
+    let Some(rgl_dir) = study.data_dir("rgl") else {
+        study.skipped.push((
+            "sopp".into(),
+            "needs the dense RGL materials ($BRDF_DATA/rgl)".into(),
+        ));
+        return Ok(());
+    };
     let mut t = Table::new(
         "Sopp Appendix A.8/A.9 layout: Ashikhmin-Shirley paint shader on the RGL materials (Sopp's grid)",
         &[
@@ -119,145 +282,81 @@ pub fn write(rgl_dir: &Path, out: &Path) -> Result<Vec<String>, StudyError> {
         ],
     );
     t.note = "Sopp's car-paint files are not available; the RGL materials stand in, resampled onto his grid (19 x 37 x 36, RGB). `cd`, `cs` are the fitted forms (cd' = cd (1 - Rs), cs' = Rs cs), Rs = max cs'. Sopp two-stage: LM with his damping schedule on the channel mean, then the per-channel linear coefficients solved directly within their box (least squares with inequality constraints); automatic: variable projection + bounded solver from deterministic multi-starts, no start values. Generated by `brdf reproduce`.".into();
-    let mut written = Vec::new();
-    for name in MATERIALS {
-        let path = rgl_dir.join(format!("{name}.bsdf"));
-        if !path.exists() {
-            continue;
-        }
-        let rgl = brdf_io::rgl::Rgl::read(&path)?;
-        let grid = SoppGrid::resample(&rgl);
-        let mut row = |proc_: &str,
-                       fresnel: &str,
-                       weighted: bool,
-                       limit: f64,
-                       start: Option<f64>,
-                       r: &FitSummary,
-                       m: &dyn Parametric,
-                       data: &SampleSet|
-         -> Result<(), StudyError> {
-            let (cd, cs) = if fresnel == "yes" {
-                (rgb(r, "kd"), rgb(r, "ks"))
-            } else {
-                (rgb(r, "cd"), rgb(r, "cs"))
-            };
-            let rs = cs.iter().fold(0.0f64, |a, v| a.max(*v));
-            let n = if fresnel == "yes" {
-                value(r, "n")
-            } else {
-                value(r, "ns")
-            };
-            let mut cells = vec![
-                Cell::Text(name.to_string()),
-                Cell::Text(proc_.into()),
-                Cell::Text(fresnel.into()),
-                Cell::Text(if weighted { "yes" } else { "no" }.into()),
-                Cell::Text(format!("{limit}")),
-                start.map_or(Cell::Text("auto".into()), |s| Cell::Num(s, 3)),
-                Cell::Num(n, 4),
-            ];
-            cells.extend(cd.iter().chain(&cs).map(|v| Cell::Num(*v, 4)));
-            cells.push(Cell::Num(rs, 4));
-            cells.push(Cell::Num(sopp_error(data, m)?, 4));
-            cells.push(Cell::Text(r.termination.clone()));
-            t.rows.push(cells);
-            Ok(())
-        };
-        let rgb_cfg = ModelConfig {
-            channels: 3,
-            ..ModelConfig::default()
-        };
-        let mut best: Option<(f64, Box<dyn Parametric>)> = None;
-        for weighted in [true, false] {
-            for limit in [75.0, 45.0] {
-                let data = grid.to_samples(name, limit, weighted);
-                let opts = FitOptions {
-                    objective: Objective::Sopp { weighted },
-                    ..FitOptions::default()
-                };
-                for start in [25.0, 50.0, 250.0] {
-                    let mut grey = grey_start("as-paint", start)?;
-                    let mut m = build("as-paint", &rgb_cfg)?;
-                    let r = fit_sopp(grey.as_mut(), m.as_mut(), &data, &opts)?;
-                    row(
-                        "Sopp two-stage",
-                        "no",
-                        weighted,
-                        limit,
-                        Some(start),
-                        &r,
-                        m.as_ref(),
-                        &data,
-                    )?;
-                    if weighted && limit == 75.0 {
-                        let e = sopp_error(&data, m.as_ref())?;
-                        if best.as_ref().is_none_or(|b| e < b.0) {
-                            best = Some((e, m.clone_box()));
-                        }
-                    }
-                }
-                if weighted && limit == 75.0 {
-                    // The project's automatic fit of the same model.
-                    let mut m = build("as-paint", &rgb_cfg)?;
-                    let r = fit(m.as_mut(), &data, &opts)?;
-                    row(
-                        "automatic",
-                        "no",
-                        weighted,
-                        limit,
-                        None,
-                        &r,
-                        m.as_ref(),
-                        &data,
-                    )?;
-                    // With Fresnel, started from the best Sopp result.
-                    let start_n = best.as_ref().map_or(50.0, |b| b.1.params()[6]);
-                    let mut grey = grey_start("ashikhmin-shirley", start_n)?;
-                    let mut mf = build("ashikhmin-shirley", &rgb_cfg)?;
-                    let r = fit_sopp(grey.as_mut(), mf.as_mut(), &data, &opts)?;
-                    row(
-                        "Sopp two-stage, from the result without Fresnel",
-                        "yes",
-                        weighted,
-                        limit,
-                        Some(start_n),
-                        &r,
-                        mf.as_ref(),
-                        &data,
-                    )?;
-                    // The clear-coat split: base fitted to data / (1 - Fr).
-                    let base = brdf_models::clear_coat::divide_by_transmission(&data, 1.5)?;
-                    let mut mb = build("as-paint", &rgb_cfg)?;
-                    let r = fit(mb.as_mut(), &base, &opts)?;
-                    row(
-                        "automatic, clear-coat split (eta 1.5)",
-                        "no",
-                        weighted,
-                        limit,
-                        None,
-                        &r,
-                        mb.as_ref(),
-                        &base,
-                    )?;
-                }
-            }
-        }
-        if let Some((_, m)) = best {
-            let model_grid = SoppGrid::resample(m.as_ref());
-            let img = preview(&grid, &model_grid);
-            let peak = {
-                let mut v: Vec<f64> = img.data.iter().copied().filter(|x| x.is_finite()).collect();
-                v.sort_by(|a, b| a.total_cmp(b));
-                v.get(v.len() * 99 / 100).copied().unwrap_or(1.0).max(1e-12)
+    let names: Vec<&str> = MATERIALS
+        .iter()
+        .copied()
+        .filter(|n| study.spec.has_material(n) && rgl_dir.join(format!("{n}.bsdf")).exists())
+        .collect();
+    let bar = progress::bar(names.len(), "Sopp");
+    let done: Vec<_> = names
+        .par_iter()
+        .map(|n| {
+            let r = material(&rgl_dir, n);
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+    for (name, r) in names.iter().zip(done) {
+        let (rows, preview) = r?;
+        t.rows.extend(rows);
+        if let Some((a, b)) = preview {
+            let exposure = exposure_for(&a, 0.99);
+            let d = a.abs_difference(&b);
+            let max = difference_scale(std::slice::from_ref(&d));
+            let grid = Grid {
+                title: format!("Sopp preview: {name}"),
+                columns: vec!["measured".into(), "model".into(), "|difference|".into()],
+                rows: vec![format!(
+                    "{name}\nexposure x{}",
+                    crate::report::fmt_sig(exposure, 3)
+                )],
+                tiles: vec![vec![
+                    Some(Tile {
+                        image: a,
+                        tone: Tone::Exposure(exposure),
+                    }),
+                    Some(Tile {
+                        image: b,
+                        tone: Tone::Exposure(exposure),
+                    }),
+                    Some(Tile {
+                        image: d,
+                        tone: Tone::Difference(max),
+                    }),
+                ]],
+                footer: vec![
+                    "Best Sopp two-stage fit (weighted, 75 deg) on Sopp's grid.".into(),
+                    "Rows: light angle x camera polar angle;".into(),
+                    "columns: camera azimuth mirrored.".into(),
+                    "Linear x exposure (99th percentile".into(),
+                    "of the measured -> 0.8), gamma 2.2.".into(),
+                    "Difference: Viridis to the 99th".into(),
+                    "percentile (larger ones saturate).".into(),
+                ],
             };
             let file = format!("sopp_preview_{name}.png");
-            img.write_png(&out.join(&file), 1.0 / peak)?;
-            written.push(file);
+            grid.write_png(&study.path(&file))?;
+            study.wrote_with(Written {
+                file,
+                what:
+                    "Sopp preview strip: measured, best two-stage fit, difference with colour bar"
+                        .into(),
+                data: format!("`rgl/{name}.bsdf` on Sopp's grid"),
+                metric: SOPP_METRIC.into(),
+                limit: "75 deg".into(),
+            });
         }
     }
     if !t.rows.is_empty() {
-        t.write(out, "sopp_a8")?;
-        written.push("sopp_a8.{csv,md}".into());
+        t.write(&study.out, "sopp_a8")?;
+        study.wrote_with(Written {
+            file: "sopp_a8.{csv,md}".into(),
+            what: "Sopp's Appendix A.8/A.9 layout: two-stage LM fits (Fresnel, weighting, limit, start), the automatic fit, clear-coat split".into(),
+            data: "`rgl/*.bsdf` on Sopp's grid (RGB)".into(),
+            metric: SOPP_METRIC.into(),
+            limit: "75 and 45 deg".into(),
+        });
     }
-    Ok(written)
+    Ok(())
 }

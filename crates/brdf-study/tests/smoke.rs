@@ -29,8 +29,13 @@ fn reproduce_on_synthetic_data_writes_tables_and_is_deterministic() {
     let md = std::fs::read_to_string(dir.join("kurt_9_1.md")).unwrap();
     assert!(md.contains("BUILT-IN SYNTHETIC DATA"));
     let fig = std::fs::read_to_string(dir.join("kurt_9_5.csv")).unwrap();
-    assert_eq!(fig.lines().count(), 1 + 7);
-    assert!(dir.join("kurt_9_5.svg").exists());
+    assert_eq!(fig.lines().count(), 1 + 5);
+    assert!(dir.join("kurt_9_5.svg").exists() && dir.join("kurt_9_5.png").exists());
+    let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    assert!(
+        readme.contains("BUILT-IN SYNTHETIC DATA")
+            && readme.contains("`kurt_9_5.{csv,md,svg,png}`")
+    );
     assert_eq!(run(), first);
     assert!(
         !top.join("kurt_9_1.csv").exists(),

@@ -131,6 +131,7 @@ fn print_report(rep: &FitReport) -> Result<(), StudyError> {
         r.starts.1,
         r.starts.2
     )?;
+    let undetermined = crate::study::models::undetermined(r);
     for p in &r.parameters {
         let se = p
             .std_error
@@ -142,7 +143,12 @@ fn print_report(rep: &FitReport) -> Result<(), StudyError> {
             .map(|b| format!(" [at {b} bound]"))
             .unwrap_or_default();
         let pr = if p.projected { " (projected)" } else { "" };
-        say!("  {:<8} {:>14.6e} {se}{b}{pr}", p.name, p.value)?;
+        let off = if undetermined.contains(&p.name) {
+            " [undetermined: lobe off, ks = 0]"
+        } else {
+            ""
+        };
+        say!("  {:<8} {:>14.6e} {se}{b}{pr}{off}", p.name, p.value)?;
     }
     say!(
         "{} error: {:.6e}  Ngan L2: {:.6e}  time: {:.3} ms",

@@ -46,6 +46,7 @@ pub mod fit;
 pub mod info;
 pub mod models;
 pub mod nist;
+pub mod render;
 pub mod reproduce;
 pub mod resample;
 pub mod select;

@@ -1,23 +1,18 @@
-//! `brdf reproduce`: the study. It regenerates Kurt's Table 9.1 (error
-//! against polynomial degree), Table 9.2 (nine models on five materials,
-//! with the fitted parameters), Figure 9.4 (eight models on every
-//! material), Figure 9.5 (the linear models on every material), Table 9.4
-//! (fit times), the error-against-time scatter, and the NIST StRD solver
-//! certification. Everything it writes comes from fits
-//! run here; the thesis values are printed beside them for comparison.
+//! `brdf reproduce`: the study. Runs the parts of [`crate::study::parts`]
+//! (all by default; `--only NAMES` or a `--spec FILE` selects), writes
+//! their tables, plots and renderings into the output folder, and
+//! generates its `README.md`. Nothing outside the selection is loaded or
+//! fitted.
 //!
 //! Data: `--data DIR` or `BRDF_DATA`; without measured data it runs on the
-//! built-in synthetic materials and says so in every table.
+//! built-in synthetic materials into `OUT/synthetic/` (never over measured
+//! results) and says so in every table.
 
-use std::path::{Path, PathBuf};
-
-use brdf_core::SampleSet;
-use brdf_models::{ModelConfig, build_for};
+use std::path::PathBuf;
 
 use crate::StudyError;
-use crate::fit::fit_linear;
-use crate::report::{Cell, Table};
-use crate::synthetic;
+use crate::study::spec::{LafortuneBox, StudySpec};
+use crate::study::{Study, create_dir, parts, readme};
 
 /// Arguments of `brdf reproduce`.
 #[derive(Debug, clap::Args)]
@@ -28,246 +23,96 @@ pub struct ReproduceArgs {
     /// Output folder.
     #[arg(long, default_value = "results")]
     pub out: PathBuf,
+    /// Run only these parts (comma-separated; `brdf reproduce --list` names them).
+    #[arg(long, value_delimiter = ',')]
+    pub only: Vec<String>,
+    /// A TOML file selecting tables, materials, models, degrees, lobes,
+    /// metrics, limits and Lafortune's box (see the module docs of `study::spec`).
+    #[arg(long)]
+    pub spec: Option<PathBuf>,
+    /// Fit Lafortune in the wide box (Cxy, Cz in [-1, 1]) instead of Kurt's.
+    #[arg(long)]
+    pub lafortune_wide: bool,
+    /// Worker threads for the fits (default: all cores). Results are the
+    /// same for any count.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// List the parts and exit.
+    #[arg(long)]
+    pub list: bool,
 }
 
-/// Kurt's Table 9.1 errors for quarry tile (RGB CUReT, degrees 1..6).
-const KURT_9_1_QUARRY: [f64; 6] = [0.041, 0.027, 0.015, 0.011, 0.011, 0.010];
-
-fn fit_error(name: &str, config: ModelConfig, set: &SampleSet) -> Result<f64, StudyError> {
-    let mut model = build_for(name, &config, set.pairs())?;
-    Ok(fit_linear(model.as_mut(), set)?.ngan_l2)
-}
-
-struct Materials {
-    sets: Vec<SampleSet>,
-    source: String,
-}
-
-fn load(data: Option<&Path>) -> Result<Materials, StudyError> {
-    let limit = 80f64.to_radians();
-    if let Some(dir) = data {
-        let abrdf = dir.join("curet/abrdf.dat");
-        let table = dir.join("curet/table.txt");
-        let sets = brdf_io::curet::read_grey(&abrdf, &table)?;
-        let sets = sets
-            .into_iter()
-            .filter(|s| {
-                let n: u32 = s.name[6..]
-                    .split(' ')
-                    .next()
-                    .and_then(|x| x.parse().ok())
-                    .unwrap_or(0);
-                brdf_io::curet::is_isotropic(n)
-            })
-            .map(|s| s.filter_invalid(false).0.filter_angle_limit(limit).0)
-            .collect();
-        return Ok(Materials {
-            sets,
-            source: "measured CUReT data (grey, `$BRDF_DATA/curet/abrdf.dat`), angle limit 80 deg"
-                .into(),
-        });
+fn spec_of(args: &ReproduceArgs) -> Result<StudySpec, StudyError> {
+    let mut spec = match &args.spec {
+        Some(p) => StudySpec::read(p)?,
+        None => StudySpec::default(),
+    };
+    if !args.only.is_empty() {
+        spec.tables = args.only.clone();
     }
-    let pairs = synthetic::scattered_pairs(205, limit);
-    let sets = synthetic::MATERIALS
-        .iter()
-        .map(|m| synthetic::sample(m, &pairs, 1))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Materials {
-        sets,
-        source: "BUILT-IN SYNTHETIC DATA (no measured data found: set BRDF_DATA or --data)".into(),
-    })
+    if args.lafortune_wide {
+        spec.lafortune_box = LafortuneBox::Wide;
+    }
+    spec.check()
+        .map_err(|e| StudyError::Usage(format!("--only/--spec: {e}")))?;
+    Ok(spec)
 }
 
 /// Run `brdf reproduce`.
 pub fn run(args: &ReproduceArgs) -> Result<(), StudyError> {
+    if args.list {
+        for p in parts::PARTS {
+            say!("{:16} {}", p.name, p.about)?;
+        }
+        return Ok(());
+    }
+    let spec = spec_of(args)?;
     let data = args
         .data
         .clone()
         .or_else(|| std::env::var_os("BRDF_DATA").map(PathBuf::from));
-    // The synthetic demonstration never writes over measured results: it
-    // goes to its own folder inside the output folder.
-    let synthetic_out;
-    let args = if data.is_none() {
-        synthetic_out = ReproduceArgs {
-            data: None,
-            out: args.out.join("synthetic"),
-        };
+    // The synthetic demonstration never writes over measured results.
+    let out = if data.is_none() {
+        let out = args.out.join("synthetic");
         eprintln!(
             "brdf reproduce: no measured data (BRDF_DATA unset, no --data): running on built-in synthetic data into {}",
-            synthetic_out.out.display()
+            out.display()
         );
-        &synthetic_out
+        out
     } else {
-        args
+        args.out.clone()
     };
-    let m = load(data.as_deref())?;
-    std::fs::create_dir_all(&args.out).map_err(|e| StudyError::Io {
-        path: args.out.display().to_string(),
-        source: e,
-    })?;
-
-    // Table 9.1: error against polynomial degree.
-    let target = m
-        .sets
-        .iter()
-        .find(|s| s.name.starts_with("curet#25 ") || s.name.starts_with("quarry tile"))
-        .ok_or_else(|| StudyError::Usage("quarry tile (CUReT 25) not found".into()))?;
-    let mut t = Table::new(
-        "Kurt Table 9.1: Ngan L2 error against polynomial degree (quarry tile)",
-        &[
-            "degree p",
-            "stored numbers (Kurt, 2p+5)",
-            "L2 (ours)",
-            "L2 (Kurt 2007, RGB)",
-        ],
-    );
-    t.note = format!(
-        "Data: {}. Ours are grey fits of `{}`, so the errors are not expected to equal Kurt's RGB values; the shape of the curve is what must agree. Generated by `brdf reproduce`.",
-        m.source, target.name
-    );
-    for p in 1..=12 {
-        let err = fit_error(
-            "polynomial",
-            ModelConfig {
-                channels: 1,
-                degree: p,
-                ..ModelConfig::default()
-            },
-            target,
-        )?;
-        t.rows.push(vec![
-            Cell::Text(p.to_string()),
-            Cell::Text((2 * p + 5).to_string()),
-            Cell::Num(err, 4),
-            KURT_9_1_QUARRY
-                .get(p - 1)
-                .map_or(Cell::Empty, |v| Cell::Num(*v, 2)),
-        ]);
-    }
-    t.write(&args.out, "kurt_9_1")?;
-
-    // Figure 9.5: the two linear models on every material.
-    let mut f = Table::new(
-        "Kurt Figure 9.5: linear models on every material (Ngan L2)",
-        &[
-            "material",
-            "Koenderink N=2",
-            "Koenderink N=8",
-            "polynomial p=2",
-            "polynomial p=8",
-        ],
-    );
-    f.note = format!(
-        "Data: {}. Sorted by the degree-8 polynomial error. Generated by `brdf reproduce`.",
-        m.source
-    );
-    let mut rows = Vec::new();
-    for s in &m.sets {
-        let k2 = fit_error(
-            "koenderink",
-            ModelConfig {
-                order: 2,
-                ..ModelConfig::default()
-            },
-            s,
-        )?;
-        let k8 = fit_error(
-            "koenderink",
-            ModelConfig {
-                order: 8,
-                ..ModelConfig::default()
-            },
-            s,
-        )?;
-        let p2 = fit_error(
-            "polynomial",
-            ModelConfig {
-                degree: 2,
-                ..ModelConfig::default()
-            },
-            s,
-        )?;
-        let p8 = fit_error(
-            "polynomial",
-            ModelConfig {
-                degree: 8,
-                ..ModelConfig::default()
-            },
-            s,
-        )?;
-        rows.push((s.name.clone(), [k2, k8, p2, p8]));
-    }
-    rows.sort_by(|a, b| a.1[3].total_cmp(&b.1[3]));
-    #[cfg(feature = "plots")]
-    {
-        let names = [
-            "Koenderink N=2",
-            "Koenderink N=8",
-            "polynomial p=2",
-            "polynomial p=8",
-        ];
-        let series: Vec<crate::plots::Series> = (0..4)
-            .map(|k| crate::plots::Series {
-                name: names[k].into(),
-                points: rows
-                    .iter()
-                    .enumerate()
-                    .map(|(i, r)| (i as f64, r.1[k]))
-                    .collect(),
-            })
-            .collect();
-        crate::plots::plot_series(
-            &args.out.join("kurt_9_5.svg"),
-            "Linear models on every material (sorted by polynomial p=8)",
-            "material (sorted)",
-            "Ngan L2",
-            &series,
-            true,
-            false,
-            true,
-            None,
-        )?;
-    }
-    for (name, e) in rows {
-        let mut r = vec![Cell::Text(name)];
-        r.extend(e.iter().map(|v| Cell::Num(*v, 4)));
-        f.rows.push(r);
-    }
-    f.write(&args.out, "kurt_9_5")?;
-    let mut written = vec![
-        "kurt_9_1.{csv,md}".to_string(),
-        "kurt_9_5.{csv,md,svg}".to_string(),
-    ];
-    written.extend(crate::kurt_tables::write(&m.sets, &m.source, &args.out)?);
-
-    // Table 9.3 stand-in and renderings on the dense materials, when present.
-    if let Some(root) = data
-        .as_ref()
-        .filter(|d| d.join("rgl").is_dir() || d.join("cornell").is_dir())
-    {
-        written.extend(crate::dense_tables::write(root, &args.out)?);
-    }
-
-    // Sopp's study on the RGL materials, when present.
-    if let Some(dir) = data.as_ref().map(|d| d.join("rgl")).filter(|d| d.is_dir()) {
-        written.extend(crate::sopp_tables::write(&dir, &args.out)?);
-    }
-
-    // Solver certification, when the NIST folder is present.
-    if let Some(dir) = data
-        .as_ref()
-        .map(|d| d.join("nist_strd"))
-        .filter(|d| d.is_dir())
-    {
-        let runs = crate::nist::run_dir(&dir, &crate::nist::strategies())?;
-        crate::nist::table(&runs, Path::new("$BRDF_DATA/nist_strd")).write(&args.out, "nist")?;
-        written.push("nist.{csv,md}".to_string());
-    }
+    create_dir(&out)?;
+    let mut study = Study::new(data, out, spec);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| StudyError::Usage(format!("--threads: {e}")))?;
+    pool.install(|| parts::run_all(&mut study))?;
+    readme::write(&study, &command_line(args))?;
     say!(
-        "wrote into {}: {} ({})",
-        args.out.display(),
-        written.join(", "),
-        m.source
+        "wrote {} entries into {} (listed in its README.md)",
+        study.written.len(),
+        study.out.display()
     )?;
     Ok(())
+}
+
+/// The command as it was run, for the README (no absolute paths: the data
+/// folder is named by `BRDF_DATA`).
+fn command_line(args: &ReproduceArgs) -> String {
+    let mut s = "brdf reproduce".to_string();
+    if !args.only.is_empty() {
+        s += &format!(" --only {}", args.only.join(","));
+    }
+    if let Some(p) = &args.spec {
+        s += &format!(
+            " --spec {}",
+            crate::report::data_name(&p.display().to_string())
+        );
+    }
+    if args.lafortune_wide {
+        s += " --lafortune-wide";
+    }
+    s
 }

@@ -1,0 +1,220 @@
+//! Kurt's nine models and how the study fits them: built for the data,
+//! Lafortune in Kurt's box unless the wide box is asked for, fitted by the
+//! pipeline from automatic starts (the polynomial by robust IRLS as Kurt
+//! did, or by OLS when asked), and the parameters a fit leaves undetermined
+//! (the shape of a lobe switched off) named.
+
+use brdf_core::{Parametric, SampleSet};
+use brdf_fit::{FitOptions, FitSummary, Objective, Solver};
+use brdf_models::{ModelConfig, build_for};
+
+use super::spec::LafortuneBox;
+use crate::StudyError;
+
+/// The nine models of Table 9.2: `(label, catalogue name, config)`, with
+/// `lobes` lobes for Lafortune and Cook-Torrance.
+pub fn nine_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig)> {
+    let c = ModelConfig {
+        lobes,
+        ..ModelConfig::default()
+    };
+    vec![
+        ("Ashikhmin-Shirley", "ashikhmin-shirley", c),
+        ("Blinn-Phong", "blinn-phong", c),
+        ("Cook-Torrance", "cook-torrance", c),
+        ("Lafortune", "lafortune", c),
+        ("Oren-Nayar", "oren-nayar", c),
+        ("Ward", "ward", c),
+        ("Ward-Duer", "ward-duer", c),
+        (
+            "Koenderink (order 8)",
+            "koenderink",
+            ModelConfig { order: 8, ..c },
+        ),
+        (
+            "Polynomial (p = 7)",
+            "polynomial",
+            ModelConfig { degree: 7, ..c },
+        ),
+    ]
+}
+
+/// Build catalogue model `name` for `set`, in Kurt's box for Lafortune
+/// when `lbox` says so.
+pub fn build_model(
+    name: &str,
+    config: ModelConfig,
+    set: &SampleSet,
+    lbox: LafortuneBox,
+) -> Result<Box<dyn Parametric>, StudyError> {
+    let model = build_for(name, &config, set.pairs())?;
+    if name == "lafortune" && lbox == LafortuneBox::Kurt {
+        return Ok(Box::new(super::restricted_box::Restricted::kurt_lafortune(
+            model,
+        )?));
+    }
+    Ok(model)
+}
+
+/// How a fit is run: objective and (for the polynomial) OLS instead of IRLS.
+#[derive(Clone, Copy, Debug)]
+pub struct FitHow {
+    /// Objective.
+    pub objective: Objective,
+    /// Lafortune's box.
+    pub lbox: LafortuneBox,
+    /// Fit all-linear models by OLS (Kurt's polynomial otherwise by IRLS).
+    pub ols: bool,
+}
+
+impl Default for FitHow {
+    fn default() -> Self {
+        FitHow {
+            objective: Objective::Ngan,
+            lbox: LafortuneBox::Kurt,
+            ols: false,
+        }
+    }
+}
+
+/// Build and fit; the fitted model and its summary.
+pub fn fit_model(
+    name: &str,
+    config: ModelConfig,
+    set: &SampleSet,
+    how: FitHow,
+) -> Result<(Box<dyn Parametric>, FitSummary), StudyError> {
+    let mut model = build_model(name, config, set, how.lbox)?;
+    let opts = FitOptions {
+        objective: how.objective,
+        solver: if how.ols { Solver::Ols } else { Solver::Auto },
+        ..FitOptions::default()
+    };
+    let summary = brdf_fit::pipeline::fit(model.as_mut(), set, &opts)?;
+    Ok((model, summary))
+}
+
+/// Names of the non-linear parameters a fit leaves undetermined: the
+/// shape parameters of a specular lobe whose strengths (`ks`, `ks1`,
+/// `ks_r`, ...) are all zero — the model does not depend on them then.
+pub fn undetermined(summary: &FitSummary) -> Vec<String> {
+    fn strength(n: &str) -> Option<&str> {
+        let n = n.split('_').next().unwrap_or(n);
+        n.strip_prefix("ks")
+            .filter(|r| r.chars().all(|c| c.is_ascii_digit()))
+    }
+    let mut lobes: Vec<(String, bool)> = Vec::new();
+    for p in summary.parameters.iter() {
+        if let Some(k) = strength(&p.name) {
+            let off = p.value.abs() <= 0.0;
+            match lobes.iter_mut().find(|(l, _)| l == k) {
+                Some(e) => e.1 &= off,
+                None => lobes.push((k.to_string(), off)),
+            }
+        }
+    }
+    summary
+        .parameters
+        .iter()
+        .filter(|p| !p.projected && strength(&p.name).is_none())
+        // The coupled Ashikhmin-Shirley diffuse term depends on F0 too.
+        .filter(|p| !(summary.model.contains("coupled") && p.name.starts_with("f0")))
+        .filter(|p| {
+            let lobe = lobe_number(&p.name);
+            lobes
+                .iter()
+                .any(|(l, off)| *off && (l.is_empty() || *l == lobe))
+        })
+        .map(|p| p.name.clone())
+        .collect()
+}
+
+/// Trailing lobe number of a shape parameter (`m1`, `f0_1`, `cxy2`): the
+/// digits after the last letter or underscore, "" when the name has none
+/// besides a built-in digit (`f0`).
+fn lobe_number(name: &str) -> String {
+    if let Some((_, k)) = name.rsplit_once('_') {
+        if k.chars().all(|c| c.is_ascii_digit()) {
+            return k.to_string();
+        }
+    }
+    if name == "f0" {
+        return String::new();
+    }
+    let digits: String = name
+        .chars()
+        .rev()
+        .take_while(char::is_ascii_digit)
+        .collect();
+    digits.chars().rev().collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use brdf_fit::FittedParam;
+
+    fn summary(params: &[(&str, f64, bool)]) -> FitSummary {
+        FitSummary {
+            model: String::new(),
+            data: String::new(),
+            samples: 0,
+            parameters: params
+                .iter()
+                .map(|(n, v, projected)| FittedParam {
+                    name: n.to_string(),
+                    value: *v,
+                    std_error: None,
+                    at_bound: None,
+                    projected: *projected,
+                })
+                .collect(),
+            objective: "ngan",
+            error: 0.0,
+            error_per_channel: vec![],
+            ngan_l2: 0.0,
+            ngan_l2_per_channel: vec![],
+            solver: String::new(),
+            iterations: 0,
+            termination: String::new(),
+            starts: (0, 0, 0),
+            seconds: 0.0,
+            stored_numbers: 0,
+        }
+    }
+
+    #[test]
+    fn a_switched_off_lobe_leaves_its_shape_undetermined() {
+        let ward = summary(&[("kd", 0.3, true), ("ks", 0.0, true), ("a", 0.0158, false)]);
+        assert_eq!(undetermined(&ward), vec!["a"]);
+        let on = summary(&[("kd", 0.3, true), ("ks", 0.01, true), ("a", 0.2, false)]);
+        assert!(undetermined(&on).is_empty());
+        // Two lobes, the second off: only its axes and exponent.
+        let laf = summary(&[
+            ("kd", 0.3, true),
+            ("ks1", 0.1, true),
+            ("cxy1", -0.5, false),
+            ("cz1", 0.4, false),
+            ("n1", 8.0, false),
+            ("ks2", 0.0, true),
+            ("cxy2", -0.9, false),
+            ("cz2", 0.1, false),
+            ("n2", 3.0, false),
+        ]);
+        assert_eq!(undetermined(&laf), vec!["cxy2", "cz2", "n2"]);
+        // RGB: one channel's strength keeps the lobe on.
+        let ct = summary(&[
+            ("ks1_r", 0.0, true),
+            ("ks1_g", 0.0, true),
+            ("ks1_b", 0.1, true),
+            ("m1", 0.3, false),
+            ("f0_1", 0.9, false),
+        ]);
+        assert!(undetermined(&ct).is_empty());
+        let ct_off = summary(&[("ks1", 0.0, true), ("m1", 0.3, false), ("f0_1", 0.9, false)]);
+        assert_eq!(undetermined(&ct_off), vec!["m1", "f0_1"]);
+        // Oren-Nayar has no lobe: sigma stays determined.
+        let on = summary(&[("kd", 0.3, true), ("sigma", 0.0, false)]);
+        assert!(undetermined(&on).is_empty());
+    }
+}

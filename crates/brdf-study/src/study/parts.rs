@@ -1,0 +1,70 @@
+//! The named parts of the study. `brdf reproduce --only NAMES` (or
+//! `tables` in a `--spec` file) runs a selection; the default runs them
+//! all, in this order. Adding a part is one line in [`PARTS`]: a name, what
+//! it writes, whether it is repeated for every metric and angle limit of
+//! the spec, and the function that runs it on the shared [`Study`].
+
+use super::Study;
+use crate::StudyError;
+
+/// A part of the study.
+pub struct Part {
+    /// Name for `--only` and `tables`.
+    pub name: &'static str,
+    /// One line: what it reproduces.
+    pub about: &'static str,
+    /// Run once per metric x angle limit of the spec (the CUReT fits).
+    pub per_variant: bool,
+    /// The work.
+    pub run: fn(&mut Study) -> Result<(), StudyError>,
+}
+
+/// Every part, in the order the study runs them (one line each).
+#[rustfmt::skip]
+pub const PARTS: &[Part] = &[
+    Part { name: "kurt_9_1", about: "Table 9.1: polynomial error against degree (cayman, quarry tile)", per_variant: true, run: crate::kurt::table_9_1::run },
+    Part { name: "kurt_9_2", about: "Table 9.2: nine models on five CUReT materials, fitted parameters", per_variant: true, run: crate::kurt::table_9_2::run },
+    Part { name: "kurt_9_4", about: "Figure 9.4: eight models on every CUReT material, polynomial wins (IRLS and OLS)", per_variant: true, run: crate::kurt::figure_9_4::run },
+    Part { name: "kurt_9_4_times", about: "Table 9.4: mean fit time per model; error against fit time with the Pareto front", per_variant: true, run: crate::kurt::table_9_4::run },
+    Part { name: "kurt_9_5", about: "Figure 9.5: Koenderink and polynomial on every CUReT material", per_variant: true, run: crate::kurt::figure_9_5::run },
+    Part { name: "lafortune_box", about: "Lafortune in Kurt's box against the wide box on every CUReT material", per_variant: true, run: crate::kurt::lafortune_box::run },
+    Part { name: "fig_9_1", about: "Figure 9.1: spheres of the polynomial at degrees 1..6 beside the measured material", per_variant: false, run: crate::figures::figure_9_1 },
+    Part { name: "fig_9_2", about: "Figure 9.2: spheres of the models fitted to the Table 9.2 materials", per_variant: true, run: crate::figures::figure_9_2 },
+    Part { name: "kurt_9_3", about: "Table 9.3 stand-in: dense materials, L2 and PSNR; Figures 9.3 and 9.6", per_variant: false, run: crate::dense_tables::write },
+    Part { name: "sopp", about: "Sopp's Appendix A.8/A.9 on the RGL materials, preview strips", per_variant: false, run: crate::sopp_tables::write },
+    Part { name: "nist", about: "NIST StRD certification of the solver", per_variant: false, run: crate::nist::part },
+];
+
+/// The part named `name`.
+pub fn find(name: &str) -> Option<&'static Part> {
+    PARTS.iter().find(|p| p.name == name)
+}
+
+/// Every part's name.
+pub fn names() -> Vec<&'static str> {
+    PARTS.iter().map(|p| p.name).collect()
+}
+
+/// Run the selected parts: the per-variant ones for every metric and
+/// limit, the others once.
+pub fn run_all(study: &mut Study) -> Result<(), StudyError> {
+    let metrics = study.spec.metrics.clone();
+    let limits = study.spec.limits.clone();
+    let selected: Vec<&Part> = PARTS.iter().filter(|p| study.spec.runs(p.name)).collect();
+    for part in selected {
+        let variants: Vec<(String, f64)> = if part.per_variant {
+            metrics
+                .iter()
+                .flat_map(|m| limits.iter().map(move |l| (m.clone(), *l)))
+                .collect()
+        } else {
+            vec![("ngan".into(), 80.0)]
+        };
+        for (metric, limit) in variants {
+            study.variant = super::Variant { metric, limit };
+            eprintln!("brdf reproduce: {} ({})", part.name, part.about);
+            (part.run)(study)?;
+        }
+    }
+    Ok(())
+}

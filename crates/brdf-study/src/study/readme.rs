@@ -1,0 +1,145 @@
+//! `results/README.md`, written by the command from the list of files it
+//! wrote: every file, what it holds, and the data, metric, angle limit,
+//! software version and commit behind it.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::process::Command;
+
+use super::Study;
+use crate::StudyError;
+
+/// The commit of the work tree holding `dir`, with a mark when the code
+/// (outside the output folder) has uncommitted changes; "unknown" outside
+/// a git work tree.
+pub fn commit_of(dir: &Path) -> String {
+    let git = |args: &[&str]| {
+        Command::new("git")
+            .arg("-C")
+            .arg(dir)
+            .args(args)
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    let Some(head) = git(&["rev-parse", "HEAD"]) else {
+        return "unknown (not run inside a git work tree)".into();
+    };
+    let dirty = git(&[
+        "status",
+        "--porcelain",
+        "--untracked-files=no",
+        "--",
+        ":/crates",
+        ":/Cargo.toml",
+        ":/Cargo.lock",
+    ])
+    .is_some_and(|s| !s.is_empty());
+    if dirty {
+        format!("{head} plus uncommitted changes to the code")
+    } else {
+        head
+    }
+}
+
+/// Rows of an earlier README in `dir` (file name, whole line), kept when a
+/// partial run (`--only`) does not rewrite their files.
+fn earlier_rows(path: &Path) -> Vec<(String, String)> {
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return Vec::new();
+    };
+    text.lines()
+        .filter_map(|l| {
+            let rest = l.strip_prefix("| `")?;
+            let (file, _) = rest.split_once('`')?;
+            Some((file.to_string(), l.to_string()))
+        })
+        .collect()
+}
+
+/// Write `README.md` into the output folder: this run's files, then those
+/// of earlier runs that this run did not rewrite (each row names the
+/// version and commit that wrote it).
+pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
+    let path = study.out.join("README.md");
+    let earlier = earlier_rows(&path);
+    let version = format!("{} @ {}", env!("CARGO_PKG_VERSION"), commit_of(&study.out));
+    let mut s = String::new();
+    let name = study
+        .out
+        .file_name()
+        .map_or("results".into(), |f| f.to_string_lossy().into_owned());
+    let _ = writeln!(s, "# {name}/\n");
+    let _ = writeln!(
+        s,
+        "Written by `brdf reproduce` — this file too. Every number in this folder comes from a run of that command on the data named below; the thesis values printed beside ours are the targets from `spec/study.md`. Rerunning it rewrites the files; only measured fit times (`kurt_9_4_times`, `error_vs_time`) change between runs. A run of selected parts (`--only`, `--spec`) rewrites their rows and keeps the others.\n"
+    );
+    let _ = writeln!(s, "- last run: `{command}`");
+    let _ = writeln!(s, "- software: brdf-study {version}");
+    let data = if study.synthetic() {
+        "BUILT-IN SYNTHETIC DATA (no measured data: BRDF_DATA unset and no --data)"
+    } else {
+        "measured data under `$BRDF_DATA` (paths below are relative to it)"
+    };
+    let _ = writeln!(s, "- data: {data}\n");
+    let _ = writeln!(
+        s,
+        "| file | what it holds | data | metric | angle limit | version @ commit |"
+    );
+    let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- |");
+    for w in &study.written {
+        let _ = writeln!(
+            s,
+            "| `{}` | {} | {} | {} | {} | {version} |",
+            w.file, w.what, w.data, w.metric, w.limit
+        );
+    }
+    for (file, line) in &earlier {
+        if !study.written.iter().any(|w| &w.file == file) && line.matches(" | ").count() >= 5 {
+            let _ = writeln!(s, "{line}");
+        }
+    }
+    let listed = |f: &str| {
+        let stem = f.split('.').next().unwrap_or(f);
+        study
+            .written
+            .iter()
+            .any(|w| w.file.split('.').next() == Some(stem))
+            || earlier
+                .iter()
+                .any(|(e, _)| e.split('.').next() == Some(stem))
+            || f == "README.md"
+    };
+    let mut others: Vec<String> = std::fs::read_dir(&study.out)
+        .map(|d| {
+            d.filter_map(|e| e.ok())
+                .filter(|e| e.path().is_file())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .filter(|f| !listed(f))
+                .collect()
+        })
+        .unwrap_or_default();
+    others.sort();
+    if !others.is_empty() {
+        let _ = writeln!(s, "\nOther files here, not written by `brdf reproduce`:\n");
+        for f in others {
+            let what = if f == "performance.md" {
+                "the peer comparison, written by `benches/peers/run.sh`"
+            } else {
+                "not from this command (check where it came from)"
+            };
+            let _ = writeln!(s, "- `{f}`: {what}");
+        }
+    }
+    if !study.skipped.is_empty() {
+        let _ = writeln!(s, "\nParts of the last run that wrote nothing:\n");
+        for (part, why) in &study.skipped {
+            let _ = writeln!(s, "- `{part}`: {why}");
+        }
+    }
+    std::fs::write(&path, s).map_err(|e| StudyError::Io {
+        path: path.display().to_string(),
+        source: e,
+    })
+}

@@ -1,0 +1,199 @@
+//! What `brdf reproduce` runs: the parts, materials, models, degrees, lobes,
+//! metrics and angle limits, from `--only`, `--spec FILE` (TOML) or the
+//! defaults (everything, as the theses did it).
+//!
+//! ```toml
+//! tables = ["kurt_9_1", "kurt_9_2"]   # parts (default: all)
+//! materials = ["25", "cayman"]         # CUReT numbers or name parts (default: all)
+//! models = ["ward", "polynomial"]      # catalogue names or labels (default: nine)
+//! degrees = [1, 2, 3]                  # Table 9.1 / Fig. 9.1 degrees (default 1..=12)
+//! lobes = 1                            # Lafortune / Cook-Torrance lobes
+//! metrics = ["ngan"]                   # objectives of the CUReT fits
+//! limits = [80.0]                      # angle limits (deg) of the CUReT fits
+//! lafortune_box = "kurt"               # or "wide" (Cxy, Cz in [-1, 1])
+//! ```
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+use crate::StudyError;
+
+/// Lafortune's box for the thesis tables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LafortuneBox {
+    /// Kurt's: `Cxy` in `[-1, 0]`, `Cz` in `[0, 1]`.
+    Kurt,
+    /// The catalogue's: both in `[-1, 1]` (back-scattering lobes allowed).
+    Wide,
+}
+
+/// The selection of a study run.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct StudySpec {
+    /// Parts to run (names of [`super::parts::PARTS`]); empty = all.
+    pub tables: Vec<String>,
+    /// Materials: CUReT sample numbers or case-insensitive parts of a
+    /// material's name; empty = all.
+    pub materials: Vec<String>,
+    /// Models of Kurt's comparison: catalogue names or table labels; empty = all nine.
+    pub models: Vec<String>,
+    /// Polynomial degrees of Table 9.1 (and Fig. 9.1, up to 6).
+    pub degrees: Vec<usize>,
+    /// Lobes of Lafortune and Cook-Torrance.
+    pub lobes: usize,
+    /// Objectives of the CUReT fits (`ngan`, `lafortune`, `log`, ...).
+    pub metrics: Vec<String>,
+    /// Angle limits (degrees) of the CUReT fits.
+    pub limits: Vec<f64>,
+    /// Lafortune's box in the thesis tables.
+    pub lafortune_box: LafortuneBox,
+}
+
+impl Default for StudySpec {
+    fn default() -> Self {
+        StudySpec {
+            tables: Vec::new(),
+            materials: Vec::new(),
+            models: Vec::new(),
+            degrees: (1..=12).collect(),
+            lobes: 1,
+            metrics: vec!["ngan".into()],
+            limits: vec![80.0],
+            lafortune_box: LafortuneBox::Kurt,
+        }
+    }
+}
+
+impl StudySpec {
+    /// Read a spec file; every error names the file.
+    pub fn read(path: &Path) -> Result<Self, StudyError> {
+        let text = std::fs::read_to_string(path).map_err(|e| StudyError::Io {
+            path: path.display().to_string(),
+            source: e,
+        })?;
+        Self::parse(&text).map_err(|e| StudyError::Usage(format!("{}: {e}", path.display())))
+    }
+
+    /// Parse and check spec text.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let spec: StudySpec = toml::from_str(text).map_err(|e| e.message().to_string())?;
+        spec.check()?;
+        Ok(spec)
+    }
+
+    /// Reject impossible selections with a message naming the field.
+    pub fn check(&self) -> Result<(), String> {
+        for t in &self.tables {
+            if super::parts::find(t).is_none() {
+                return Err(format!(
+                    "tables: unknown part `{t}` (known: {})",
+                    super::parts::names().join(", ")
+                ));
+            }
+        }
+        if let Some(d) = self.degrees.iter().find(|d| **d == 0 || **d > 20) {
+            return Err(format!("degrees: {d} is outside 1..=20"));
+        }
+        if self.degrees.is_empty() {
+            return Err("degrees: the list is empty".into());
+        }
+        if self.lobes == 0 || self.lobes > 4 {
+            return Err(format!("lobes: {} is outside 1..=4", self.lobes));
+        }
+        if self.metrics.is_empty() || self.limits.is_empty() {
+            return Err("metrics and limits need at least one value each".into());
+        }
+        for m in &self.metrics {
+            brdf_fit::Objective::parse(m).map_err(|e| format!("metrics: {e}"))?;
+        }
+        if let Some(l) = self.limits.iter().find(|l| !(**l > 0.0 && **l <= 90.0)) {
+            return Err(format!("limits: {l} is outside (0, 90] degrees"));
+        }
+        for m in &self.models {
+            if !super::models::nine_models(1)
+                .iter()
+                .any(|(label, name, _)| m.eq_ignore_ascii_case(label) || m == name)
+            {
+                return Err(format!(
+                    "models: `{m}` is none of Kurt's nine (catalogue names or labels)"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether part `name` is selected.
+    pub fn runs(&self, name: &str) -> bool {
+        self.tables.is_empty() || self.tables.iter().any(|t| t == name)
+    }
+
+    /// Whether a material (its set name) is selected.
+    pub fn has_material(&self, name: &str) -> bool {
+        if self.materials.is_empty() {
+            return true;
+        }
+        let lower = name.to_lowercase();
+        let number = name
+            .strip_prefix("curet#")
+            .and_then(|r| r.split(' ').next())
+            .map(str::to_string);
+        // A number names a CUReT sample only; other text is part of a name.
+        self.materials.iter().any(|m| match m.parse::<u32>() {
+            Ok(_) => number.as_deref() == Some(m.as_str()),
+            Err(_) => lower.contains(&m.to_lowercase()),
+        })
+    }
+
+    /// Whether a model (label and catalogue name) is selected.
+    pub fn has_model(&self, label: &str, name: &str) -> bool {
+        self.models.is_empty()
+            || self
+                .models
+                .iter()
+                .any(|m| m.eq_ignore_ascii_case(label) || m == name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_a_reduced_spec_and_selects() {
+        let s = StudySpec::parse(
+            "tables = [\"kurt_9_1\"]\nmaterials = [\"25\", \"felt\"]\nmodels = [\"ward\"]\ndegrees = [1, 2]\n",
+        )
+        .unwrap();
+        assert!(s.runs("kurt_9_1") && !s.runs("kurt_9_2"));
+        assert!(s.has_material("curet#25 Quarry Tile"));
+        assert!(!s.has_material("curet#2 Polyester"));
+        assert!(
+            !s.has_material("curet#10 Plaster_a"),
+            "a number matches only the sample number"
+        );
+        assert!(s.has_material("curet#1 Felt"));
+        assert!(s.has_model("Ward", "ward") && !s.has_model("Blinn-Phong", "blinn-phong"));
+        assert_eq!(s.lafortune_box, LafortuneBox::Kurt);
+        assert_eq!(s.limits, vec![80.0]);
+    }
+
+    #[test]
+    fn bad_specs_name_the_field() {
+        for (text, word) in [
+            ("tables = [\"kurt_9_9\"]", "tables"),
+            ("degrees = [0]", "degrees"),
+            ("lobes = 0", "lobes"),
+            ("metrics = [\"l3\"]", "metrics"),
+            ("limits = [95.0]", "limits"),
+            ("models = [\"phong-x\"]", "models"),
+            ("colour = 1", "colour"),
+            ("lafortune_box = \"narrow\"", "narrow"),
+        ] {
+            let e = StudySpec::parse(text).unwrap_err();
+            assert!(e.contains(word), "{text}: {e}");
+        }
+    }
+}
