@@ -15,13 +15,19 @@ use crate::error::to_py;
 /// reciprocal, parameters with their boxes, linear flags and defaults), as
 /// `brdf models --json` prints it for the same structure options.
 #[pyfunction]
-#[pyo3(signature = (*, lobes=1, order=8, degree=7))]
-pub fn models(py: Python<'_>, lobes: usize, order: usize, degree: usize) -> PyResult<Bound<'_, PyAny>> {
+#[pyo3(signature = (*, channels=1, lobes=1, order=8, degree=7))]
+pub fn models(
+    py: Python<'_>,
+    channels: usize,
+    lobes: usize,
+    order: usize,
+    degree: usize,
+) -> PyResult<Bound<'_, PyAny>> {
     let config = ModelConfig {
+        channels,
         lobes,
         order,
         degree,
-        ..ModelConfig::default()
     };
     let mut out = Vec::new();
     for e in brdf_models::catalogue() {

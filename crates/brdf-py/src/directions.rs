@@ -41,5 +41,7 @@ pub fn unit(v: &[f64], what: &str, row: usize) -> PyResult<Direction> {
             v[0], v[1], v[2]
         )));
     }
-    Ok(Direction::new_unchecked(brdf_core::nalgebra::Vector3::new(v[0], v[1], v[2])))
+    Ok(Direction::new_unchecked(brdf_core::nalgebra::Vector3::new(
+        v[0], v[1], v[2],
+    )))
 }

@@ -64,7 +64,10 @@ fn data_set(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<(SampleSet, Str
         return Ok((set, name));
     }
     let path: PathBuf = data.extract().map_err(|_| {
-        usage("data: expected a path (str or os.PathLike) or a dict of arrays as load() returns".into())
+        usage(
+            "data: expected a path (str or os.PathLike) or a dict of arrays as load() returns"
+                .into(),
+        )
     })?;
     let spec = path.display().to_string();
     let set = py.detach(|| brdf_io::load(&spec)).map_err(to_py)?;

@@ -42,7 +42,10 @@ pub fn to_dict<'py>(py: Python<'py>, set: &SampleSet) -> PyResult<Bound<'py, PyD
     d.set_item("wi", wi.into_pyarray(py))?;
     d.set_item("wo", wo.into_pyarray(py))?;
     d.set_item("values", values.into_pyarray(py))?;
-    d.set_item("weights", Array1::from(set.weights().to_vec()).into_pyarray(py))?;
+    d.set_item(
+        "weights",
+        Array1::from(set.weights().to_vec()).into_pyarray(py),
+    )?;
     d.set_item("channel_names", set.channel_names.clone())?;
     d.set_item("name", set.name.clone())?;
     d.set_item("provenance", set.provenance.clone())?;
@@ -60,7 +63,11 @@ pub fn from_dict(d: &Bound<'_, PyDict>) -> PyResult<SampleSet> {
     let (rows, channels) = match values.shape() {
         [r] => (*r, 1),
         [r, c] => (*r, *c),
-        s => return Err(usage(format!("data `values`: shape {s:?}; expected (n, channels)"))),
+        s => {
+            return Err(usage(format!(
+                "data `values`: shape {s:?}; expected (n, channels)"
+            )));
+        }
     };
     if wo.len() != n || rows != n {
         return Err(usage(format!(
@@ -70,7 +77,10 @@ pub fn from_dict(d: &Bound<'_, PyDict>) -> PyResult<SampleSet> {
     }
     let values: Vec<f64> = values.iter().copied().collect();
     let weights = match d.get_item("weights")? {
-        Some(w) => w.extract::<PyArrayLike1<f64, AllowTypeChange>>()?.as_array().to_vec(),
+        Some(w) => w
+            .extract::<PyArrayLike1<f64, AllowTypeChange>>()?
+            .as_array()
+            .to_vec(),
         None => vec![1.0; n],
     };
     if weights.len() != n {
@@ -96,7 +106,11 @@ pub fn from_dict(d: &Bound<'_, PyDict>) -> PyResult<SampleSet> {
             None => default.to_string(),
         })
     };
-    let mut set = SampleSet::new(text("name", "numpy")?, text("provenance", "numpy arrays")?, names);
+    let mut set = SampleSet::new(
+        text("name", "numpy")?,
+        text("provenance", "numpy arrays")?,
+        names,
+    );
     for j in 0..n {
         let row = &values[j * channels..(j + 1) * channels];
         set.push(&wi[j], &wo[j], row, weights[j]).map_err(to_py)?;

@@ -72,6 +72,9 @@ def test_saved_model_evaluates_as_cli(brdf_cli, tmp_path):
         wi = np.array([math.sin(ti) * math.cos(pi), math.sin(ti) * math.sin(pi), math.cos(ti)])
         wo = np.array([math.sin(to) * math.cos(po), math.sin(to) * math.sin(po), math.cos(to)])
         np.testing.assert_allclose(brdf.eval(saved, wi, wo), cli["channels"], rtol=1e-12)
+        # the saved file reads back the fitted numbers exactly
+        assert brdf.eval(saved, wi, wo).tolist() == \
+            brdf.eval("ashikhmin-shirley", wi, wo, params=fitted).tolist()
         # the saved file's content as a dict names the same model
         import json
         as_dict = json.loads(saved.read_text())

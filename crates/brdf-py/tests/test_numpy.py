@@ -106,7 +106,8 @@ def test_eval_rgb_vectorised_equals_one_by_one():
 
 def test_models_equal_cli(brdf_cli):
     assert brdf.models() == cli_json(brdf_cli, "models")
-    assert brdf.models(lobes=2) == cli_json(brdf_cli, "models", "--lobes", "2")
+    assert brdf.models(lobes=2, channels=3) == \
+        cli_json(brdf_cli, "models", "--lobes", "2", "--channels", "3")
 
 
 def test_export_writes_exact_equivalents_only():
