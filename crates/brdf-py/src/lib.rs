@@ -37,7 +37,8 @@ use pyo3::prelude::*;
 
 /// The module `brdf`.
 #[pymodule]
-fn brdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
+#[pyo3(name = "brdf")]
+fn brdf_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("BrdfError", m.py().get_type::<error::BrdfError>())?;
     m.add_function(wrap_pyfunction!(samples::load, m)?)?;
