@@ -77,6 +77,11 @@ def read_fits(path):
     return fits
 
 
+def read_bytes(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
 def rust_display(x):
     """A number as Rust's `{}` prints an f64 (shortest digits, no exponent)."""
     if x is None or math.isnan(x):
@@ -166,9 +171,11 @@ def main(argv=None):
     tasks = [fit_material.remote(m, brdf.data_name(m), x, a.channels, a.limit, a.starts)
              for m, x in todo.items()]
     failures = []
+    # A killed run may have left half a line: end it first.
+    half_line = os.path.exists(path) and not read_bytes(path).endswith(b"\n") \
+        and os.path.getsize(path) > 0
     with open(path, "a") as f:
-        # A killed run may have left half a line: end it first.
-        if f.tell() > 0 and not open(path, "rb").read().endswith(b"\n"):
+        if half_line:
             f.write("\n")
         pending = list(tasks)
         while pending:
