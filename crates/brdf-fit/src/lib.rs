@@ -38,6 +38,7 @@
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
 //! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
 //! | [`names`] | forgiving model names with suggestions |
+//! | [`report_json`] | the JSON report of `brdf fit --json`, data names for outputs |
 //! | [`error`] | [`FitError`] |
 
 pub mod builder;
@@ -45,9 +46,11 @@ pub mod error;
 pub mod fit_linear;
 pub mod names;
 pub mod pipeline;
+pub mod report_json;
 pub mod select;
 
 pub use builder::{Channels, Fit, FitReport};
 pub use error::FitError;
 pub use names::resolve;
 pub use pipeline::{FitOptions, FitSummary, FittedParam, Objective, Solver};
+pub use report_json::{data_name, fit_json};

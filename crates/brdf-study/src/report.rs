@@ -112,23 +112,7 @@ impl Table {
     }
 }
 
-/// A data set's name for outputs: relative to `BRDF_DATA` when it lies
-/// inside it, as given when relative, its file name otherwise — never an
-/// absolute machine path.
-pub fn data_name(spec: &str) -> String {
-    let path = std::path::Path::new(spec);
-    if let Some(root) = std::env::var_os("BRDF_DATA")
-        && let Ok(rest) = path.strip_prefix(std::path::Path::new(&root))
-    {
-        return rest.display().to_string();
-    }
-    if path.is_relative() {
-        return spec.to_string();
-    }
-    path.file_name()
-        .map(|f| f.to_string_lossy().into_owned())
-        .unwrap_or_else(|| spec.to_string())
-}
+pub use brdf_fit::data_name;
 
 #[cfg(test)]
 mod tests {

@@ -93,14 +93,7 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
         reports.push(report);
     }
     if args.json {
-        let first = &reports[0];
-        let v = serde_json::json!({
-            "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
-            "samples_present": first.samples_present,
-            "dropped_invalid": first.dropped_invalid,
-            "dropped_angle": first.dropped_angle,
-            "negative_values_kept": data.count_negative(),
-        });
+        let v = brdf_fit::fit_json(&reports, &data)?;
         say!("{}", serde_json::to_string_pretty(&v)?)?;
         return Ok(());
     }

@@ -1,0 +1,89 @@
+//! What a fit reports to a program: the JSON of `brdf fit --json` (also what
+//! the Python module's `fit` returns), and data-set names for outputs, so
+//! every front end names fits and data the same way.
+
+use brdf_core::SampleSet;
+
+use crate::{FitError, FitReport};
+
+/// The JSON report of the fits of one data set (one per channel set): the
+/// fit summaries, and what the first fit's filters dropped; `data` is the
+/// data set as loaded (its negative values are counted, they are kept).
+pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::Value, FitError> {
+    let first = reports
+        .first()
+        .ok_or_else(|| FitError::Usage(format!("`{}`: no fit to report", data.name)))?;
+    Ok(serde_json::json!({
+        "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
+        "samples_present": first.samples_present,
+        "dropped_invalid": first.dropped_invalid,
+        "dropped_angle": first.dropped_angle,
+        "negative_values_kept": data.count_negative(),
+    }))
+}
+
+/// A data set's name for outputs: relative to `BRDF_DATA` when it lies
+/// inside it, as given when relative, its file name otherwise — never an
+/// absolute machine path.
+pub fn data_name(spec: &str) -> String {
+    let path = std::path::Path::new(spec);
+    if let Some(root) = std::env::var_os("BRDF_DATA")
+        && let Ok(rest) = path.strip_prefix(std::path::Path::new(&root))
+    {
+        return rest.display().to_string();
+    }
+    if path.is_relative() {
+        return spec.to_string();
+    }
+    path.file_name()
+        .map(|f| f.to_string_lossy().into_owned())
+        .unwrap_or_else(|| spec.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use brdf_core::Direction;
+
+    use super::*;
+    use crate::Fit;
+
+    /// Lambert, kd = 0.3, at four pairs, one beyond 80 deg, one NaN and
+    /// one negative value.
+    fn samples() -> SampleSet {
+        let mut s = SampleSet::new("toy", "hand-made", vec!["grey".into()]);
+        let d = |t: f64| Direction::from_spherical(t.to_radians(), 0.0).unwrap();
+        let v = 0.3 / std::f64::consts::PI;
+        for (ti, to, f) in [(0.0, 10.0, v), (20.0, 30.0, v), (40.0, 50.0, -v)] {
+            s.push(&d(ti), &d(to), &[f], 1.0).unwrap();
+        }
+        s.push(&d(85.0), &d(0.0), &[v], 1.0).unwrap();
+        s.push(&d(10.0), &d(0.0), &[f64::NAN], 1.0).unwrap();
+        s
+    }
+
+    #[test]
+    fn report_counts_what_the_filters_did() {
+        let data = samples();
+        let rep = Fit::model("lambert").unwrap().run(&data).unwrap();
+        let v = fit_json(&[rep], &data).unwrap();
+        assert_eq!(v["samples_present"], 5);
+        assert_eq!(v["dropped_invalid"], 1);
+        assert_eq!(v["dropped_angle"], 1);
+        assert_eq!(v["negative_values_kept"], 1);
+        assert_eq!(v["fits"].as_array().unwrap().len(), 1);
+        assert_eq!(v["fits"][0]["model"], "lambert");
+        assert_eq!(v["fits"][0]["samples"], 3);
+    }
+
+    #[test]
+    fn no_fit_is_an_error_naming_the_data() {
+        let e = fit_json(&[], &samples()).unwrap_err();
+        assert_eq!(e.to_string(), "`toy`: no fit to report");
+    }
+
+    #[test]
+    fn data_names_are_never_absolute() {
+        assert_eq!(data_name("curet/abrdf.dat#25"), "curet/abrdf.dat#25");
+        assert_eq!(data_name("/somewhere/else/paper.bsdf"), "paper.bsdf");
+    }
+}

@@ -1,0 +1,199 @@
+"""Fit every material x model of a database as Ray tasks, and write what
+`brdf batch` writes: OUT/fits.jsonl (one JSON line per fit) and the summary
+OUT/summary.csv, OUT/summary.md (sorted by material and model, so the same
+for any number of workers or completion order).
+
+On this machine (Ray starts a local cluster):
+
+    python ray_batch.py --data "$BRDF_DATA/curet/abrdf.dat" \
+        --models lambert,blinn-phong --out fits
+
+On a cluster, the same script with the head node's address (every node needs
+the `brdf` wheel installed and the data at the same path):
+
+    python ray_batch.py --address ray://HEAD:10001 --data ... --models ... --out ...
+
+A material is one Ray task: it is loaded once and fitted with every model,
+as `brdf batch` does. A rerun skips the fits already in OUT/fits.jsonl.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+from decimal import Decimal
+
+import brdf
+import ray
+
+FITS = "fits.jsonl"
+TITLE = "brdf batch: every material x model fit"
+COLUMNS = ["data", "model", "samples used", "samples present", "Ngan L2",
+           "termination", "seconds"]
+
+
+@ray.remote
+def fit_material(material, name, models, channels, limit, starts):
+    """Load one material and fit every model: batch lines, or error strings."""
+    try:
+        samples = brdf.load(material)
+    except brdf.BrdfError as e:
+        return [str(e) for _ in models]
+    out = []
+    for model in models:
+        try:
+            report = brdf.fit(samples, model, channels=channels,
+                              limit_deg=limit, starts=starts)
+        except brdf.BrdfError as e:
+            out.append(f"{name} x {model}: {e}")
+            continue
+        fit = report["fits"][0]
+        out.append({
+            "data": name,
+            "model": model,
+            "samples_used": fit["samples"],
+            "samples_present": report["samples_present"],
+            "limit_deg": limit,
+            "fit": fit,
+        })
+    return out
+
+
+def read_fits(path):
+    """The fits already in a fits.jsonl by (data, model); a truncated last
+    line (a killed run) is ignored."""
+    fits = {}
+    if not os.path.exists(path):
+        return fits
+    with open(path) as f:
+        for line in f:
+            try:
+                v = json.loads(line)
+            except json.JSONDecodeError:
+                continue
+            fits[(v.get("data", ""), v.get("model", ""))] = v
+    return fits
+
+
+def read_bytes(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def rust_display(x):
+    """A number as Rust's `{}` prints an f64 (shortest digits, no exponent)."""
+    if x is None or math.isnan(x):
+        return "NaN"
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    s = format(Decimal(repr(float(x))), "f")
+    if "." in s:
+        s = s.rstrip("0").rstrip(".")
+    return s
+
+
+def fmt_sig(x, digits):
+    """`x` to `digits` significant digits, as the study's Markdown tables."""
+    if x is None or not math.isfinite(x):
+        return rust_display(x)
+    if x == 0:
+        return "0"
+    mag = math.floor(math.log10(abs(x)))
+    if not -4 <= mag < 6:
+        mantissa, exponent = f"{x:.{max(digits - 1, 0)}e}".split("e")
+        return f"{mantissa}e{int(exponent)}"
+    return f"{x:.{max(digits - 1 - mag, 0)}f}"
+
+
+def summary_rows(fits):
+    """Rows of the summary: (text cells, numbers with their digits)."""
+    rows = []
+    for (data, model) in sorted(fits):
+        v = fits[(data, model)]
+        f = v["fit"]
+        rows.append([
+            ("text", data), ("text", model),
+            ("text", json.dumps(v["samples_used"])),
+            ("text", json.dumps(v["samples_present"])),
+            ("num", f.get("ngan_l2"), 6),
+            ("text", f.get("termination") or ""),
+            ("num", f.get("seconds"), 3),
+        ])
+    return rows
+
+
+def write_summary(out, fits):
+    """summary.csv (numbers in full) and summary.md, as `brdf batch`."""
+    rows = summary_rows(fits)
+    with open(os.path.join(out, "summary.csv"), "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(COLUMNS)
+        for r in rows:
+            w.writerow([rust_display(c[1]) if c[0] == "num" else c[1] for c in r])
+    lines = [f"## {TITLE}", "", "| " + " | ".join(COLUMNS) + " |",
+             "|" + " --- |" * len(COLUMNS)]
+    for r in rows:
+        cells = [fmt_sig(c[1], c[2]) if c[0] == "num" else c[1] for c in r]
+        lines.append("| " + " | ".join(cells) + " |")
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--data", nargs="+", required=True,
+                   help="folders, files, or a CUReT abrdf.dat (every sample)")
+    p.add_argument("--models", required=True, help="comma-separated model names")
+    p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--channels", default="rgb", choices=["rgb", "grey"])
+    p.add_argument("--limit", type=float, default=80.0, help="angle limit (degrees)")
+    p.add_argument("--starts", type=int, default=12, help="multi-start count")
+    p.add_argument("--address", default=None,
+                   help="Ray cluster address (default: start Ray on this machine)")
+    a = p.parse_args(argv)
+
+    models = [brdf.canonical_name(m) for m in a.models.split(",") if m]
+    materials = sorted({m for d in a.data for m in brdf.materials(d)})
+    os.makedirs(a.out, exist_ok=True)
+    path = os.path.join(a.out, FITS)
+    done = read_fits(path)
+    todo = {}
+    for m in materials:
+        left = [x for x in models if (brdf.data_name(m), x) not in done]
+        if left:
+            todo[m] = left
+    print(f"ray_batch: {len(materials) * len(models)} fits, "
+          f"{sum(map(len, todo.values()))} to run", file=sys.stderr)
+
+    ray.init(address=a.address)
+    tasks = [fit_material.remote(m, brdf.data_name(m), x, a.channels, a.limit, a.starts)
+             for m, x in todo.items()]
+    failures = []
+    # A killed run may have left half a line: end it first.
+    half_line = os.path.exists(path) and not read_bytes(path).endswith(b"\n") \
+        and os.path.getsize(path) > 0
+    with open(path, "a") as f:
+        if half_line:
+            f.write("\n")
+        pending = list(tasks)
+        while pending:
+            ready, pending = ray.wait(pending, num_returns=1)
+            for line in ray.get(ready[0]):
+                if isinstance(line, str):
+                    failures.append(line)
+                else:
+                    f.write(json.dumps(line, separators=(",", ":")) + "\n")
+                    f.flush()
+            print(f"ray_batch: {len(tasks) - len(pending)} of {len(tasks)} materials done",
+                  file=sys.stderr)
+    ray.shutdown()
+    write_summary(a.out, read_fits(path))
+    for e in failures:
+        print(f"ray_batch: {e}", file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

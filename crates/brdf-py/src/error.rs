@@ -1,0 +1,25 @@
+//! The Python exception of the module: every Rust error (a file that cannot
+//! be read, a bad option, an impossible parameter) becomes a `brdf.BrdfError`
+//! (a `ValueError`) carrying the Rust message, which names the file, line,
+//! parameter or argument at fault.
+
+use pyo3::PyErr;
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+
+create_exception!(
+    brdf,
+    BrdfError,
+    PyValueError,
+    "An error of the brdf library; the message names the file, line or parameter at fault."
+);
+
+/// A Rust error as a `BrdfError` with its message.
+pub fn to_py<E: std::fmt::Display>(e: E) -> PyErr {
+    BrdfError::new_err(e.to_string())
+}
+
+/// A `BrdfError` with the given message (bad arguments found here).
+pub fn usage(message: String) -> PyErr {
+    BrdfError::new_err(message)
+}

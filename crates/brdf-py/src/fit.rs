@@ -1,0 +1,113 @@
+//! `fit`: the fit `brdf fit` runs, from Python, returning the dict of
+//! `brdf fit --json` (built by [`brdf_fit::fit_json`], as the command does).
+//! The GIL is released while the data load and the fits run.
+
+use std::path::PathBuf;
+
+use brdf_core::SampleSet;
+use brdf_fit::{Channels, Fit, FitReport, Objective, Solver};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::{to_py, usage};
+
+/// Fit `model` to `data` (a path such as `"curet/abrdf.dat#25"`, or a dict
+/// of arrays as `load` returns) from automatic starts; options as `brdf
+/// fit`: `channels` "rgb" (shared non-linear, per-channel linear
+/// parameters), "grey" or "per-channel"; `metric` ngan, sopp,
+/// sopp-unweighted, lafortune, log; `solver` auto, sqp, lm, sopp, ols,
+/// irls, irls:WEIGHT; `save` writes the fitted model (JSON). Returns the
+/// dict `brdf fit --json` prints.
+#[pyfunction]
+#[pyo3(signature = (data, model, *, channels="rgb", metric="ngan", limit_deg=80.0,
+    starts=12, solver="auto", lobes=1, order=8, degree=7, save=None))]
+pub fn fit<'py>(
+    py: Python<'py>,
+    data: &Bound<'py, PyAny>,
+    model: &str,
+    channels: &str,
+    metric: &str,
+    limit_deg: f64,
+    starts: usize,
+    solver: &str,
+    lobes: usize,
+    order: usize,
+    degree: usize,
+    save: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (set, name) = data_set(py, data)?;
+    let fit = Fit::model(model)
+        .and_then(|f| Ok(f.objective(Objective::parse(metric)?)))
+        .and_then(|f| Ok(f.solver(Solver::parse(solver)?)))
+        .map_err(to_py)?
+        .starts(starts)
+        .limit_deg(limit_deg)
+        .lobes(lobes)
+        .order(order)
+        .degree(degree);
+    let sets = channel_sets(&set, channels)?;
+    if save.is_some() && sets.len() > 1 {
+        return Err(usage(
+            "save= needs one model: use channels=\"rgb\" or \"grey\"".into(),
+        ));
+    }
+    let reports = py.detach(|| run_all(&fit, &sets, save.as_ref(), &name))?;
+    let report = brdf_fit::fit_json(&reports, &set).map_err(to_py)?;
+    crate::json::to_py_object(py, &report)
+}
+
+/// The data set and its name for outputs (relative to `BRDF_DATA`).
+fn data_set(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<(SampleSet, String)> {
+    if let Ok(d) = data.cast::<PyDict>() {
+        let set = crate::samples::from_dict(d)?;
+        let name = set.name.clone();
+        return Ok((set, name));
+    }
+    let path: PathBuf = data.extract().map_err(|_| {
+        usage(
+            "data: expected a path (str or os.PathLike) or a dict of arrays as load() returns"
+                .into(),
+        )
+    })?;
+    let spec = path.display().to_string();
+    let set = py.detach(|| brdf_io::load(&spec)).map_err(to_py)?;
+    Ok((set, brdf_fit::data_name(&spec)))
+}
+
+/// The data sets fitted for a channel option, as `brdf fit --channels`.
+fn channel_sets(data: &SampleSet, channels: &str) -> PyResult<Vec<(SampleSet, Channels)>> {
+    Ok(match channels {
+        "rgb" => vec![(data.clone(), Channels::All)],
+        "grey" => vec![(data.clone(), Channels::Grey)],
+        "per-channel" => (0..data.channels())
+            .map(|c| (data.single_channel(c), Channels::All))
+            .collect(),
+        other => {
+            return Err(usage(format!(
+                "channels=\"{other}\": expected grey, rgb or per-channel"
+            )));
+        }
+    })
+}
+
+/// Run the fit on every set; save the (one) model when asked.
+fn run_all(
+    fit: &Fit,
+    sets: &[(SampleSet, Channels)],
+    save: Option<&PathBuf>,
+    name: &str,
+) -> PyResult<Vec<FitReport>> {
+    let mut reports = Vec::new();
+    for (set, channels) in sets {
+        let report = fit.clone().channels(*channels).run(set).map_err(to_py)?;
+        if let Some(path) = save {
+            report
+                .saved_model(name)
+                .map_err(to_py)?
+                .save(path)
+                .map_err(to_py)?;
+        }
+        reports.push(report);
+    }
+    Ok(reports)
+}

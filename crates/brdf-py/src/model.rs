@@ -1,0 +1,163 @@
+//! Models from Python: `eval` (vectorised over numpy arrays) and `export`.
+//! A model argument is a saved model (a `.json` file written by `fit(...,
+//! save=...)` or `brdf fit --save`, or that file's content as a dict) or a
+//! catalogue name with `params={name: value}` (the rest at their defaults).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use brdf_core::Parametric;
+use brdf_core::params::assign_by_name;
+use brdf_models::ModelConfig;
+use brdf_models::saved_model::SavedModel;
+use numpy::ndarray::Array2;
+use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::{to_py, usage};
+
+/// Structure of a catalogue model named in Python (not used for saved
+/// models, which carry their own).
+#[derive(Clone, Copy, Debug)]
+pub struct Structure {
+    /// Colour channels.
+    pub channels: usize,
+    /// Specular lobes.
+    pub lobes: usize,
+    /// Koenderink order.
+    pub order: usize,
+    /// Polynomial degree.
+    pub degree: usize,
+}
+
+/// The model a Python argument names.
+pub fn resolve(
+    model: &Bound<'_, PyAny>,
+    params: Option<BTreeMap<String, f64>>,
+    structure: Structure,
+) -> PyResult<Box<dyn Parametric>> {
+    if let Ok(d) = model.cast::<PyDict>() {
+        no_params(&params, "a saved-model dict")?;
+        let text = crate::json::to_json_text(d.as_any())?;
+        let saved = SavedModel::from_json(&text, "saved-model dict").map_err(to_py)?;
+        return saved
+            .build()
+            .map_err(|e| usage(format!("saved-model dict: {e}")));
+    }
+    let name: PathBuf = model.extract().map_err(|_| {
+        usage("model: expected a catalogue name, a saved-model path or a saved-model dict".into())
+    })?;
+    if is_saved_model(&name) {
+        no_params(&params, &name.display().to_string())?;
+        return SavedModel::load_model(&name).map_err(to_py);
+    }
+    let name = name.display().to_string();
+    let entry = brdf_fit::resolve(&name).map_err(to_py)?;
+    let config = ModelConfig {
+        channels: structure.channels,
+        lobes: structure.lobes,
+        order: structure.order,
+        degree: structure.degree,
+    };
+    let mut m = (entry.build)(&config).map_err(to_py)?;
+    let assignments: Vec<(String, f64)> = params.unwrap_or_default().into_iter().collect();
+    let values = assign_by_name(entry.name, m.param_specs(), &assignments).map_err(to_py)?;
+    m.set_params(&values).map_err(to_py)?;
+    Ok(m)
+}
+
+/// A path names a saved model when it ends in `.json` or is a file.
+fn is_saved_model(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e == "json") || path.is_file()
+}
+
+fn no_params(params: &Option<BTreeMap<String, f64>>, what: &str) -> PyResult<()> {
+    match params {
+        Some(_) => Err(usage(format!(
+            "params= sets a catalogue model's parameters; {what} carries its own"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Evaluate a model at direction pairs: `wi`, `wo` are `(n, 3)` arrays of
+/// unit vectors (local frame, normal +z), or one `(3,)` vector broadcast
+/// against the other. Returns `(n, channels)` values in 1/sr, or
+/// `(channels,)` when both are single vectors.
+#[pyfunction]
+#[pyo3(signature = (model, wi, wo, *, params=None, channels=1, lobes=1, order=8, degree=7))]
+pub fn eval<'py>(
+    py: Python<'py>,
+    model: &Bound<'py, PyAny>,
+    wi: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    wo: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    params: Option<BTreeMap<String, f64>>,
+    channels: usize,
+    lobes: usize,
+    order: usize,
+    degree: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let structure = Structure {
+        channels,
+        lobes,
+        order,
+        degree,
+    };
+    let m = resolve(model, params, structure)?;
+    let (wi, wi_single) = crate::directions::parse(wi.as_array(), "wi")?;
+    let (wo, wo_single) = crate::directions::parse(wo.as_array(), "wo")?;
+    let n = match (wi_single, wo_single) {
+        (true, _) => wo.len(),
+        (false, true) => wi.len(),
+        (false, false) if wi.len() == wo.len() => wi.len(),
+        _ => {
+            return Err(usage(format!(
+                "wi has {} rows, wo {}: give the same number, or one (3,) vector",
+                wi.len(),
+                wo.len()
+            )));
+        }
+    };
+    let nc = m.channels();
+    let out = py.detach(|| {
+        let mut out = Array2::zeros((n, nc));
+        let mut f = vec![0.0; nc];
+        for j in 0..n {
+            let l = wi[if wi_single { 0 } else { j }];
+            let v = wo[if wo_single { 0 } else { j }];
+            m.eval(l.vector(), v.vector(), &mut f);
+            out.row_mut(j).assign(&numpy::ndarray::ArrayView1::from(&f));
+        }
+        out
+    });
+    if wi_single && wo_single {
+        return Ok(out.row(0).to_owned().into_pyarray(py).into_any());
+    }
+    Ok(out.into_pyarray(py).into_any())
+}
+
+/// A model as a renderer's material: `to` is mitsuba, pbrt, gltf or
+/// materialx; only exact equivalents are written (otherwise a `BrdfError`
+/// says why).
+#[pyfunction]
+#[pyo3(signature = (model, to, *, params=None, channels=1, lobes=1, order=8, degree=7))]
+pub fn export(
+    model: &Bound<'_, PyAny>,
+    to: &str,
+    params: Option<BTreeMap<String, f64>>,
+    channels: usize,
+    lobes: usize,
+    order: usize,
+    degree: usize,
+) -> PyResult<String> {
+    let structure = Structure {
+        channels,
+        lobes,
+        order,
+        degree,
+    };
+    let m = resolve(model, params, structure)?;
+    let target: brdf_export::Target = to.parse().map_err(to_py)?;
+    brdf_export::export(m.as_ref(), target).map_err(to_py)
+}
