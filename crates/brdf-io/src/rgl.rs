@@ -80,6 +80,27 @@ pub struct TensorFile {
     pub fields: Vec<(String, Field)>,
 }
 
+/// Type byte of `f32` fields.
+const DTYPE_F32: u8 = 10;
+
+/// The name of a tensor-file type byte (for messages).
+fn dtype_name(d: u8) -> &'static str {
+    match d {
+        1 => "u8",
+        2 => "i8",
+        3 => "u16",
+        4 => "i16",
+        5 => "u32",
+        6 => "i32",
+        7 => "u64",
+        8 => "i64",
+        9 => "f16",
+        10 => "f32",
+        11 => "f64",
+        _ => "unknown",
+    }
+}
+
 fn dtype_size(d: u8) -> Option<usize> {
     Some(match d {
         1 | 2 => 1,
@@ -486,6 +507,15 @@ impl Rgl {
                 return Err(bad(format!(
                     "field `{name}` has rank {}, expected {rank}",
                     f.shape.len()
+                )));
+            }
+            // The tables are f32 in every RGL file; any other type byte
+            // (even one `to_f64` could read, such as u8) is a damaged file.
+            if f.dtype != DTYPE_F32 {
+                return Err(bad(format!(
+                    "field `{name}` has type byte {} ({}), expected {DTYPE_F32} (f32)",
+                    f.dtype,
+                    dtype_name(f.dtype)
                 )));
             }
             let v = f.to_f64().ok_or_else(|| {

@@ -96,6 +96,7 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
         let first = &reports[0];
         let v = serde_json::json!({
             "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
+            "notes": reports.iter().map(|r| &r.notes).collect::<Vec<_>>(),
             "samples_present": first.samples_present,
             "dropped_invalid": first.dropped_invalid,
             "dropped_angle": first.dropped_angle,
@@ -151,5 +152,8 @@ fn print_report(rep: &FitReport) -> Result<(), StudyError> {
         r.ngan_l2,
         r.seconds * 1e3
     )?;
+    for note in &rep.notes {
+        say!("note: {note}")?;
+    }
     Ok(())
 }
