@@ -33,7 +33,20 @@ pub fn run(args: &ResampleArgs) -> Result<(), StudyError> {
     } else {
         crate::data::load_dense(&args.from)?
     };
+    let (path, _) = crate::data::split_sample(&args.from);
+    let rgl = !from_model && crate::data::format_of(&path)? == crate::data::Format::Rgl;
     match (args.to.as_str(), dense) {
+        // RGL onto MERL: bins beyond the measured incidence are invalid
+        // (see brdf_io::rgl::MeasuredRange).
+        ("merl", Some(_)) if rgl => {
+            let m = brdf_io::rgl::Rgl::read(&path)?;
+            let merl = brdf_io::merl::Merl::resample(&brdf_io::rgl::MeasuredRange(&m));
+            brdf_io::merl::write(&args.out, &merl)?;
+            say!(
+                "note: bins with theta_i or theta_o above {:.2} deg (the largest measured incidence) are marked invalid (-1)",
+                m.measured_theta_max().to_degrees()
+            )?;
+        }
         ("merl", Some(b)) => {
             brdf_io::merl::write(&args.out, &brdf_io::merl::Merl::resample(b.as_ref()))?
         }
