@@ -1,14 +1,13 @@
 //! Scale invariance of a fit: data of magnitude `1e-300` or `1e300` (or
 //! weights of `1e300`) fit like unit data. Before the fit, the values are
-//! divided by a power of two `2^kv` near their largest magnitude and the
-//! weights by a power of four `4^kw` near theirs, so the solver sees
-//! numbers near 1 (squares of `1e300` overflow, squares of `1e-300`
-//! underflow, and the solvers' absolute tolerances are meant for numbers
-//! near 1). Powers of two make the value scaling exact: data `D 2^k`
-//! become `D` bit for bit, so they fit in the same iterations to the same
-//! parameters. Weights are divided by their largest value (uniform
-//! weights of any size become exactly 1). Ordinary data and weights
-//! (largest magnitude within `2^+-16`) are left untouched.
+//! divided by their largest magnitude and the weights by their largest
+//! value, so the solver sees numbers of at most 1 (squares of `1e300`
+//! overflow, squares of `1e-300` underflow, and the solvers' tolerances
+//! are meant for numbers near 1). Data `c D`, with `D` of largest
+//! magnitude 1, become `D` up to one rounding, so they fit in the same
+//! iterations to the same parameters times `c` (bit for bit when `c` is
+//! a power of two). Ordinary data and weights (largest magnitude within
+//! `2^+-16`) are left untouched, so the study's fits do not change.
 //!
 //! Values scale only where the model does: for a model that is
 //! homogeneous of degree one in its linear parameters (`f(s a, q) = s
@@ -36,7 +35,7 @@ const UNSCALED_EXPONENT: i32 = 16;
 /// The scale factors of one fit: values and weights were divided by them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DataScale {
-    /// Factor of the values (a power of two; 1 when not scaled).
+    /// Factor of the values (their largest magnitude; 1 when not scaled).
     pub value: f64,
     /// Factor of the weights (their largest value; 1 when not scaled).
     pub weight: f64,
@@ -57,18 +56,14 @@ impl DataScale {
             .fold(0.0f64, |m, x| m.max(x.abs()));
         let largest_weight = data.weights().iter().fold(0.0f64, |m, w| m.max(*w));
         let value = if objective != Objective::Log && is_homogeneous(model, data.pairs()) {
-            power_of_two_near(largest_value, 1)
+            extreme_or_one(largest_value)
         } else {
             1.0
         };
-        // Weights by their largest value itself: uniform weights become
-        // exactly 1, as unit weights are.
-        let weight = if power_of_two_near(largest_weight, 1) == 1.0 {
-            1.0
-        } else {
-            largest_weight
-        };
-        DataScale { value, weight }
+        DataScale {
+            value,
+            weight: extreme_or_one(largest_weight),
+        }
     }
 
     /// True when nothing is scaled.
@@ -79,8 +74,8 @@ impl DataScale {
     /// The scaling in words, for the report.
     pub fn describe(&self) -> String {
         format!(
-            "values divided by 2^{} and weights by {} internally, the result scaled back",
-            self.value.log2().round() as i32,
+            "values divided by {} and weights by {} internally, the result scaled back",
+            brdf_io::error::short(self.value),
             brdf_io::error::short(self.weight)
         )
     }
@@ -135,8 +130,8 @@ impl DataScale {
     }
 
     /// The parameters of the unscaled model from those of the scaled fit,
-    /// kept inside the model's box (multiplying by a power of two is exact;
-    /// a bound divided and multiplied again is the bound).
+    /// kept inside the model's box (a bound divided and multiplied again
+    /// may differ from the bound by a rounding).
     pub fn unscale_params(&self, p: &[f64], specs: &[ParamSpec]) -> Vec<f64> {
         p.iter()
             .zip(specs)
@@ -151,20 +146,15 @@ impl DataScale {
     }
 }
 
-/// The power of two `2^(step k)` nearest below `x`, or 1 when `x` is 0,
-/// not finite, or within `2^+-16` of 1.
-fn power_of_two_near(x: f64, step: i32) -> f64 {
+/// `x` itself when it is finite, positive and outside `2^+-16`, else 1.
+fn extreme_or_one(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return 1.0;
     }
-    let k = x.log2().floor() as i32;
-    if k.abs() <= UNSCALED_EXPONENT {
+    if (x.log2().floor() as i32).abs() <= UNSCALED_EXPONENT {
         return 1.0;
     }
-    let k = k.div_euclid(step) * step;
-    // 2^k for any k an f64 can scale by (|k| <= 1074): powi of 2 is exact
-    // as long as the result is representable; split to stay in range.
-    2f64.powi(k / 2) * 2f64.powi(k - k / 2)
+    x
 }
 
 /// Whether `f(2 a, q) = 2 f(a, q)` for the linear parameters `a` (at
@@ -337,8 +327,18 @@ where
     let scaled = scale.apply(data)?;
     let (model, mut summary) = if scale.value != 1.0 {
         let mut wrapped = ScaledBox::new(model, scale.value);
-        let summary = fit(&mut wrapped, &scaled, scale.value)?;
+        let mut summary = fit(&mut wrapped, &scaled, scale.value)?;
         let p = wrapped.params().to_vec();
+        for ((fp, spec), v) in summary
+            .parameters
+            .iter_mut()
+            .zip(wrapped.param_specs())
+            .zip(&p)
+        {
+            if spec.linear {
+                fp.at_bound = bound_status(*v, spec);
+            }
+        }
         let mut inner = wrapped.into_inner();
         let p = scale.unscale_params(&p, inner.param_specs());
         inner.set_params(&p)?;
@@ -349,23 +349,26 @@ where
         (model, summary)
     };
     scale.unscale_summary(&mut summary, model.param_specs());
-    // Bound status in the model's own box (the scaled box's bounds are
-    // tiny or huge, and the status test has an absolute floor).
-    let status = crate::pipeline::box_constraints(model.as_ref())?.status(model.params());
-    for ((fp, v), b) in summary
-        .parameters
-        .iter_mut()
-        .zip(model.params())
-        .zip(status)
-    {
+    for (fp, v) in summary.parameters.iter_mut().zip(model.params()) {
         fp.value = *v;
-        fp.at_bound = match b {
-            brdf_solve::BoundStatus::Free => None,
-            brdf_solve::BoundStatus::AtLower => Some("lower".into()),
-            brdf_solve::BoundStatus::AtUpper => Some("upper".into()),
-        };
     }
     Ok((model, summary, scale))
+}
+
+/// Whether `v` sits on a bound of `spec`'s box (scaled domain). The
+/// tolerance is relative to the value, floored at the box width up to 1:
+/// the pipeline's test floors at 1, which would put every linear
+/// parameter of a box `[0, 1e-300]` on its lower bound.
+fn bound_status(v: f64, spec: &ParamSpec) -> Option<String> {
+    let width = spec.upper - spec.lower;
+    let tol = 1e-10 * v.abs().max(width.min(1.0));
+    if spec.lower.is_finite() && v - spec.lower <= tol {
+        Some("lower".into())
+    } else if spec.upper.is_finite() && spec.upper - v <= tol {
+        Some("upper".into())
+    } else {
+        None
+    }
 }
 
 /// Ngan's L2 of `model` on `data` computed on values divided by a power

@@ -21,6 +21,7 @@ pub mod plots;
 pub mod render;
 pub mod report;
 pub mod sopp_tables;
+pub mod stability;
 pub mod synthetic;
 
 pub use error::StudyError;

@@ -73,7 +73,11 @@ pub fn run(args: &InfoArgs) -> Result<(), StudyError> {
         phi_i_deg: range(sph.iter().map(|a| a.0.1.to_degrees())),
         phi_o_deg: range(sph.iter().map(|a| a.1.1.to_degrees())),
         measured_theta_max_deg: if format == crate::data::Format::Rgl {
-            Some(brdf_io::rgl::Rgl::read(&path)?.measured_theta_max().to_degrees())
+            Some(
+                brdf_io::rgl::Rgl::read(&path)?
+                    .measured_theta_max()
+                    .to_degrees(),
+            )
         } else {
             None
         },
