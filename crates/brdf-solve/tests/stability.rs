@@ -18,6 +18,7 @@ use brdf_solve::{
 struct Recording<'a, P: LeastSquaresProblem> {
     inner: &'a P,
     points: Mutex<Vec<Vec<f64>>>,
+    residual_points: Mutex<Vec<Vec<f64>>>,
 }
 
 impl<'a, P: LeastSquaresProblem> Recording<'a, P> {
@@ -25,6 +26,7 @@ impl<'a, P: LeastSquaresProblem> Recording<'a, P> {
         Recording {
             inner,
             points: Mutex::new(Vec::new()),
+            residual_points: Mutex::new(Vec::new()),
         }
     }
     fn record(&self, p: &[f64]) {
@@ -41,6 +43,7 @@ impl<P: LeastSquaresProblem + Sync> LeastSquaresProblem for Recording<'_, P> {
     }
     fn residuals(&self, p: &[f64], out: &mut [f64]) {
         self.record(p);
+        self.residual_points.lock().unwrap().push(p.to_vec());
         self.inner.residuals(p, out)
     }
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
@@ -224,4 +227,46 @@ fn stiff_nist_problems_from_both_starts_converge_to_the_certificate_or_say_not()
     assert!(rep.termination.is_converged(), "{:?}", rep.termination);
     assert!(lre(rep.params[0], 2.1380940889e2) > 6.0);
     assert!(lre(rep.params[1], 5.4723748542e-1) > 6.0);
+}
+
+/// `r(p) = p`, one parameter: with Marquardt scaling the damped step from
+/// `p` is `-p / (1 + lambda)`, so every accepted step multiplies `p` by
+/// `lambda / (1 + lambda)` and the trial points spell out the damping.
+struct Identity1;
+impl LeastSquaresProblem for Identity1 {
+    fn n_params(&self) -> usize {
+        1
+    }
+    fn n_residuals(&self) -> usize {
+        1
+    }
+    fn residuals(&self, p: &[f64], out: &mut [f64]) {
+        out[0] = p[0];
+    }
+    fn jacobian(&self, _p: &[f64], jac: &mut [f64]) {
+        jac[0] = 1.0;
+    }
+}
+
+#[test]
+fn sopp_damping_constants_are_pinned() {
+    // Sopp (fitting.md): start at 1e-3, halve on an accepted step down to
+    // 1e-4 (every step of this problem is accepted).
+    let rec = Recording::new(&Identity1);
+    levenberg_marquardt(&rec, &[1.0], &LmOptions::sopp()).unwrap();
+    let points = rec.residual_points.lock().unwrap();
+    let lambdas = [1e-3, 5e-4, 2.5e-4, 1.25e-4, 1e-4, 1e-4];
+    let mut expected = 1.0f64;
+    assert_eq!(points[0], vec![1.0]);
+    let compared = points.len().min(lambdas.len() + 1) - 1;
+    assert!(compared >= 5, "only {} trial points", points.len());
+    for (k, lambda) in lambdas.iter().take(compared).enumerate() {
+        expected *= lambda / (1.0 + lambda);
+        let got = points[k + 1][0];
+        assert!(
+            (got / expected - 1.0).abs() < 1e-8,
+            "step {}: {got} vs {expected} (lambda {lambda})",
+            k + 1
+        );
+    }
 }
