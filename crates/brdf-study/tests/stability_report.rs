@@ -1,7 +1,8 @@
 //! The stability suite in-process (issue 14, items 3 and 4): every fitting
 //! case ends in a finite result or a one-line error, the degenerate data
 //! give the answers that can be worked out by hand, and the report writer
-//! produces `stability.md` / `.csv` without machine paths.
+//! produces `stability.md` / `.csv` without machine paths, equal to the
+//! committed `results/stability.md`.
 
 use brdf_study::stability::{CaseOutcome, fit_cases, write_stability_report};
 
@@ -107,6 +108,16 @@ fn the_report_is_written_without_machine_paths() {
         assert!(!text.contains(&tmp), "a temporary path in the report");
         assert!(!text.contains("/work/"), "a machine path in the report");
     }
+    // results/stability.md is what the command writes (issue 17, item 7):
+    // the suite is deterministic and needs no measured data. After a
+    // solver change, regenerate it (`brdf reproduce --only stability`).
+    let committed =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../results/stability.md");
+    let committed = std::fs::read_to_string(committed).unwrap();
+    assert!(
+        committed == md,
+        "results/stability.md differs from what write_stability_report writes now; regenerate it"
+    );
     if std::env::var_os("BRDF_DATA").is_some() {
         let nist = std::fs::read_to_string(dir.join("stability_nist.md")).unwrap();
         assert!(nist.contains("| BoxBOD | 1 |") && nist.contains("| BoxBOD | 2 |"));
