@@ -410,3 +410,13 @@ fn rgl_onto_merl_marks_bins_beyond_the_measured_incidence_invalid() {
     assert!(m["theta_i_deg"][1].as_f64().unwrap() <= limit + 1e-9);
     assert!(m["value_range"][1].as_f64().unwrap() <= stored_max, "{m}");
 }
+
+#[test]
+fn a_value_of_1e300_is_printed_short() {
+    assert_one_line_error(
+        &[
+            "eval", "--model", "lambert", "--params", "kd=1e300", "--wi", "0.1,0", "--wo", "0.2,1",
+        ],
+        &["`kd` = 1e300 is outside its box [0, 1]"],
+    );
+}
