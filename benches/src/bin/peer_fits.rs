@@ -147,9 +147,10 @@ fn run() -> Result<(), PeerError> {
         for s in &args.solvers {
             let o = run_solver(s, &prob)?;
             println!(
-                "  {:<42} {:>9.4} s  x{:<3} res {:>4} jac {:>4}  cost {:.10e}  box {}  {}",
+                "  {:<42} {:>9.4} s (CPU {:>8.4} s)  x{:<3} res {:>4} jac {:>4}  cost {:.10e}  box {}  {}",
                 o.solver,
                 o.seconds,
+                o.cpu_seconds,
                 o.repeats,
                 o.residual_evals,
                 o.jacobian_evals.map_or("-".into(), |j| j.to_string()),

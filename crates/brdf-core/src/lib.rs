@@ -52,6 +52,7 @@ pub mod quadrature;
 pub mod samples;
 pub mod shared_basis;
 pub mod trig;
+pub mod vmath;
 pub mod weights;
 
 pub use nalgebra;

@@ -78,13 +78,16 @@ pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError>
     Ok((m, used))
 }
 
-/// A glTF 2.0 asset holding the material.
-pub fn write(fit: &Fitted) -> Result<String, ExportError> {
+/// A glTF 2.0 asset holding the material, with `note` in `asset.extras`.
+pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
     let (m, used) = material(fit)?;
     let mut asset = json!({
         "asset": { "version": "2.0", "generator": "brdf-export" },
         "materials": [m],
     });
+    if let Some(n) = note {
+        asset["asset"]["extras"] = json!({ "note": n });
+    }
     if !used.is_empty() {
         asset["extensionsUsed"] = json!(used);
     }

@@ -24,8 +24,8 @@ fn input(name: &str, kind: &str, value: String) -> Node {
         .attr("value", value)
 }
 
-/// The MaterialX document for `fit`.
-pub fn write(fit: &Fitted) -> Result<String, ExportError> {
+/// The MaterialX document for `fit`, with `note` as a comment before it.
+pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
     let mut shader = Node::new("gltf_pbr")
         .attr("name", "fitted_shader")
         .attr("type", "surfaceshader");
@@ -73,5 +73,5 @@ pub fn write(fit: &Fitted) -> Result<String, ExportError> {
         .attr("version", "1.39")
         .child(shader)
         .child(material);
-    Ok(doc.to_document(true))
+    Ok(doc.to_document(true, note))
 }

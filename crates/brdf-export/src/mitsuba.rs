@@ -38,8 +38,8 @@ fn bsdf(kind: &str) -> Node {
     Node::new("bsdf").attr("type", kind)
 }
 
-/// The Mitsuba document for `fit`.
-pub fn write(fit: &Fitted) -> Result<String, ExportError> {
+/// The Mitsuba document for `fit`, with `note` as a comment before it.
+pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
     let node = match fit.name.as_str() {
         "lambert" => bsdf("diffuse").child(rgb("reflectance", &fit.colour("kd")?)),
         "principled" => principled(fit)?,
@@ -53,7 +53,7 @@ pub fn write(fit: &Fitted) -> Result<String, ExportError> {
     // Only the root carries the scene-format version.
     let mut root = Node::new("bsdf").attr("version", "3.0.0");
     root = root.attr_from(&node);
-    Ok(root.to_document(false))
+    Ok(root.to_document(false, note))
 }
 
 fn principled(fit: &Fitted) -> Result<Node, ExportError> {

@@ -30,9 +30,16 @@ fn constant(v: f64) -> String {
     format!("[ 360 {v} 830 {v} ]")
 }
 
-/// The pbrt-v4 statements for `fit`: named materials and `NamedMaterial
-/// "fitted"`, or a single `Material` statement.
-pub fn write(fit: &Fitted) -> Result<String, ExportError> {
+/// The pbrt-v4 statements for `fit` (named materials and `NamedMaterial
+/// "fitted"`, or a single `Material` statement), after `note` as a comment.
+pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
+    let head = note
+        .map(|n| format!("# {}\n", n.replace('\n', " ")))
+        .unwrap_or_default();
+    Ok(head + &statements(fit)?)
+}
+
+fn statements(fit: &Fitted) -> Result<String, ExportError> {
     if fit.name == "lambert" {
         return Ok(format!(
             "Material \"diffuse\" \"rgb reflectance\" {}\n",

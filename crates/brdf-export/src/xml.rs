@@ -2,7 +2,7 @@
 //! indentation), shared by the Mitsuba and MaterialX writers.
 
 use quick_xml::Writer;
-use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, Event};
+use quick_xml::events::{BytesDecl, BytesEnd, BytesStart, BytesText, Event};
 
 /// An XML element with attributes and children.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,12 +55,18 @@ impl Node {
         Ok(())
     }
 
-    /// The document text, with an XML declaration when `decl`.
-    pub(crate) fn to_document(&self, decl: bool) -> String {
+    /// The document text, with an XML declaration when `decl` and `comment`
+    /// before the root element.
+    pub(crate) fn to_document(&self, decl: bool, comment: Option<&str>) -> String {
         let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
         // Writing into a Vec cannot fail.
         if decl {
             let _ = w.write_event(Event::Decl(BytesDecl::new("1.0", Some("utf-8"), None)));
+        }
+        if let Some(c) = comment {
+            // XML forbids `--` inside a comment.
+            let text = format!(" {} ", c.replace("--", "- -"));
+            let _ = w.write_event(Event::Comment(BytesText::from_escaped(text)));
         }
         let _ = self.write(&mut w);
         let mut s = String::from_utf8_lossy(&w.into_inner()).into_owned();

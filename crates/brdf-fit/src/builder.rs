@@ -142,6 +142,14 @@ impl Fit {
         self
     }
 
+    /// Tolerance of the multi-start search (default 1e-7); the best start
+    /// is polished to the solver options' own tolerances
+    /// ([`FitOptions::search_tolerance`](crate::FitOptions)).
+    pub fn search_tolerance(mut self, tolerance: f64) -> Self {
+        self.options.search_tolerance = tolerance;
+        self
+    }
+
     /// The catalogue name of the model.
     pub fn model_name(&self) -> &'static str {
         self.entry.name

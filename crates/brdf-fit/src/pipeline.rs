@@ -169,6 +169,26 @@ pub struct FitOptions {
     pub starts: usize,
     /// Solver options of the non-linear stages.
     pub lm: LmOptions,
+    /// Tolerance (`ftol`, `xtol`, `gtol`, never tighter than `lm`'s) of
+    /// the multi-start search (default 1e-7): the starts only have to find
+    /// and rank the basins; the best one is then polished to `lm`'s
+    /// tolerances, so the result is the same optimum at a fraction of the
+    /// iterations (issue 16: stop at the data's noise level, not at 1e-15,
+    /// for every start).
+    pub search_tolerance: f64,
+}
+
+impl FitOptions {
+    /// The solver options of the multi-start search.
+    fn search_lm(&self) -> LmOptions {
+        let t = self.search_tolerance;
+        LmOptions {
+            ftol: self.lm.ftol.max(t),
+            xtol: self.lm.xtol.max(t),
+            gtol: self.lm.gtol.max(t),
+            ..self.lm.clone()
+        }
+    }
 }
 
 impl Default for FitOptions {
@@ -182,6 +202,7 @@ impl Default for FitOptions {
                 max_evaluations: 3000,
                 ..LmOptions::default()
             },
+            search_tolerance: 1e-7,
         }
     }
 }
@@ -478,15 +499,16 @@ fn fit_nonlinear(
         full.clamp(&mut p);
         Ok(p)
     };
+    let search = opts.search_lm();
     let ms = if use_varpro {
         let coarse = coarse_starts(model, data, scales, &starts, &nl_box, opts)?;
         multistart(&coarse, |s| {
-            bounded_least_squares(&VarPro::new(&mp, true), s, &nl_box, &opts.lm)
+            bounded_least_squares(&VarPro::new(&mp, true), s, &nl_box, &search)
         })?
     } else {
         multistart(&starts, |s| {
             let p0 = project(s)?;
-            bounded_least_squares(problem, &p0, &full, &opts.lm)
+            bounded_least_squares(problem, &p0, &full, &search)
         })?
     };
     let info = (starts.len(), ms.n_converged, ms.n_at_best);
@@ -518,9 +540,16 @@ fn fit_nonlinear(
             ),
         )
     } else {
+        // Polish the best start to the full tolerances.
+        let polish = bounded_least_squares(problem, &ms.best.params, &full, &opts.lm)?;
+        let rep = SolverReport {
+            iterations: ms.best.iterations + polish.iterations,
+            evaluations: ms.best.evaluations + polish.evaluations,
+            ..polish
+        };
         (
-            ms.best.params.clone(),
-            ms.best,
+            rep.params.clone(),
+            rep,
             format!(
                 "bounded LM on all parameters, {} Halton starts",
                 starts.len()
@@ -563,7 +592,9 @@ fn coarse_starts(
     use rayon::prelude::*;
     let mut found: Vec<SolverReport> = starts
         .par_iter()
-        .filter_map(|s| bounded_least_squares(&VarPro::new(&mp, true), s, nl_box, &opts.lm).ok())
+        .filter_map(|s| {
+            bounded_least_squares(&VarPro::new(&mp, true), s, nl_box, &opts.search_lm()).ok()
+        })
         .filter(|r| r.ssr.is_finite())
         .collect();
     found.sort_by(|a, b| a.ssr.total_cmp(&b.ssr));

@@ -39,7 +39,7 @@
 use std::f64::consts::PI;
 
 use brdf_core::fresnel::{schlick, schlick_d_f0};
-use brdf_core::{DirPairs, PairGeometry, ParamSpec};
+use brdf_core::{DirPairs, PairGeometry, ParamSpec, vmath};
 use nalgebra::Vector3;
 
 use crate::combinators::{DiffuseLobe, Lobe, pow_clamped};
@@ -101,51 +101,119 @@ pub(crate) fn as_lobe_batch(
     s: &mut [f64],
     ds: Option<&mut [f64]>,
 ) {
-    let n = pairs.len();
-    let norm = ((nu + 1.0) * (nv + 1.0)).sqrt() / (8.0 * PI);
-    let (hu, hv) = (0.5 / (nu + 1.0), 0.5 / (nv + 1.0));
-    let lobe = |j: usize| -> Option<(f64, f64, f64, f64, f64)> {
-        let lnh = geom.ln_nh[j];
-        if !geom.valid[j] || lnh == f64::NEG_INFINITY {
-            return None;
-        }
-        let (c2, vh) = (geom.cos2_phi_h[j], geom.vh[j]);
-        let pw = ((nu * c2 + nv * (1.0 - c2)) * lnh).exp();
-        let base = norm / (vh * pairs.lz[j].max(pairs.vz[j]));
-        let m = 1.0 - vh.clamp(0.0, 1.0);
-        let m5 = m * m * m * m * m;
-        Some((base * pw, f0 + (1.0 - f0) * m5, 1.0 - m5, lnh, c2))
-    };
-    match ds {
-        None => {
-            for j in 0..n {
-                s[j] = lobe(j).map_or(0.0, |(bp, fr, ..)| bp * fr);
+    // `pulp` compiles the kernel for the widest instruction set of the
+    // machine (the profile of issue 16: the scalar loop with a library
+    // `exp` was the largest cost of a fit).
+    pulp::Arch::new().dispatch(AsKernel {
+        q: (nu, nv, f0),
+        aniso,
+        pairs,
+        geom,
+        s,
+        ds,
+    });
+}
+
+/// The batch kernel of [`as_lobe_batch`], inlined into `pulp`'s
+/// target-feature function so that its loops vectorise.
+struct AsKernel<'a> {
+    q: (f64, f64, f64),
+    aniso: bool,
+    pairs: &'a DirPairs,
+    geom: &'a PairGeometry,
+    s: &'a mut [f64],
+    ds: Option<&'a mut [f64]>,
+}
+
+impl pulp::WithSimd for AsKernel<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        let AsKernel {
+            q: (nu, nv, f0),
+            aniso,
+            pairs,
+            geom,
+            s,
+            ds,
+        } = self;
+        let n = pairs.len();
+        let norm = ((nu + 1.0) * (nv + 1.0)).sqrt() / (8.0 * PI);
+        let (hu, hv) = (0.5 / (nu + 1.0), 0.5 / (nv + 1.0));
+        // Every array cut to `n` so the loops need no bounds checks.
+        let g = AsGeometry {
+            ln_nh: &geom.ln_nh[..n],
+            valid: &geom.valid[..n],
+            cos2_phi_h: &geom.cos2_phi_h[..n],
+            vh: &geom.vh[..n],
+            lz: &pairs.lz[..n],
+            vz: &pairs.vz[..n],
+        };
+        let at = |j| as_lobe_at((nu, nv, f0), norm, &g, j);
+        match ds {
+            None => {
+                for (j, sj) in s[..n].iter_mut().enumerate() {
+                    let (bp, fr, ..) = at(j);
+                    *sj = bp * fr;
+                }
             }
-        }
-        Some(ds) => {
-            for j in 0..n {
-                let (v, d) = match lobe(j) {
-                    None => (0.0, [0.0; 3]),
-                    Some((bp, fr, dfr, lnh, c2)) => {
-                        let v = bp * fr;
-                        let dpw = v * lnh;
-                        let dnu = v * hu + dpw * c2;
-                        let dnv = v * hv + dpw * (1.0 - c2);
-                        (v, [dnu, dnv, bp * dfr])
+            Some(ds) => {
+                let (d0, rest) = ds.split_at_mut(n);
+                let (d1, d2) = rest.split_at_mut(n);
+                let s = &mut s[..n];
+                let d2 = &mut d2[..if aniso { n } else { 0 }];
+                for j in 0..n {
+                    let (bp, fr, dfr, lnh, c2) = at(j);
+                    let v = bp * fr;
+                    let dpw = v * lnh;
+                    let dnu = v * hu + dpw * c2;
+                    let dnv = v * hv + dpw * (1.0 - c2);
+                    s[j] = v;
+                    if aniso {
+                        d0[j] = dnu;
+                        d1[j] = dnv;
+                        d2[j] = bp * dfr;
+                    } else {
+                        d0[j] = dnu + dnv;
+                        d1[j] = bp * dfr;
                     }
-                };
-                s[j] = v;
-                if aniso {
-                    ds[j] = d[0];
-                    ds[n + j] = d[1];
-                    ds[2 * n + j] = d[2];
-                } else {
-                    ds[j] = d[0] + d[1];
-                    ds[n + j] = d[2];
                 }
             }
         }
     }
+}
+
+/// The arrays the kernel reads, all of one length.
+struct AsGeometry<'a> {
+    ln_nh: &'a [f64],
+    valid: &'a [bool],
+    cos2_phi_h: &'a [f64],
+    vh: &'a [f64],
+    lz: &'a [f64],
+    vz: &'a [f64],
+}
+
+/// The lobe at pair `j` without its Fresnel factor, branch-free (an invalid
+/// pair gives 0 by selection, so the loops vectorise): `(base (N.H)^e,
+/// F, dF/dF0, ln N.H, cos^2 phi_h)`.
+#[inline(always)]
+fn as_lobe_at(
+    (nu, nv, f0): (f64, f64, f64),
+    norm: f64,
+    g: &AsGeometry<'_>,
+    j: usize,
+) -> (f64, f64, f64, f64, f64) {
+    let lnh = g.ln_nh[j];
+    let ok = g.valid[j] & (lnh > f64::NEG_INFINITY);
+    let lnh = if ok { lnh } else { 0.0 };
+    let (c2, vh) = (g.cos2_phi_h[j], g.vh[j]);
+    let pw = vmath::exp((nu * c2 + nv * (1.0 - c2)) * lnh);
+    let base = norm / (vh * g.lz[j].max(g.vz[j]));
+    let base = if ok { base } else { 0.0 };
+    let m = 1.0 - vh.clamp(0.0, 1.0);
+    let m5 = m * m * m * m * m;
+    (base * pw, f0 + (1.0 - f0) * m5, 1.0 - m5, lnh, c2)
 }
 
 /// Coupled diffuse `28/(23 pi) (1 - F0) (1 - (1 - N.L/2)^5)(1 - (1 - N.V/2)^5)`

@@ -43,7 +43,9 @@
 use std::f64::consts::{FRAC_1_PI, PI};
 
 use brdf_core::params::per_channel_specs;
-use brdf_core::{ParamError, ParamSpec, Parametric, impl_brdf_via_params};
+use brdf_core::{
+    DirPairs, PairGeometry, ParamError, ParamSpec, Parametric, SharedBasis, impl_brdf_via_params,
+};
 use nalgebra::Vector3;
 
 use crate::combinators::pow_clamped;
@@ -154,45 +156,21 @@ impl Lafortune {
         for k in 0..self.lobes {
             let base = nc + k * self.per_lobe();
             let cs = &p[base + nc..base + nc + na];
-            let n = p[base + nc + na];
-            let (imax, m) = (0..na).fold((0, 0.0f64), |(bi, bm), i| {
-                if cs[i].abs() > bm {
-                    (i, cs[i].abs())
-                } else {
-                    (bi, bm)
-                }
-            });
-            if m == 0.0 {
+            let (s, ds) = lobe(cs, p[base + nc + na], &feats[..na]);
+            if s == 0.0 {
                 continue;
             }
-            let d: f64 = (0..na).map(|i| cs[i] * feats[i]).sum();
-            let r = d / m;
-            let (pw, dpw) = pow_clamped(r, n);
-            if pw == 0.0 {
-                continue;
-            }
-            let norm = (n + 2.0) / (2.0 * PI);
-            let s = norm * pw;
             for c in 0..nc {
                 out[c] += p[base + c] * s;
             }
             if let Some(g) = grad.as_deref_mut() {
-                // dS/dr = norm n r^(n-1) = norm n pw / r (r > 0 here).
-                let ds_dr = norm * n * pw / r;
-                let ds_dn = pw / (2.0 * PI) + norm * dpw;
                 for c in 0..nc {
                     let ks = p[base + c];
                     let row = &mut g[c * np..(c + 1) * np];
                     row[base + c] = s;
-                    for i in 0..na {
-                        // r = d/m: dr/dC_i = f_i/m - d/m^2 dm/dC_i, dm/dC_i = sign(C_i) for the max.
-                        let mut dr = feats[i] / m;
-                        if i == imax {
-                            dr -= d / (m * m) * cs[i].signum();
-                        }
-                        row[base + nc + i] = ks * ds_dr * dr;
+                    for i in 0..=na {
+                        row[base + nc + i] = ks * ds[i];
                     }
-                    row[base + nc + na] = ks * ds_dn;
                 }
             }
         }
@@ -211,6 +189,9 @@ impl Parametric for Lafortune {
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.value_grad(p, l, v, out, None);
     }
+    fn shared_basis(&self) -> Option<&dyn SharedBasis> {
+        Some(self)
+    }
     fn eval_grad_at(
         &self,
         p: &[f64],
@@ -224,3 +205,108 @@ impl Parametric for Lafortune {
 }
 
 impl_brdf_via_params!(Lafortune);
+
+/// Basis `[1/pi, S_1, .., S_K]` (`S_k` the normalised lobe `k` with unit
+/// strength): `x_{c,0} = kd_c`, `x_{c,k} = ks{k}_c`. The lobes share every
+/// channel, so a colour fit factors one basis for all channels.
+impl SharedBasis for Lafortune {
+    fn basis_len(&self) -> usize {
+        1 + self.lobes
+    }
+
+    fn coefficient_index(&self, channel: usize, t: usize) -> usize {
+        if t == 0 {
+            channel
+        } else {
+            self.channels + (t - 1) * self.per_lobe() + channel
+        }
+    }
+
+    fn basis_batch(
+        &self,
+        p: &[f64],
+        pairs: &DirPairs,
+        geom: &PairGeometry,
+        phi: &mut [f64],
+        mut dphi: Option<&mut [f64]>,
+    ) {
+        let (n, nc) = (pairs.len(), self.channels);
+        let na = if self.aniso { 3 } else { 2 };
+        // Non-linear parameters per lobe (axes and exponent), in order.
+        let nql = na + 1;
+        let big_q = nql * self.lobes;
+        for j in 0..n {
+            phi[j] = if geom.valid[j] { FRAC_1_PI } else { 0.0 };
+        }
+        if let Some(d) = dphi.as_deref_mut() {
+            d[..(1 + self.lobes) * big_q * n].fill(0.0);
+        }
+        for k in 0..self.lobes {
+            let base = nc + k * self.per_lobe() + nc;
+            let (cs, e) = (&p[base..base + na], p[base + na]);
+            let t = 1 + k;
+            let col = &mut phi[t * n..(t + 1) * n];
+            for j in 0..n {
+                let feats = if self.aniso {
+                    [
+                        pairs.lx[j] * pairs.vx[j],
+                        pairs.ly[j] * pairs.vy[j],
+                        pairs.lz[j] * pairs.vz[j],
+                    ]
+                } else {
+                    [
+                        pairs.lx[j] * pairs.vx[j] + pairs.ly[j] * pairs.vy[j],
+                        pairs.lz[j] * pairs.vz[j],
+                        0.0,
+                    ]
+                };
+                let (s, ds) = if geom.valid[j] {
+                    lobe(cs, e, &feats[..na])
+                } else {
+                    (0.0, [0.0; 4])
+                };
+                col[j] = s;
+                if let Some(d) = dphi.as_deref_mut() {
+                    for (i, dsi) in ds[..nql].iter().enumerate() {
+                        d[(t * big_q + k * nql + i) * n + j] = *dsi;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// One normalised lobe `(n+2)/(2 pi) max(0, C.f / max|C|)^n` at the
+/// features `f` and its derivatives with respect to the axis weights `C`
+/// and the exponent `n` (`[d/dC_0, .., d/dC_{na-1}, d/dn]`).
+fn lobe(cs: &[f64], n: f64, feats: &[f64]) -> (f64, [f64; 4]) {
+    let na = cs.len();
+    let mut d = [0.0; 4];
+    let (imax, m) = (0..na).fold((0, 0.0f64), |(bi, bm), i| {
+        if cs[i].abs() > bm {
+            (i, cs[i].abs())
+        } else {
+            (bi, bm)
+        }
+    });
+    if m == 0.0 {
+        return (0.0, d);
+    }
+    let dot: f64 = (0..na).map(|i| cs[i] * feats[i]).sum();
+    let r = dot / m;
+    let (pw, dpw) = pow_clamped(r, n);
+    if pw == 0.0 {
+        return (0.0, d);
+    }
+    let norm = (n + 2.0) / (2.0 * PI);
+    let ds_dr = norm * n * pw / r;
+    for i in 0..na {
+        let mut dr = feats[i] / m;
+        if i == imax {
+            dr -= dot / (m * m) * cs[i].signum();
+        }
+        d[i] = ds_dr * dr;
+    }
+    d[na] = pw / (2.0 * PI) + norm * dpw;
+    (norm * pw, d)
+}

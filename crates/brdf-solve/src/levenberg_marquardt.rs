@@ -176,9 +176,16 @@ struct Factored {
 }
 
 impl Factored {
-    /// Factor `[J | r]`; `ws` is the reused `m x (n+1)` workspace.
+    /// Reduce `[J | r]` (`jac` row-major): by the guarded normal equations
+    /// where they are accurate, else by QR in `ws`, the reused `m x (n+1)`
+    /// workspace ([`tall_qr`]).
     fn new(jac: &[f64], r: &[f64], n: usize, ws: &mut Mat<f64>) -> Self {
         let m = r.len();
+        let jm = faer::MatRef::from_row_major_slice(jac, m, n);
+        let rm = faer::MatRef::from_column_major_slice(r, m, 1);
+        if let Some((rr, qtr)) = tall_qr::gram_triangle(jm, rm) {
+            return Self::from_triangle(rr, (0..n).map(|i| qtr[(i, 0)]).collect());
+        }
         for k in 0..n {
             let col = ws
                 .col_mut(k)
@@ -199,13 +206,19 @@ impl Factored {
         let qtr: Vec<f64> = (0..n)
             .map(|i| if i < rows { raug[(i, n)] } else { 0.0 })
             .collect();
+        debug_assert!(m >= n);
+        Self::from_triangle(rr, qtr)
+    }
+
+    /// The column norms and gradient from `R` and `Q^T r`.
+    fn from_triangle(rr: Mat<f64>, qtr: Vec<f64>) -> Self {
+        let n = qtr.len();
         let colnorm = (0..n)
             .map(|k| (0..=k).map(|i| rr[(i, k)].powi(2)).sum::<f64>().sqrt())
             .collect();
         let g = (0..n)
             .map(|k| (0..=k).map(|i| rr[(i, k)] * qtr[i]).sum())
             .collect();
-        debug_assert!(m >= n);
         Factored {
             r: rr,
             qtr,

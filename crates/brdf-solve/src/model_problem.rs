@@ -143,7 +143,7 @@ impl<'a> ModelProblem<'a> {
                 let o = &mut out[c * n..(c + 1) * n];
                 o.fill(0.0);
                 for t in 0..l {
-                    let x = p[b.coefficient_index(c, t)];
+                    let x = p[self.coefficients[c * l + t]];
                     let col = &phi[t * n..(t + 1) * n];
                     for j in 0..n {
                         o[j] += x * col[j];
@@ -163,18 +163,22 @@ impl<'a> ModelProblem<'a> {
         let (b, geom) = sb;
         let (n, nc, l) = (self.pairs.len(), self.model.channels(), b.basis_len());
         let (np, nq) = (p.len(), self.nonlinear.len());
-        jac.fill(0.0);
         self.pool.with(l * n, |phi| {
             self.pool.with(l * nq * n, |dphi| {
                 b.basis_batch(p, self.pairs, geom, phi, Some(dphi));
+                // Row by row, so the row-major Jacobian is written in order
+                // (each row set whole: no separate zeroing pass).
                 for c in 0..nc {
-                    for t in 0..l {
-                        let (k, x) = (b.coefficient_index(c, t), p[b.coefficient_index(c, t)]);
-                        for j in 0..n {
-                            let row = &mut jac[(c * n + j) * np..(c * n + j + 1) * np];
-                            row[k] = phi[t * n + j] * self.scale[j];
+                    let ks = &self.coefficients[c * l..(c + 1) * l];
+                    let rows = jac[c * n * np..(c + 1) * n * np].chunks_exact_mut(np);
+                    for (j, row) in rows.enumerate() {
+                        let sj = self.scale[j];
+                        row.fill(0.0);
+                        for (t, &k) in ks.iter().enumerate() {
+                            row[k] = phi[t * n + j] * sj;
+                            let x = p[k] * sj;
                             for (u, &ku) in self.nonlinear.iter().enumerate() {
-                                row[ku] += x * dphi[(t * nq + u) * n + j] * self.scale[j];
+                                row[ku] += x * dphi[(t * nq + u) * n + j];
                             }
                         }
                     }

@@ -159,6 +159,14 @@ impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
                 value: phi[i],
             });
         }
+        let pm = faer::MatRef::from_column_major_slice(&phi[..m * l], m, l);
+        let ym = faer::MatRef::from_column_major_slice(&y[..m * nb], m, nb);
+        if let Some((r, qty)) = tall_qr::gram_triangle(pm, ym) {
+            let qty = (0..nb)
+                .map(|b| (0..l).map(|i| qty[(i, b)]).collect())
+                .collect();
+            return Ok(Reduced { r, qty });
+        }
         let raug = self.pool.with(m * (l + nb), |buf| {
             buf[..m * l].copy_from_slice(&phi[..m * l]);
             buf[m * l..].copy_from_slice(&y[..m * nb]);
@@ -317,7 +325,13 @@ impl<S: SeparableProblem + ?Sized> VarPro<'_, S> {
         let mut out = Vec::with_capacity(l * nb);
         for b in 0..nb {
             if self.nonneg {
-                out.extend(nnls(red.r.as_ref(), &red.qty[b], 3 * l + 10)?.x);
+                // When the unconstrained solution is positive it is the NNLS
+                // solution (every coefficient passive, zero dual): one
+                // triangular solve instead of the active-set loop.
+                match positive_triangular_solution(&red.r, &red.qty[b]) {
+                    Some(x) => out.extend(x),
+                    None => out.extend(nnls(red.r.as_ref(), &red.qty[b], 3 * l + 10)?.x),
+                }
             } else {
                 let ym = Mat::from_fn(l, 1, |i, _| red.qty[b][i]);
                 let s = lstsq(red.r.as_ref(), ym.as_ref(), None, LstsqMethod::PivotedQr)?;
@@ -336,9 +350,14 @@ fn free_triangle(r: &Mat<f64>, free: &[usize]) -> Option<Option<Mat<f64>>> {
         return Some(None);
     }
     let l = r.nrows();
-    let mut rf = Mat::from_fn(l, free.len(), |i, s| r[(i, free[s])]);
-    let rr = tall_qr::r_factor(rf.as_mut());
     let nf = free.len();
+    // Every column free: `R` itself is the triangle (no refactoring).
+    let rr = if nf == r.ncols() {
+        r.clone()
+    } else {
+        let mut rf = Mat::from_fn(l, nf, |i, s| r[(i, free[s])]);
+        tall_qr::r_factor(rf.as_mut())
+    };
     if rr.nrows() < nf {
         return None;
     }
@@ -347,4 +366,22 @@ fn free_triangle(r: &Mat<f64>, free: &[usize]) -> Option<Option<Mat<f64>>> {
         return None;
     }
     Some(Some(rr))
+}
+
+/// The solution of the triangular system `R x = q` when `R` is numerically
+/// non-singular (every diagonal entry above `1e-12` times the largest) and
+/// every entry of `x` is positive; `None` otherwise.
+fn positive_triangular_solution(r: &Mat<f64>, q: &[f64]) -> Option<Vec<f64>> {
+    let l = r.ncols();
+    if r.nrows() != l || q.len() != l {
+        return None;
+    }
+    let rmax = (0..l).map(|t| r[(t, t)].abs()).fold(0.0f64, f64::max);
+    if (0..l).any(|t| !(r[(t, t)].abs() > 1e-12 * rmax)) {
+        return None;
+    }
+    let mut z = Mat::from_fn(l, 1, |i, _| q[i]);
+    r.as_ref().solve_upper_triangular_in_place(z.as_mut());
+    let x: Vec<f64> = (0..l).map(|i| z[(i, 0)]).collect();
+    x.iter().all(|v| *v > 0.0 && v.is_finite()).then_some(x)
 }

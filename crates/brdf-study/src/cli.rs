@@ -32,6 +32,8 @@ pub enum Command {
     Info(crate::commands::info::InfoArgs),
     /// Convert data or a saved model to MERL, Sopp's grid or CSV samples.
     Resample(crate::commands::resample::ResampleArgs),
+    /// Write a saved model as a Mitsuba 3, pbrt-v4, glTF or MaterialX material.
+    Export(crate::commands::export::ExportArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
 }

@@ -27,6 +27,9 @@ pub enum StudyError {
     /// A saved model could not be read, written or rebuilt.
     #[error(transparent)]
     SavedModel(#[from] brdf_models::saved_model::SavedModelError),
+    /// A model could not be exported.
+    #[error(transparent)]
+    Export(#[from] brdf_export::ExportError),
     /// JSON output failed.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),

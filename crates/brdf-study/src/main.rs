@@ -18,6 +18,7 @@ fn run() -> Result<(), StudyError> {
         Command::Select(a) => commands::select::run(&a),
         Command::Info(a) => commands::info::run(&a),
         Command::Resample(a) => commands::resample::run(&a),
+        Command::Export(a) => commands::export::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
     }
 }

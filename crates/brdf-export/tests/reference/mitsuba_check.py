@@ -1,9 +1,16 @@
 """Evaluate every exported Mitsuba BSDF in Mitsuba 3 itself (variant
-scalar_rgb) at fixed direction pairs and store f = value / cos(theta_o).
+scalar_rgb) at fixed direction pairs and store f = value / cos(theta_o),
+and at the normal (wi = wo = n) as "peak".
 
-Run (venv with `pip install mitsuba numpy`):
+The pairs are a quasi-random (Kronecker) sequence over the hemisphere up
+to 85 deg, uniform in cos(theta) and in phi; their components are rounded
+to single precision here, so Mitsuba (which computes in single precision)
+and the Rust test (double) evaluate at exactly the same directions.
+
+Run (venv with `pip install mitsuba numpy`; check_exports.sh does):
   cargo run -p brdf-export --example mitsuba_cases > mitsuba_cases.json
   python mitsuba_check.py mitsuba_cases.json > mitsuba_values.json
+Any JSON list of objects with an "xml" member works (paper_white/).
 """
 
 import json
@@ -11,6 +18,7 @@ import math
 import sys
 
 import mitsuba as mi
+import numpy as np
 
 mi.set_variant("scalar_rgb")
 
@@ -19,13 +27,19 @@ def sph(t, p):
     return [math.sin(t) * math.cos(p), math.sin(t) * math.sin(p), math.cos(t)]
 
 
+def f32(v):
+    return [float(np.float32(x)) for x in v]
+
+
 def pairs(n):
-    # Deterministic pairs above the horizon, up to 85 deg.
+    # Roberts' R4 sequence: steps 1/g^k, g the root of x^5 = x + 1.
+    g = 1.1673039782614187
+    steps = [g ** -(k + 1) for k in range(4)]
     out = []
     for i in range(n):
-        u = [((i * a) % 1000) / 1000.0 for a in (0.6180339887, 0.7548776662, 0.5698402910, 0.8191725133)]
+        u = [(0.5 + i * a) % 1.0 for a in steps]
         ti, to = math.acos(1 - u[0] * (1 - math.cos(1.48))), math.acos(1 - u[1] * (1 - math.cos(1.48)))
-        out.append((sph(ti, 2 * math.pi * u[2]), sph(to, 2 * math.pi * u[3])))
+        out.append((f32(sph(ti, 2 * math.pi * u[2])), f32(sph(to, 2 * math.pi * u[3]))))
     return out
 
 
@@ -38,14 +52,15 @@ def main():
         si = mi.SurfaceInteraction3f()
         si.n = mi.Normal3f(0, 0, 1)
         si.sh_frame = mi.Frame3f(mi.Vector3f(1, 0, 0), mi.Vector3f(0, 1, 0), mi.Vector3f(0, 0, 1))
-        vals = []
-        for wi, wo in ps:
+        def f(wi, wo):
             si.wi = mi.Vector3f(*wi)
             v = bsdf.eval(ctx, si, mi.Vector3f(*wo))
-            vals.append([float(v[k]) / wo[2] for k in range(3)])
+            return [float(v[k]) / wo[2] for k in range(3)]
+
         c["pairs"] = ps
-        c["values"] = vals
-    print(json.dumps(cases))
+        c["values"] = [f(wi, wo) for wi, wo in ps]
+        c["peak"] = f([0.0, 0.0, 1.0], [0.0, 0.0, 1.0])
+    print(json.dumps({"mitsuba": mi.__version__, "cases": cases}))
 
 
 if __name__ == "__main__":

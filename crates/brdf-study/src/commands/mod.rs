@@ -41,6 +41,7 @@ macro_rules! say_raw {
 
 pub mod batch;
 pub mod eval;
+pub mod export;
 pub mod fit;
 pub mod info;
 pub mod models;

@@ -1,0 +1,279 @@
+//! Conversion by fitting: where a model has no exact equivalent in a
+//! target, fit a model the target does have to the source model's values
+//! and report how far the converted material is from the source.
+//!
+//! The source is sampled at `pairs` direction pairs (a quasi-random
+//! sequence over Rusinkiewicz's half/difference angles with `theta_h`
+//! warped towards the specular peak, both directions within `limit_deg` of
+//! the normal), the target's model is fitted to those values with the
+//! automatic pipeline of [`brdf_fit`] (Ngan's objective), and the result is
+//! measured on the same pairs: Ngan's L2 between source and converted
+//! values, and that L2 relative to the source's own (`0` = identical).
+//!
+//! | target | model fitted by default | why |
+//! | --- | --- | --- |
+//! | Mitsuba 3 | `principled` | Mitsuba's own BSDF, written exactly |
+//! | pbrt-v4 | `ggx-dielectric` | a `mix` of `diffuse` and `conductor` with `k = 0`, written exactly once `ks` is grey |
+//! | glTF 2.0 | `gltf` | the metallic-roughness material |
+//! | MaterialX | `gltf` | written as `gltf_pbr` |
+//!
+//! pbrt-v4's `mix` takes one amount for all channels and a diffuse
+//! reflectance of at most 1, so for pbrt (with a `ggx-conductor` or
+//! `ggx-dielectric` lobe, isotropic or `-aniso`) the model fitted is the mix
+//! itself ([`crate::pbrt_mix`]) and then written as its catalogue model.
+
+use brdf_core::half_diff::HalfDiff;
+use brdf_core::{DirPairs, Direction, Parametric, SampleSet};
+use brdf_fit::{Channels, Fit, FitOptions, pipeline};
+use brdf_models::ModelConfig;
+
+use crate::pbrt_mix::PbrtMix;
+use crate::{ExportError, Target};
+
+/// How to convert.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvertOptions {
+    /// The target's model to fit (`None`: [`default_via`]).
+    pub via: Option<String>,
+    /// Direction pairs sampled from the source (default 2048).
+    pub pairs: usize,
+    /// Largest `theta_i`, `theta_o` sampled, in degrees (default 80).
+    pub limit_deg: f64,
+    /// Multi-starts of the fit (default 12).
+    pub starts: usize,
+}
+
+impl Default for ConvertOptions {
+    fn default() -> Self {
+        ConvertOptions {
+            via: None,
+            pairs: 2048,
+            limit_deg: 80.0,
+            starts: 12,
+        }
+    }
+}
+
+/// How far a converted material is from its source, on the sampled pairs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConversionError {
+    /// Direction pairs compared.
+    pub samples: usize,
+    /// Largest `theta_i`, `theta_o` of the pairs, in degrees.
+    pub limit_deg: f64,
+    /// Ngan's L2 between source and converted values (1/sr).
+    pub ngan_l2: f64,
+    /// `ngan_l2` divided by the source's own Ngan norm (0 = identical).
+    pub relative_l2: f64,
+}
+
+/// A converted model.
+pub struct Conversion {
+    /// The source's catalogue name.
+    pub source: String,
+    /// The target's model at the fitted parameters.
+    pub model: Box<dyn Parametric>,
+    /// Its structural configuration.
+    pub config: ModelConfig,
+    /// The direction pairs it was fitted at.
+    pub pairs: DirPairs,
+    /// How far it is from the source.
+    pub error: ConversionError,
+}
+
+impl Conversion {
+    /// One line for a file header or a report.
+    pub fn note(&self) -> String {
+        let e = &self.error;
+        format!(
+            "converted by fitting: `{}` has no exact equivalent here, so `{}` was fitted to its values at {} direction pairs up to {} deg; Ngan L2 {:.4e} 1/sr, relative L2 {:.4e}",
+            self.source,
+            self.model.name(),
+            e.samples,
+            e.limit_deg,
+            e.ngan_l2,
+            e.relative_l2
+        )
+    }
+}
+
+/// The model fitted for `target` when none is named.
+pub fn default_via(target: Target) -> &'static str {
+    match target {
+        Target::Mitsuba => "principled",
+        Target::Pbrt => "ggx-dielectric",
+        Target::Gltf | Target::MaterialX => "gltf",
+    }
+}
+
+/// Fit the target's model to `source` (see the module doc).
+pub fn convert(
+    source: &dyn Parametric,
+    target: Target,
+    opts: &ConvertOptions,
+) -> Result<Conversion, ExportError> {
+    let via = opts.via.as_deref().unwrap_or(default_via(target));
+    let fail = |reason: String| ExportError::Conversion {
+        model: source.name().to_string(),
+        target,
+        via: via.to_string(),
+        reason,
+    };
+    if !(opts.limit_deg > 0.0 && opts.limit_deg < 90.0) {
+        return Err(fail(format!(
+            "limit {} deg: must be in (0, 90)",
+            opts.limit_deg
+        )));
+    }
+    if opts.pairs < 16 {
+        return Err(fail(format!("{} pairs: need at least 16", opts.pairs)));
+    }
+    let samples = sample_source(source, opts).map_err(fail)?;
+    let pbrt_lobe = matches!(
+        via,
+        "ggx-conductor" | "ggx-dielectric" | "ggx-conductor-aniso" | "ggx-dielectric-aniso"
+    );
+    let (model, config) = if target == Target::Pbrt && pbrt_lobe {
+        let mut mix = PbrtMix::new(via, source.channels()).map_err(|e| fail(e.to_string()))?;
+        let fit_opts = FitOptions {
+            starts: opts.starts,
+            ..FitOptions::default()
+        };
+        pipeline::fit(&mut mix, &samples, &fit_opts).map_err(|e| fail(e.to_string()))?;
+        let config = ModelConfig {
+            channels: source.channels(),
+            ..ModelConfig::default()
+        };
+        (mix.catalogue().map_err(|e| fail(e.to_string()))?, config)
+    } else {
+        let report = Fit::model(via)
+            .map_err(|e| fail(e.to_string()))?
+            .channels(Channels::All)
+            .starts(opts.starts)
+            // Every pair already lies inside the limit; 90 keeps them all.
+            .limit_deg(90.0)
+            .run(&samples)
+            .map_err(|e| fail(e.to_string()))?;
+        (report.model, report.config)
+    };
+    let error = measure(source, model.as_ref(), &samples, opts.limit_deg).map_err(fail)?;
+    Ok(Conversion {
+        source: source.name().to_string(),
+        model,
+        config,
+        pairs: samples.pairs().clone(),
+        error,
+    })
+}
+
+/// Element `i` of a 4-D quasi-random (Kronecker) sequence in `[0, 1)^4`
+/// (Roberts' R4: the steps are powers of the inverse of the root of
+/// `x^5 = x + 1`).
+fn quasi_random(i: usize) -> [f64; 4] {
+    const G: f64 = 1.167_303_978_261_418_7;
+    std::array::from_fn(|k| (0.5 + i as f64 / G.powi(k as i32 + 1)).fract())
+}
+
+/// The source's values at `opts.pairs` pairs inside the limit.
+pub fn sample_source(source: &dyn Parametric, opts: &ConvertOptions) -> Result<SampleSet, String> {
+    let nc = source.channels();
+    let names = if nc == 1 {
+        vec!["grey".to_string()]
+    } else {
+        (0..nc)
+            .map(|c| ["r", "g", "b"][c % 3].to_string())
+            .collect()
+    };
+    let mut set = SampleSet::new(
+        format!("{} (sampled)", source.name()),
+        "conversion by fitting",
+        names,
+    );
+    let cos_limit = opts.limit_deg.to_radians().cos();
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    let mut f = vec![0.0; nc];
+    // Half the candidates fall below the horizon or beyond the limit; give
+    // up (an error, not a hang) long after that.
+    for i in 0..opts.pairs * 64 {
+        if set.len() == opts.pairs {
+            return Ok(set);
+        }
+        let u = quasi_random(i);
+        let hd = HalfDiff {
+            theta_h: half_pi * u[0] * u[0],
+            phi_h: 2.0 * std::f64::consts::PI * u[1],
+            theta_d: half_pi * u[2],
+            phi_d: 2.0 * std::f64::consts::PI * u[3],
+        };
+        let (l, v) = hd.to_directions();
+        if l.z < cos_limit || v.z < cos_limit {
+            continue;
+        }
+        let (Ok(dl), Ok(dv)) = (Direction::try_new(l), Direction::try_new(v)) else {
+            continue;
+        };
+        source.eval(&l, &v, &mut f);
+        if let Some(x) = f.iter().find(|x| !x.is_finite()) {
+            return Err(format!(
+                "the source evaluates to {x} at L = {l:?}, V = {v:?}"
+            ));
+        }
+        set.push(&dl, &dv, &f, 1.0).map_err(|e| e.to_string())?;
+    }
+    Err(format!(
+        "only {} of {} pairs lie within {} deg",
+        set.len(),
+        opts.pairs,
+        opts.limit_deg
+    ))
+}
+
+/// How far `converted` is from `source` on the pairs [`sample_source`]
+/// draws for `opts` (what [`convert()`] reports).
+pub fn conversion_error(
+    source: &dyn Parametric,
+    converted: &dyn Parametric,
+    opts: &ConvertOptions,
+) -> Result<ConversionError, String> {
+    let samples = sample_source(source, opts)?;
+    measure(source, converted, &samples, opts.limit_deg)
+}
+
+/// Values of `m` at the pairs of `s`, channel-major.
+fn values(m: &dyn Parametric, s: &SampleSet) -> Vec<f64> {
+    let (n, nc) = (s.len(), m.channels());
+    let mut out = vec![0.0; n * nc];
+    let mut f = vec![0.0; nc];
+    for j in 0..n {
+        m.eval(&s.pairs().l(j), &s.pairs().v(j), &mut f);
+        for c in 0..nc {
+            out[c * n + j] = f[c];
+        }
+    }
+    out
+}
+
+/// Ngan's L2 of converted vs source values, absolute and relative.
+fn measure(
+    source: &dyn Parametric,
+    converted: &dyn Parametric,
+    s: &SampleSet,
+    limit_deg: f64,
+) -> Result<ConversionError, String> {
+    let src = values(source, s);
+    let conv = values(converted, s);
+    let cos_i: Vec<f64> = (0..s.len()).map(|j| s.pairs().l(j).z).collect();
+    let l2 = |model: &[f64]| {
+        brdf_core::metrics::ngan_l2(&src, model, &cos_i, s.weights())
+            .map(|m| m.total)
+            .map_err(|e| e.to_string())
+    };
+    let ngan_l2 = l2(&conv)?;
+    let norm = l2(&vec![0.0; src.len()])?;
+    Ok(ConversionError {
+        samples: s.len(),
+        limit_deg,
+        ngan_l2,
+        relative_l2: if norm > 0.0 { ngan_l2 / norm } else { 0.0 },
+    })
+}

@@ -1,0 +1,257 @@
+//! `brdf export`: exact exports keep the saved values, conversions are
+//! reported on stdout and in the file, `--exact` refuses them, the
+//! converted model saved with `--save-converted` exports exactly to the
+//! same material, and bad input is an error naming the file.
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::brdf;
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("brdf-export-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir.join(name)
+}
+
+fn saved(name: &str, model: &str, channels: usize, params: &[(&str, f64)]) -> PathBuf {
+    let ps: Vec<String> = params
+        .iter()
+        .map(|(n, v)| format!(r#"{{ "name": "{n}", "value": {v} }}"#))
+        .collect();
+    let text = format!(
+        r#"{{ "schema": "brdf-fit/saved-model", "version": 1, "model": "{model}",
+              "structure": {{ "channels": {channels} }}, "parameters": [{}] }}"#,
+        ps.join(", ")
+    );
+    let path = tmp(name);
+    std::fs::write(&path, text).expect("write model");
+    path
+}
+
+fn principled() -> PathBuf {
+    saved(
+        "principled.json",
+        "principled",
+        1,
+        &[
+            ("base_color", 0.25),
+            ("metallic", 0.5),
+            ("specular", 0.75),
+            ("spec_tint", 0.0),
+            ("roughness", 0.375),
+            ("anisotropic", 0.0),
+            ("sheen", 0.125),
+            ("sheen_tint", 0.0),
+            ("clearcoat", 0.0),
+            ("clearcoat_gloss", 0.0),
+        ],
+    )
+}
+
+fn blinn_phong() -> PathBuf {
+    saved(
+        "blinn.json",
+        "blinn-phong",
+        1,
+        &[("kd", 0.5), ("ks", 0.04), ("n", 40.0)],
+    )
+}
+
+fn s(p: &std::path::Path) -> &str {
+    p.to_str().expect("utf-8 temp path")
+}
+
+#[test]
+fn exact_export_keeps_the_saved_values() {
+    let (from, out) = (principled(), tmp("p.xml"));
+    let (ok, stdout, stderr) = brdf(&["export", "--from", s(&from), "--to", "mitsuba", s(&out)]);
+    assert!(ok, "{stderr}");
+    assert!(stdout.contains("exactly as mitsuba"), "{stdout}");
+    let xml = std::fs::read_to_string(&out).expect("written");
+    assert!(
+        xml.starts_with(r#"<bsdf version="3.0.0" type="principled">"#),
+        "{xml}"
+    );
+    for (name, v) in [
+        ("metallic", "0.5"),
+        ("specular", "0.75"),
+        ("roughness", "0.375"),
+    ] {
+        assert!(
+            xml.contains(&format!(r#"<float name="{name}" value="{v}"/>"#)),
+            "{name}: {xml}"
+        );
+    }
+    assert!(xml.contains(r#"value="0.25, 0.25, 0.25""#), "{xml}");
+}
+
+#[test]
+fn conversion_is_reported_and_its_model_exports_exactly() {
+    let (from, out, conv) = (blinn_phong(), tmp("b.gltf"), tmp("b-gltf.json"));
+    let args = [
+        "export",
+        "--from",
+        s(&from),
+        "--to",
+        "gltf",
+        s(&out),
+        "--pairs",
+        "256",
+        "--starts",
+        "4",
+        "--save-converted",
+        s(&conv),
+        "--json",
+    ];
+    let (ok, stdout, stderr) = brdf(&args);
+    assert!(ok, "{stderr}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+    assert_eq!(report["exact"], false);
+    let c = &report["conversion"];
+    assert_eq!(c["via"], "gltf");
+    assert_eq!(c["samples"], 256);
+    let rel = c["relative_l2"].as_f64().expect("number");
+    // A Blinn-Phong lobe is not glTF's GGX lobe (about 0.33 here): not
+    // equal, and said so, whatever the size.
+    assert!(rel > 1e-4 && rel < 1.0, "relative L2 {rel}");
+    let asset: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("written")).expect("glTF");
+    let note = asset["asset"]["extras"]["note"].as_str().expect("note");
+    assert!(
+        note.contains("blinn-phong") && note.contains("relative L2"),
+        "{note}"
+    );
+    // The saved conversion is the material written, exactly.
+    let again = tmp("b-again.gltf");
+    let (ok, stdout, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&conv),
+        "--to",
+        "gltf",
+        s(&again),
+        "--exact",
+    ]);
+    assert!(ok, "{stderr}");
+    assert!(stdout.contains("exactly"), "{stdout}");
+    let again: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp("b-again.gltf")).expect("written"))
+            .expect("glTF");
+    assert_eq!(again["materials"], asset["materials"]);
+}
+
+#[test]
+fn plain_conversion_message_names_models_and_error() {
+    let (from, out) = (blinn_phong(), tmp("b.mtlx"));
+    let args = [
+        "export",
+        "--from",
+        s(&from),
+        "--to",
+        "materialx",
+        s(&out),
+        "--pairs",
+        "128",
+        "--starts",
+        "2",
+    ];
+    let (ok, stdout, stderr) = brdf(&args);
+    assert!(ok, "{stderr}");
+    assert!(
+        stdout.contains("`blinn-phong` has no exact equivalent")
+            && stdout.contains("`gltf` was fitted"),
+        "{stdout}"
+    );
+    let doc = std::fs::read_to_string(&out).expect("written");
+    assert!(doc.contains("<!-- converted by fitting"), "{doc}");
+}
+
+#[test]
+fn exact_refuses_to_convert() {
+    let (from, out) = (blinn_phong(), tmp("refused.xml"));
+    let (ok, _, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&from),
+        "--to",
+        "mitsuba",
+        s(&out),
+        "--exact",
+    ]);
+    assert!(!ok);
+    assert!(
+        stderr.contains("`blinn-phong` has no exact equivalent in mitsuba"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "nothing is written");
+}
+
+#[test]
+fn save_converted_without_a_conversion_is_an_error() {
+    let (from, out) = (principled(), tmp("p2.xml"));
+    let conv = tmp("never.json");
+    let (ok, _, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&from),
+        "--to",
+        "mitsuba",
+        s(&out),
+        "--save-converted",
+        s(&conv),
+    ]);
+    assert!(!ok);
+    assert!(stderr.contains("nothing was converted"), "{stderr}");
+}
+
+#[test]
+fn bad_input_is_an_error_naming_it() {
+    let out = tmp("bad.xml");
+    let missing = tmp("missing.json");
+    let (ok, _, stderr) = brdf(&["export", "--from", s(&missing), "--to", "mitsuba", s(&out)]);
+    assert!(!ok && stderr.contains("missing.json"), "{stderr}");
+
+    let garbled = tmp("garbled.json");
+    std::fs::write(&garbled, "{ not json").expect("write");
+    let (ok, _, stderr) = brdf(&["export", "--from", s(&garbled), "--to", "mitsuba", s(&out)]);
+    assert!(!ok && stderr.contains("garbled.json"), "{stderr}");
+
+    let outside = saved("outside.json", "lambert", 1, &[("kd", 1.5)]);
+    let (ok, _, stderr) = brdf(&["export", "--from", s(&outside), "--to", "gltf", s(&out)]);
+    assert!(
+        !ok && stderr.contains("outside.json") && stderr.contains("kd"),
+        "{stderr}"
+    );
+
+    let (ok, _, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&principled()),
+        "--to",
+        "blender",
+        s(&out),
+    ]);
+    assert!(
+        !ok && stderr.contains("unknown export target `blender`"),
+        "{stderr}"
+    );
+
+    let (ok, _, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&blinn_phong()),
+        "--to",
+        "gltf",
+        s(&out),
+        "--via",
+        "ward",
+    ]);
+    assert!(!ok, "a model glTF cannot write is refused");
+    assert!(
+        stderr.contains("ward") && stderr.contains("gltf"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
