@@ -81,7 +81,7 @@ impl ParamSpec {
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum ParamError {
     /// A value lies outside its box.
-    #[error("parameter `{name}` = {value} is outside its box {bounds}")]
+    #[error("parameter `{name}` = {} is outside its box {bounds}", compact(.value))]
     OutOfBounds {
         /// parameter name
         name: String,
@@ -126,6 +126,18 @@ pub enum ParamError {
         /// what is wrong
         reason: String,
     },
+}
+
+/// A value for a one-line message: as written for ordinary magnitudes
+/// (`1.5`, `2`), in exponent form outside `[1e-5, 1e16)` (`{}` of `1e300`
+/// would print 301 digits).
+fn compact(x: &f64) -> String {
+    let a = x.abs();
+    if *x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// Check `values` against `specs`: length, finiteness, boxes.

@@ -20,6 +20,7 @@ use brdf_models::{ModelConfig, ModelEntry};
 use crate::FitError;
 use crate::names::resolve;
 use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
+use crate::scaling::{ScaledBox, fit_scaled};
 
 /// Which channels a fit uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -60,6 +61,10 @@ pub struct FitReport {
     pub limit_deg: f64,
     /// Channel names of the fitted data.
     pub channel_names: Vec<String>,
+    /// What the fit did beyond the request, in words (internal scaling of
+    /// extreme data, a solver chosen for the objective, parameters on a
+    /// bound of their box), for the report.
+    pub notes: Vec<String>,
     /// The direction pairs fitted (Kurt's polynomial stores its PCA of them).
     pairs: brdf_core::DirPairs,
 }
@@ -184,19 +189,38 @@ impl Fit {
             channels: data.channels(),
             ..self.config
         };
-        let mut model = self.entry.build_for(&config, data.pairs())?;
-        let summary = if self.options.solver == Solver::Sopp {
-            let mut grey = self.entry.build_for(
-                &ModelConfig {
-                    channels: 1,
-                    ..config
-                },
-                data.pairs(),
-            )?;
-            fit_sopp(grey.as_mut(), model.as_mut(), &data, &self.options)?
-        } else {
-            fit(model.as_mut(), &data, &self.options)?
-        };
+        let mut notes = Vec::new();
+        if 2 * angle.dropped() > present {
+            notes.push(format!(
+                "{} of {present} samples are beyond the {} deg limit and were dropped",
+                angle.dropped(),
+                self.limit_deg
+            ));
+        }
+        let options = self.options_for(&config, &mut notes)?;
+        let model = self.entry.build_for(&config, data.pairs())?;
+        let (model, summary, scale) = fit_scaled(model, &data, options.objective, |m, d, s| {
+            self.fit_model(m, d, &config, &options, s)
+        })?;
+        let mut summary = summary;
+        if !summary.ngan_l2.is_finite() {
+            let m = crate::scaling::ngan_l2_rescaled(model.as_ref(), &data)?;
+            summary.ngan_l2 = m.total;
+            summary.ngan_l2_per_channel = m.per_channel;
+        }
+        if !scale.is_identity() {
+            notes.push(scale.describe());
+        }
+        check_finite(&summary, &samples.name)?;
+        for fp in &summary.parameters {
+            if let Some(b) = &fp.at_bound {
+                notes.push(format!(
+                    "`{}` = {} sits on the {b} bound of its box",
+                    fp.name,
+                    brdf_io::error::short(fp.value)
+                ));
+            }
+        }
         Ok(FitReport {
             model,
             config,
@@ -206,9 +230,95 @@ impl Fit {
             dropped_angle: angle.dropped(),
             limit_deg: self.limit_deg,
             channel_names: data.channel_names.clone(),
+            notes,
             pairs: data.pairs().clone(),
         })
     }
+
+    /// The options of this fit for the model: the automatic solver of an
+    /// all-linear model under the log objective (not a linear problem) is
+    /// the bounded LM; the linear solvers asked for with it are an error.
+    fn options_for(
+        &self,
+        config: &ModelConfig,
+        notes: &mut Vec<String>,
+    ) -> Result<FitOptions, FitError> {
+        let mut options = self.options.clone();
+        if options.objective != Objective::Log {
+            return Ok(options);
+        }
+        match options.solver {
+            Solver::Ols | Solver::Irls(_) => Err(FitError::Usage(format!(
+                "--solver ols/irls solve linear least squares; the log metric is not linear in `{}`'s parameters: use --solver auto, sqp or lm",
+                self.entry.name
+            ))),
+            Solver::Auto => {
+                let probe = (self.entry.build)(config)?;
+                if probe.param_specs().iter().all(|s| s.linear) {
+                    options.solver = Solver::Lm;
+                    notes.push(
+                        "the log metric is not linear in the parameters: fitted by the bounded LM (not least squares)"
+                            .into(),
+                    );
+                }
+                Ok(options)
+            }
+            _ => Ok(options),
+        }
+    }
+
+    /// Fit `model` (already built for the data, its linear boxes divided
+    /// by `scale`, the data's value scale) to `data`.
+    fn fit_model(
+        &self,
+        model: &mut dyn Parametric,
+        data: &SampleSet,
+        config: &ModelConfig,
+        options: &FitOptions,
+        scale: f64,
+    ) -> Result<FitSummary, FitError> {
+        if options.solver != Solver::Sopp {
+            return fit(model, data, options);
+        }
+        let grey = self.entry.build_for(
+            &ModelConfig {
+                channels: 1,
+                ..*config
+            },
+            data.pairs(),
+        )?;
+        // The one-channel stage sees the same boxes as the full model.
+        if scale != 1.0 {
+            let mut grey = ScaledBox::new(grey, scale);
+            fit_sopp(&mut grey, model, data, options)
+        } else {
+            let mut grey = grey;
+            fit_sopp(grey.as_mut(), model, data, options)
+        }
+    }
+}
+
+/// A fit whose error is not finite is not a result: an error naming the
+/// data and the model (never a success with `"error": null`).
+fn check_finite(summary: &FitSummary, data: &str) -> Result<(), FitError> {
+    let bad = |what: &str, v: f64| {
+        Err(FitError::NonFinite {
+            data: data.to_string(),
+            model: summary.model.clone(),
+            what: what.to_string(),
+            value: v,
+        })
+    };
+    if !summary.error.is_finite() {
+        return bad("error", summary.error);
+    }
+    if !summary.ngan_l2.is_finite() {
+        return bad("Ngan L2", summary.ngan_l2);
+    }
+    if let Some(p) = summary.parameters.iter().find(|p| !p.value.is_finite()) {
+        return bad(&format!("parameter `{}`", p.name), p.value);
+    }
+    Ok(())
 }
 
 impl FitReport {

@@ -31,6 +31,20 @@ pub enum FitError {
         /// what serde_json reported
         reason: String,
     },
+    /// A fit ended without a finite result.
+    #[error(
+        "{data}: the fit of `{model}` ended with a non-finite {what} ({value}); the data may be out of any representable range"
+    )]
+    NonFinite {
+        /// the data set
+        data: String,
+        /// the model
+        model: String,
+        /// what is not finite
+        what: String,
+        /// its value
+        value: f64,
+    },
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {

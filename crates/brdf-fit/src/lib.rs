@@ -36,7 +36,9 @@
 //! | [`builder`] | [`Fit`] (the builder) and [`FitReport`] |
 //! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
+//! | [`scaling`] | internal scaling of extreme data and weights (scale invariance) |
 //! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
+//! | [`linear_box`] | linear least squares within `[0, upper]` when NNLS exceeds an upper bound |
 //! | [`names`] | forgiving model names with suggestions |
 //! | [`report_json`] | the JSON report of `brdf fit --json`, data names for outputs |
 //! | [`error`] | [`FitError`] |
@@ -44,9 +46,11 @@
 pub mod builder;
 pub mod error;
 pub mod fit_linear;
+pub mod linear_box;
 pub mod names;
 pub mod pipeline;
 pub mod report_json;
+pub mod scaling;
 pub mod select;
 
 pub use builder::{Channels, Fit, FitReport};

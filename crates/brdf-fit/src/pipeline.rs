@@ -670,7 +670,15 @@ pub(crate) fn fit_all_linear(
                 how = "NNLS (Lawson-Hanson)".into();
                 let s = brdf_solve::nnls(a.as_ref(), &b, 3 * cols.len() + 10)?;
                 rank = rank.min(s.passive.len());
-                s.x
+                let upper: Vec<f64> = cols.iter().map(|&k| specs[k].upper).collect();
+                match crate::linear_box::within_upper(a.as_ref(), &b, s.x, &upper)? {
+                    (x, true) => {
+                        how = "least squares within the box (LSI: NNLS exceeded an upper bound)"
+                            .into();
+                        x
+                    }
+                    (x, false) => x,
+                }
             }
             _ => {
                 let bm = Mat::from_fn(n, 1, |j, _| b[j]);

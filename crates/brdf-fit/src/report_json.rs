@@ -15,6 +15,7 @@ pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::V
         .ok_or_else(|| FitError::Usage(format!("`{}`: no fit to report", data.name)))?;
     Ok(serde_json::json!({
         "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
+        "notes": reports.iter().map(|r| &r.notes).collect::<Vec<_>>(),
         "samples_present": first.samples_present,
         "dropped_invalid": first.dropped_invalid,
         "dropped_angle": first.dropped_angle,

@@ -105,17 +105,20 @@ pub fn select(
         let Some(e) = brdf_models::entry(name) else {
             continue;
         };
-        let mut model = e.build_for(&config, data.pairs())?;
+        let model = e.build_for(&config, data.pairs())?;
         if model.n_params() >= data.len() * data.channels() {
             continue;
         }
-        let r = match fit(model.as_mut(), data, opts) {
-            Ok(r) => r,
+        let n_params = model.n_params();
+        let scaled =
+            crate::scaling::fit_scaled(model, data, opts.objective, |m, d, _| fit(m, d, opts));
+        let r = match scaled {
+            Ok((_, r, _)) => r,
             Err(e) => {
                 rows.push(SelectRow {
                     label,
                     model: name.to_string(),
-                    stored_numbers: model.n_params(),
+                    stored_numbers: n_params,
                     error: f64::NAN,
                     ssr: f64::NAN,
                     aic: f64::NAN,
@@ -127,11 +130,15 @@ pub fn select(
             }
         };
         let pca = if name == "polynomial" { 4 } else { 0 };
-        let k = model.n_params() + pca;
+        let k = n_params + pca;
         // SSR on Ngan's rows: E^2 times the weight sum (per channel averaged).
         let wsum: f64 = data.weights().iter().sum();
         let ssr = r.ngan_l2 * r.ngan_l2 * wsum * data.channels() as f64;
-        let ll = n * (ssr / n).max(f64::MIN_POSITIVE).ln();
+        // ln(SSR / n) from the error itself: SSR of data near 1e300
+        // overflows, its logarithm does not.
+        let ll = n
+            * (2.0 * r.ngan_l2.ln() + (wsum * data.channels() as f64 / n).ln())
+                .max(f64::MIN_POSITIVE.ln());
         rows.push(SelectRow {
             label,
             model: name.to_string(),
@@ -159,6 +166,14 @@ pub fn select(
                 .then(a.1.error.total_cmp(&b.1.error))
         })
         .map(|(i, _)| i)
-        .ok_or_else(|| FitError::Usage("no candidate could be fitted".into()))?;
+        .ok_or_else(|| {
+            FitError::Usage(format!(
+                "`{}`: no candidate could be fitted ({})",
+                data.name,
+                rows.first()
+                    .map(|r| format!("{}: {}", r.label, r.termination))
+                    .unwrap_or_else(|| "no candidate has fewer parameters than samples".into())
+            ))
+        })?;
     Ok((rows, choice))
 }

@@ -1,6 +1,10 @@
 //! Generic CSV samples, so users can bring their own measurements: a header
 //! `theta_i,phi_i,theta_o,phi_o,<one column per channel>,weight` (angles in
-//! radians, values in 1/sr), then one sample per row. Written with the
+//! radians, values in 1/sr), then one sample per row. Angles in degrees
+//! are read when the header says so (`theta_i_deg,phi_i_deg,theta_o_deg,
+//! phi_o_deg,...`); a radian column holding a polar angle above pi or an
+//! azimuth beyond +-2 pi (degrees, most likely) is an error naming the
+//! line, never read as radians. Written with the
 //! shortest representation that reads back to the same `f64`, so a
 //! write/read round trip is exact.
 
@@ -35,13 +39,16 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
         .map(str::to_string)
         .collect();
     let n = header.len();
-    if n < 6 || header[..4] != ["theta_i", "phi_i", "theta_o", "phi_o"] || header[n - 1] != "weight"
+    let degrees = n >= 4 && header[..4] == ["theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"];
+    if n < 6
+        || !(degrees || header[..4] == ["theta_i", "phi_i", "theta_o", "phi_o"])
+        || header[n - 1] != "weight"
     {
         return Err(IoError::Format {
             path: path.to_path_buf(),
             line: 1,
             reason: format!(
-                "header must be theta_i,phi_i,theta_o,phi_o,<channels...>,weight; found {}",
+                "header must be theta_i,phi_i,theta_o,phi_o,<channels...>,weight (radians) or theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,<channels...>,weight; found {}",
                 header.join(",")
             ),
         });
@@ -92,6 +99,12 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             line,
             reason: format!("{what}: {e}"),
         };
+        check_angles(path, line, &header, &v[..4], degrees)?;
+        if degrees {
+            for a in &mut v[..4] {
+                *a = a.to_radians();
+            }
+        }
         let l = Direction::from_spherical(v[0], v[1])
             .map_err(|e| bad("incident direction", e.to_string()))?;
         let o = Direction::from_spherical(v[2], v[3])
@@ -107,6 +120,53 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
         });
     }
     Ok(set)
+}
+
+/// Refuse angles outside their range in the header's unit: a polar angle
+/// outside `[0, pi]` (`[0, 180]` degrees), an azimuth beyond `+-2 pi`
+/// (`+-360` degrees). In a radian file such values are almost always
+/// degrees, which read as radians would put samples anywhere.
+fn check_angles(
+    path: &Path,
+    line: usize,
+    header: &[String],
+    a: &[f64],
+    degrees: bool,
+) -> Result<(), IoError> {
+    use std::f64::consts::{PI, TAU};
+    let (polar, azimuth, unit) = if degrees {
+        (180.0, 360.0, "degrees")
+    } else {
+        (PI, TAU, "radians")
+    };
+    for (k, x) in a.iter().enumerate() {
+        let limit = if k % 2 == 0 { polar } else { azimuth };
+        let ok = if k % 2 == 0 {
+            (0.0..=polar).contains(x)
+        } else {
+            x.abs() <= azimuth
+        };
+        if !ok {
+            let hint = if degrees {
+                String::new()
+            } else {
+                " (degrees? name the columns theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg)"
+                    .to_string()
+            };
+            return Err(IoError::Format {
+                path: path.to_path_buf(),
+                line,
+                reason: format!(
+                    "{} = {} is outside {}{} {unit}{hint}",
+                    header[k],
+                    crate::error::short(*x),
+                    if k % 2 == 0 { "0.." } else { "+-" },
+                    crate::error::short(limit),
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Write a sample set as CSV.

@@ -101,3 +101,20 @@ pub(crate) fn parse_fields(
         })
         .collect()
 }
+
+/// A number for a one-line message: at most 6 significant digits, in
+/// exponent form when large or small (`{}` of `1e300` prints 301 digits).
+pub fn short(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-3..1e6).contains(&a) {
+        let s = format!("{x:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if x.is_finite() {
+            s.to_string()
+        } else {
+            format!("{x}")
+        }
+    } else {
+        format!("{x:.5e}")
+    }
+}

@@ -33,8 +33,13 @@ pub struct NistDataset {
     pub rss: f64,
     /// Certified residual standard deviation.
     pub residual_sd: f64,
-    /// Degrees of freedom.
+    /// Degrees of freedom, always `observations - parameters` (the value
+    /// the certified residual standard deviation is computed with).
     pub dof: usize,
+    /// What the reader noticed and corrected (e.g. NIST's `Rat43.dat`
+    /// header says 9 degrees of freedom for 15 observations and 4
+    /// parameters; its certified residual standard deviation uses 11).
+    pub warnings: Vec<String>,
     /// Number of predictors per observation.
     pub n_predictors: usize,
     /// Predictors, row after row.
@@ -173,15 +178,28 @@ pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
             found: format!("{} data lines (truncated file?)", y.len()),
         });
     }
-    if dof + params.len() != nobs {
+    if nobs <= params.len() {
         return Err(fmt(
             0,
             format!(
-                "degrees of freedom {dof} + parameters {} != observations {nobs}",
+                "{nobs} observations for {} parameters: no degrees of freedom",
                 params.len()
             ),
         ));
     }
+    // The header's count is informative only: n - p is what the certified
+    // residual standard deviation uses (Rat43's header is off by two).
+    let mut warnings = Vec::new();
+    if dof + params.len() != nobs {
+        warnings.push(format!(
+            "{}: the header says {dof} degrees of freedom, but {nobs} observations and {} parameters give {}; using {}",
+            path.display(),
+            params.len(),
+            nobs - params.len(),
+            nobs - params.len()
+        ));
+    }
+    let dof = nobs - params.len();
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -199,6 +217,7 @@ pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
         rss,
         residual_sd,
         dof,
+        warnings,
         n_predictors: ncols - 1,
         x,
         y,

@@ -38,7 +38,7 @@
 //! inverse of step 2), which the tests use to check that evaluation at grid
 //! nodes reproduces the stored values.
 
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::{Path, PathBuf};
 
 use brdf_core::Brdf;
@@ -78,6 +78,27 @@ impl Field {
 pub struct TensorFile {
     /// Fields in file order.
     pub fields: Vec<(String, Field)>,
+}
+
+/// Type byte of `f32` fields.
+const DTYPE_F32: u8 = 10;
+
+/// The name of a tensor-file type byte (for messages).
+fn dtype_name(d: u8) -> &'static str {
+    match d {
+        1 => "u8",
+        2 => "i8",
+        3 => "u16",
+        4 => "i16",
+        5 => "u32",
+        6 => "i32",
+        7 => "u64",
+        8 => "i64",
+        9 => "f16",
+        10 => "f32",
+        11 => "f64",
+        _ => "unknown",
+    }
 }
 
 fn dtype_size(d: u8) -> Option<usize> {
@@ -441,6 +462,33 @@ pub struct Rgl {
     /// The file's `jacobian` flag (absent: set): whether the stored values
     /// still need the `ndf / (4 sigma)` factor.
     jacobian: bool,
+    /// The largest tabulated incident elevation below 90 deg (radians).
+    measured_theta_max: f64,
+}
+
+/// An RGL material restricted to its measured range, for resampling onto
+/// MERL's table: pairs whose incident or outgoing elevation exceeds the
+/// largest measured incidence ([`Rgl::measured_theta_max`]) get MERL's
+/// invalid marker `-1` instead of a value. Beyond it the files hold only
+/// the 90 deg node (not a measurement: a grazing incidence cannot be
+/// measured), and `f = stored / cos theta_v` amplifies it without bound
+/// near the horizon: `paper_white`, whose stored maximum is 8.5 1/sr,
+/// would give bins within a degree of the horizon of up to 1081 1/sr.
+/// By reciprocity the outgoing elevation has the same range.
+pub struct MeasuredRange<'a>(pub &'a Rgl);
+
+impl Brdf for MeasuredRange<'_> {
+    fn channels(&self) -> usize {
+        3
+    }
+    fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        let limit = self.0.measured_theta_max.cos();
+        if l.z < limit || v.z < limit {
+            out[..3].fill(-1.0);
+            return;
+        }
+        self.0.eval(l, v, out);
+    }
 }
 
 /// An outgoing direction `V` with a smaller cosine counts as on the
@@ -488,6 +536,15 @@ impl Rgl {
                     f.shape.len()
                 )));
             }
+            // The tables are f32 in every RGL file; any other type byte
+            // (even one `to_f64` could read, such as u8) is a damaged file.
+            if f.dtype != DTYPE_F32 {
+                return Err(bad(format!(
+                    "field `{name}` has type byte {} ({}), expected {DTYPE_F32} (f32)",
+                    f.dtype,
+                    dtype_name(f.dtype)
+                )));
+            }
             let v = f.to_f64().ok_or_else(|| {
                 bad(format!(
                     "field `{name}` has dtype {}, expected f32",
@@ -522,6 +579,16 @@ impl Rgl {
             .map(|f| String::from_utf8_lossy(&f.bytes).into_owned())
             .unwrap_or_default();
         let err = |what: &str| bad(format!("field `{what}`: degenerate table"));
+        let measured_theta_max = theta_i
+            .iter()
+            .copied()
+            .filter(|t| *t < FRAC_PI_2 - 1e-6)
+            .fold(f64::NAN, f64::max);
+        let measured_theta_max = if measured_theta_max.is_finite() {
+            measured_theta_max
+        } else {
+            FRAC_PI_2
+        };
         let isotropic = phi_i.len() <= 2;
         let jacobian = match tf.field("jacobian") {
             None => true,
@@ -554,7 +621,14 @@ impl Rgl {
             .ok_or_else(|| err("rgb"))?,
             isotropic,
             jacobian,
+            measured_theta_max,
         })
+    }
+
+    /// The largest tabulated incident elevation below 90 deg (radians):
+    /// the measured range (see [`MeasuredRange`]).
+    pub fn measured_theta_max(&self) -> f64 {
+        self.measured_theta_max
     }
 
     fn params(l: &Vector3<f64>) -> (f64, f64) {

@@ -105,3 +105,34 @@ fn real_files_match_the_index() {
         assert_eq!(d.rss, f[11].parse::<f64>().unwrap(), "{}", f[0]);
     }
 }
+
+/// NIST's own `Rat43.dat` (public domain, NIST ITL StRD; data from line 61,
+/// as published) says 9 degrees of freedom for 15 observations and 4
+/// parameters; its certified residual standard deviation
+/// `2.8262414662E+01 = sqrt(8.7864049080E+03 / 11)` uses n - p = 11. The
+/// reader accepts the file, uses n - p and says so.
+#[test]
+fn rat43_header_with_wrong_degrees_of_freedom_is_read_with_n_minus_p_and_a_warning() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/nist/Rat43.dat");
+    let d = brdf_io::nist::read(&path).unwrap();
+    assert_eq!(d.y.len(), 15);
+    assert_eq!(d.certified.len(), 4);
+    assert_eq!(d.dof, 11);
+    assert_eq!(d.starts[1], vec![700.0, 5.0, 0.75, 1.3]);
+    assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+    let w = &d.warnings[0];
+    assert!(
+        w.contains("Rat43.dat") && w.contains("9 degrees of freedom") && w.contains("using 11"),
+        "{w}"
+    );
+    // The certified residual standard deviation agrees with n - p, not 9.
+    let sd = (d.rss / d.dof as f64).sqrt();
+    assert!(
+        (sd / d.residual_sd - 1.0).abs() < 1e-9,
+        "{sd} vs {}",
+        d.residual_sd
+    );
+    // A consistent file gets no warning.
+    let line3 = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/nist/Line3.dat");
+    assert!(brdf_io::nist::read(&line3).unwrap().warnings.is_empty());
+}

@@ -129,7 +129,7 @@ where
             .into_iter()
             .find_map(|r| r.err())
             .unwrap_or(SolveError::Empty {
-                what: "successful starts",
+                what: "no start ends with a finite cost (the residual sum of squares of every start is NaN or overflows: data or weights beyond about 1e150?)",
             }));
     };
     let n_at_best = ssr

@@ -110,8 +110,17 @@ pub fn nnls(a: MatRef<'_, f64>, b: &[f64], max_iter: usize) -> Result<NnlsSoluti
         }
         iterations += 1;
         passive[t] = true;
-        loop {
+        // Each pass of the inner loop frees at least one variable, so it
+        // ends within n passes; a non-finite sub-solution (overflow) or a
+        // step that frees none would otherwise loop for ever.
+        for _ in 0..=n {
             let z = solve_passive(&passive)?;
+            if let Some(j) = (0..n).find(|&j| passive[j] && !z[j].is_finite()) {
+                return Err(SolveError::Factorisation {
+                    method: "NNLS",
+                    reason: format!("the sub-problem's coefficient {j} is not finite (overflow)"),
+                });
+            }
             if (0..n).filter(|&j| passive[j]).all(|j| z[j] > 0.0) {
                 x = z;
                 break;

@@ -23,6 +23,7 @@ pub mod render;
 pub mod report;
 pub mod sopp_tables;
 pub mod study;
+pub mod stability;
 pub mod synthetic;
 
 pub use error::StudyError;

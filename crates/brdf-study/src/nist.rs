@@ -148,6 +148,9 @@ pub fn run_dir(
     }
     let mut all = Vec::new();
     for ds in &sets {
+        for w in &ds.warnings {
+            eprintln!("warning: {w}");
+        }
         all.extend(run_dataset(ds, strategies)?);
     }
     Ok(all)

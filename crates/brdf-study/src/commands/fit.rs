@@ -150,5 +150,8 @@ fn print_report(rep: &FitReport) -> Result<(), StudyError> {
         r.ngan_l2,
         r.seconds * 1e3
     )?;
+    for note in &rep.notes {
+        say!("note: {note}")?;
+    }
     Ok(())
 }

@@ -29,6 +29,10 @@ struct Info {
     theta_o_deg: (f64, f64),
     phi_i_deg: (f64, f64),
     phi_o_deg: (f64, f64),
+    /// RGL: the largest measured incidence (degrees); resampled onto MERL,
+    /// bins beyond it are invalid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    measured_theta_max_deg: Option<f64>,
 }
 
 fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
@@ -68,6 +72,15 @@ pub fn run(args: &InfoArgs) -> Result<(), StudyError> {
         theta_o_deg: range(sph.iter().map(|a| a.1.0.to_degrees())),
         phi_i_deg: range(sph.iter().map(|a| a.0.1.to_degrees())),
         phi_o_deg: range(sph.iter().map(|a| a.1.1.to_degrees())),
+        measured_theta_max_deg: if format == crate::data::Format::Rgl {
+            Some(
+                brdf_io::rgl::Rgl::read(&path)?
+                    .measured_theta_max()
+                    .to_degrees(),
+            )
+        } else {
+            None
+        },
     };
     if args.json {
         say!("{}", serde_json::to_string_pretty(&info)?)?;
@@ -98,6 +111,11 @@ pub fn run(args: &InfoArgs) -> Result<(), StudyError> {
             info.phi_o_deg.0,
             info.phi_o_deg.1
         )?;
+        if let Some(t) = info.measured_theta_max_deg {
+            say!(
+                "  measured incidence up to {t:.2} deg (the 90 deg node is not a measurement): `brdf resample --to merl` marks bins beyond it invalid (-1); near the horizon f = stored / cos theta_o grows without bound"
+            )?;
+        }
         if format == crate::data::Format::Curet && !args.path.contains('#') {
             say!("  (CUReT holds 61 samples; shown: sample 1; name one as PATH#N)")?;
         }
