@@ -18,7 +18,8 @@ use brdf_fit::{Channels, Fit};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let usage = "fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--json]";
+    let usage =
+        "fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--json]";
     let data = args.next().ok_or(usage)?;
     let model = args.next().ok_or(usage)?;
     let (mut reps, mut grey, mut lobes) = (10usize, false, 1usize);

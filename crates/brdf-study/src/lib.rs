@@ -22,8 +22,8 @@ pub mod plots;
 pub mod render;
 pub mod report;
 pub mod sopp_tables;
-pub mod study;
 pub mod stability;
+pub mod study;
 pub mod synthetic;
 
 pub use error::StudyError;

@@ -61,7 +61,7 @@ pub fn synthetic(
     let p = brdf_core::params::assign_by_name(model, m.param_specs(), &assign)?;
     m.set_params(&p)?;
     let mut s = SampleSet::new(
-        format!("synthetic {model}"),
+        format!("generated {model}"),
         "brdf-study stability suite",
         vec!["y".into()],
     );
@@ -573,8 +573,7 @@ pub fn write_stability_report(out_dir: &Path) -> Result<(), StudyError> {
     cases.extend(input_cases(&scratch)?);
     let _ = std::fs::remove_dir_all(&scratch);
     table(&cases).write(out_dir, "stability")?;
-    if let Some(root) = std::env::var_os("BRDF_DATA") {
-        let dir = Path::new(&root).join("nist_strd");
+    if let Some(dir) = nist_dir() {
         let runs = crate::nist::run_dir(&dir, &crate::nist::strategies())?;
         let mut t = crate::nist::table(&runs, &dir);
         t.title = "Stability: NIST StRD from both certified starts".into();
@@ -583,6 +582,35 @@ pub fn write_stability_report(out_dir: &Path) -> Result<(), StudyError> {
             t.note
         );
         t.write(out_dir, "stability_nist")?;
+    }
+    Ok(())
+}
+
+/// `$BRDF_DATA/nist_strd` when it exists.
+fn nist_dir() -> Option<std::path::PathBuf> {
+    let root = std::env::var_os("BRDF_DATA")?;
+    Some(Path::new(&root).join("nist_strd")).filter(|d| d.is_dir())
+}
+
+/// The `stability` part of `brdf reproduce`: [`write_stability_report`]
+/// into the study's output folder, listed in its README.
+pub fn part(study: &mut crate::study::Study) -> Result<(), StudyError> {
+    write_stability_report(&study.out)?;
+    study.wrote_with(crate::study::Written {
+        file: "stability.{csv,md}".into(),
+        what: "Stability: every extreme and bad input case (fits of generated data, malformed files) with what happened".into(),
+        data: "generated in the run (deterministic)".into(),
+        metric: "ngan".into(),
+        limit: "80 deg (75 deg for the grazing cases)".into(),
+    });
+    if nist_dir().is_some() {
+        study.wrote_with(crate::study::Written {
+            file: "stability_nist.{csv,md}".into(),
+            what: "Stability: NIST StRD from both certified starts".into(),
+            data: "`nist_strd/*.dat`".into(),
+            metric: "LRE (digits agreeing with the certified values)".into(),
+            limit: "n/a".into(),
+        });
     }
     Ok(())
 }

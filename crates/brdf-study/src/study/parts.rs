@@ -15,24 +15,31 @@ pub struct Part {
     pub about: &'static str,
     /// Run once per metric x angle limit of the spec (the CUReT fits).
     pub per_variant: bool,
+    /// Files or folders under the data root it cannot run without (a part
+    /// whose data are absent is skipped and said to be).
+    pub needs: &'static [&'static str],
     /// The work.
     pub run: fn(&mut Study) -> Result<(), StudyError>,
 }
 
+/// CUReT's measurements and the table of their directions.
+const CURET: &[&str] = &["curet/abrdf.dat", "curet/table.txt"];
+
 /// Every part, in the order the study runs them (one line each).
 #[rustfmt::skip]
 pub const PARTS: &[Part] = &[
-    Part { name: "kurt_9_1", about: "Table 9.1: polynomial error against degree (cayman, quarry tile)", per_variant: true, run: crate::kurt::table_9_1::run },
-    Part { name: "kurt_9_2", about: "Table 9.2: nine models on five CUReT materials, fitted parameters", per_variant: true, run: crate::kurt::table_9_2::run },
-    Part { name: "kurt_9_4", about: "Figure 9.4: eight models on every CUReT material, polynomial wins (IRLS and OLS)", per_variant: true, run: crate::kurt::figure_9_4::run },
-    Part { name: "kurt_9_4_times", about: "Table 9.4: mean fit time per model; error against fit time with the Pareto front", per_variant: true, run: crate::kurt::table_9_4::run },
-    Part { name: "kurt_9_5", about: "Figure 9.5: Koenderink and polynomial on every CUReT material", per_variant: true, run: crate::kurt::figure_9_5::run },
-    Part { name: "lafortune_box", about: "Lafortune in Kurt's box against the wide box on every CUReT material", per_variant: true, run: crate::kurt::lafortune_box::run },
-    Part { name: "fig_9_1", about: "Figure 9.1: spheres of the polynomial at degrees 1..6 beside the measured material", per_variant: false, run: crate::figures::figure_9_1 },
-    Part { name: "fig_9_2", about: "Figure 9.2: spheres of the models fitted to the Table 9.2 materials", per_variant: true, run: crate::figures::figure_9_2 },
-    Part { name: "kurt_9_3", about: "Table 9.3 stand-in: dense materials, L2 and PSNR; Figures 9.3 and 9.6", per_variant: false, run: crate::dense_tables::write },
-    Part { name: "sopp", about: "Sopp's Appendix A.8/A.9 on the RGL materials, preview strips", per_variant: false, run: crate::sopp_tables::write },
-    Part { name: "nist", about: "NIST StRD certification of the solver", per_variant: false, run: crate::nist::part },
+    Part { name: "kurt_9_1", about: "Table 9.1: polynomial error against degree (cayman, quarry tile)", per_variant: true, needs: &["curet/abrdf.dat", "curet/table.txt", "cornell/cayman.brdf"], run: crate::kurt::table_9_1::run },
+    Part { name: "kurt_9_2", about: "Table 9.2: nine models on five CUReT materials, fitted parameters", per_variant: true, needs: CURET, run: crate::kurt::table_9_2::run },
+    Part { name: "kurt_9_4", about: "Figure 9.4: eight models on every CUReT material, polynomial wins (IRLS and OLS)", per_variant: true, needs: CURET, run: crate::kurt::figure_9_4::run },
+    Part { name: "kurt_9_4_times", about: "Table 9.4: mean fit time per model; error against fit time with the Pareto front", per_variant: true, needs: CURET, run: crate::kurt::table_9_4::run },
+    Part { name: "kurt_9_5", about: "Figure 9.5: Koenderink and polynomial on every CUReT material", per_variant: true, needs: CURET, run: crate::kurt::figure_9_5::run },
+    Part { name: "lafortune_box", about: "Lafortune in Kurt's box against the wide box on every CUReT material", per_variant: true, needs: CURET, run: crate::kurt::lafortune_box::run },
+    Part { name: "fig_9_1", about: "Figure 9.1: spheres of the polynomial at degrees 1..6 beside the measured material", per_variant: false, needs: &["rgl"], run: crate::figures::figure_9_1 },
+    Part { name: "fig_9_2", about: "Figure 9.2: spheres of the models fitted to the Table 9.2 materials", per_variant: true, needs: CURET, run: crate::figures::figure_9_2 },
+    Part { name: "kurt_9_3", about: "Table 9.3 stand-in: dense materials, L2 and PSNR; Figures 9.3 and 9.6", per_variant: false, needs: &["rgl"], run: crate::dense_tables::write },
+    Part { name: "sopp", about: "Sopp's Appendix A.8/A.9 on the RGL materials, preview strips", per_variant: false, needs: &["rgl"], run: crate::sopp_tables::write },
+    Part { name: "nist", about: "NIST StRD certification of the solver", per_variant: false, needs: &["nist_strd"], run: crate::nist::part },
+    Part { name: "stability", about: "Stability: extreme and bad inputs, NIST from both starts", per_variant: false, needs: &[], run: crate::stability::part },
 ];
 
 /// The part named `name`.
@@ -51,7 +58,14 @@ pub fn run_all(study: &mut Study) -> Result<(), StudyError> {
     let metrics = study.spec.metrics.clone();
     let limits = study.spec.limits.clone();
     let selected: Vec<&Part> = PARTS.iter().filter(|p| study.spec.runs(p.name)).collect();
-    for part in selected {
+    let mut ran = 0;
+    for part in &selected {
+        if let Some(why) = missing_data(study, part) {
+            eprintln!("brdf reproduce: {} skipped: {why}", part.name);
+            study.skipped.push((part.name.into(), why));
+            continue;
+        }
+        ran += 1;
         let variants: Vec<(String, f64)> = if part.per_variant {
             metrics
                 .iter()
@@ -66,5 +80,27 @@ pub fn run_all(study: &mut Study) -> Result<(), StudyError> {
             (part.run)(study)?;
         }
     }
+    if ran == 0 && !selected.is_empty() {
+        let root = study
+            .data
+            .as_ref()
+            .map_or("the data folder".into(), |d| d.display().to_string());
+        return Err(StudyError::Usage(format!(
+            "nothing to reproduce: {root} holds none of the data the selected parts need (curet/, cornell/, rgl/, nist_strd/; see README, Measured data)"
+        )));
+    }
     Ok(())
+}
+
+/// Why `part` cannot run on the study's data (`None` when it can, and
+/// always for the built-in demonstration, which brings its own data).
+fn missing_data(study: &Study, part: &Part) -> Option<String> {
+    study.data.as_ref()?;
+    let missing: Vec<String> = part
+        .needs
+        .iter()
+        .filter(|rel| study.data_dir(rel).is_none())
+        .map(|rel| format!("$BRDF_DATA/{rel}"))
+        .collect();
+    (!missing.is_empty()).then(|| format!("needs {}", missing.join(" and ")))
 }
