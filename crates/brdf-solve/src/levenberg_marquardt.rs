@@ -4,11 +4,15 @@
 //!
 //! Each iteration solves the damped Gauss-Newton problem
 //! `min_d ||J d + r||^2 + lambda ||D d||^2`, i.e.
-//! `(J^T J + lambda D^2) d = -J^T r`, never by forming `J^T J`: the stacked
-//! system `[J; sqrt(lambda) D] d = [-r; 0]` is solved by Householder QR
-//! (faer). `[J | r]` is factored once per Jacobian ([`crate::tall_qr`]), so
-//! each trial damping solves only the `2n x n` system `[R; sqrt(lambda) D]
-//! d = [-Q^T r; 0]`, whatever the number of residuals. With constraints the same stacked problem is solved as a
+//! `(J^T J + lambda D^2) d = -J^T r`, as the stacked system
+//! `[R; sqrt(lambda) D] d = [-Q^T r; 0]` by Householder QR (faer), where
+//! `R` and `Q^T r` are the triangle of `[J | r]`, reduced once per Jacobian
+//! ([`crate::tall_qr`]): from the normal equations when their guard shows
+//! them accurate (one streaming pass, no copy of `J`; the gradient `J^T r`
+//! is formed directly, so the fixed point does not depend on the path),
+//! by Householder QR otherwise. Each trial damping then costs a `2n x n`
+//! solve, whatever the number of residuals. With constraints the same
+//! stacked problem is solved as a
 //! least-squares problem with linear inequalities ([`crate::lsi`](fn@crate::lsi)) so every
 //! iterate stays feasible.
 //!
