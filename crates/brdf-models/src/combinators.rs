@@ -418,17 +418,49 @@ impl<S: Lobe> Parametric for MultiLobe<S> {
     }
 }
 
+/// Index of `x_{c,t}` in the parameter vector of a Lambert term plus `K`
+/// lobes laid out as `kd` per channel, then per lobe a block of `block`
+/// entries starting with its strengths per channel (`MultiLobe`,
+/// `Lafortune`).
+pub(crate) fn lobes_coefficient_index(
+    channels: usize,
+    block: usize,
+    channel: usize,
+    t: usize,
+) -> usize {
+    if t == 0 {
+        channel
+    } else {
+        channels + (t - 1) * block + channel
+    }
+}
+
+/// The Lambert column `phi_0` (`1/pi` on valid pairs) of a basis
+/// `[1/pi, S_1, .., S_K]`, and every derivative zeroed (`Q` non-linear
+/// parameters in all; each lobe then writes its own block).
+pub(crate) fn start_lobes_basis(
+    geom: &PairGeometry,
+    lobes: usize,
+    q: usize,
+    phi: &mut [f64],
+    dphi: Option<&mut [f64]>,
+) {
+    let n = geom.len();
+    for j in 0..n {
+        phi[j] = if geom.valid[j] { FRAC_1_PI } else { 0.0 };
+    }
+    if let Some(d) = dphi {
+        d[..(1 + lobes) * q * n].fill(0.0);
+    }
+}
+
 /// Basis `[1/pi, S_1, ..., S_K]`: `x_{c,0} = kd_c`, `x_{c,k} = ks{k}_c`.
 impl<S: Lobe> SharedBasis for MultiLobe<S> {
     fn basis_len(&self) -> usize {
         1 + self.lobes
     }
     fn coefficient_index(&self, channel: usize, t: usize) -> usize {
-        if t == 0 {
-            channel
-        } else {
-            self.channels + (t - 1) * self.block() + channel
-        }
+        lobes_coefficient_index(self.channels, self.block(), channel, t)
     }
     fn basis_batch(
         &self,
@@ -441,12 +473,7 @@ impl<S: Lobe> SharedBasis for MultiLobe<S> {
         let (n, nc, b) = (pairs.len(), self.channels, self.block());
         let nq = b - nc;
         let big_q = nq * self.lobes;
-        for j in 0..n {
-            phi[j] = if geom.valid[j] { FRAC_1_PI } else { 0.0 };
-        }
-        if let Some(d) = dphi.as_deref_mut() {
-            d[..(1 + self.lobes) * big_q * n].fill(0.0);
-        }
+        start_lobes_basis(geom, self.lobes, big_q, phi, dphi.as_deref_mut());
         for k in 0..self.lobes {
             let q = &p[nc + k * b + nc..nc + (k + 1) * b];
             let s = &mut phi[(k + 1) * n..(k + 2) * n];

@@ -48,7 +48,7 @@ use brdf_core::{
 };
 use nalgebra::Vector3;
 
-use crate::combinators::pow_clamped;
+use crate::combinators::{lobes_coefficient_index, pow_clamped, start_lobes_basis};
 
 /// Lafortune's model with `K` lobes (isotropic or anisotropic).
 #[derive(Clone, Debug, PartialEq)]
@@ -215,11 +215,7 @@ impl SharedBasis for Lafortune {
     }
 
     fn coefficient_index(&self, channel: usize, t: usize) -> usize {
-        if t == 0 {
-            channel
-        } else {
-            self.channels + (t - 1) * self.per_lobe() + channel
-        }
+        lobes_coefficient_index(self.channels, self.per_lobe(), channel, t)
     }
 
     fn basis_batch(
@@ -235,12 +231,7 @@ impl SharedBasis for Lafortune {
         // Non-linear parameters per lobe (axes and exponent), in order.
         let nql = na + 1;
         let big_q = nql * self.lobes;
-        for j in 0..n {
-            phi[j] = if geom.valid[j] { FRAC_1_PI } else { 0.0 };
-        }
-        if let Some(d) = dphi.as_deref_mut() {
-            d[..(1 + self.lobes) * big_q * n].fill(0.0);
-        }
+        start_lobes_basis(geom, self.lobes, big_q, phi, dphi.as_deref_mut());
         for k in 0..self.lobes {
             let base = nc + k * self.per_lobe() + nc;
             let (cs, e) = (&p[base..base + na], p[base + na]);
