@@ -270,6 +270,14 @@ def irls_section(d):
         + (f"; at the cap: {', '.join(m04_misses)}." if m04_misses else "."),
         "",
     ]
+    prof = d / "profile.txt"
+    if prof.exists():
+        entries = perf_entries(prof.read_text())
+        out += ["Where the time goes on the 900,000 x 10 design: `perf record -F 199` of `irls_peer --curet none "
+                "--min-seconds 0` (both conventions, 3 fits each, the design build and export included), "
+                "self time per symbol:", "", "| kind | share |", "| --- | ---: |"]
+        out += [f"| {kind} | {share:.1f}% |" for kind, share in buckets(entries)]
+        out += ["", "```text"] + [f"{pct:6.2f}%  {sym}" for pct, sym in entries[:15]] + ["```", ""]
     return out
 
 

@@ -85,6 +85,15 @@ rm -rf "$out/irls"
 cargo build --release -p brdf-benches --bin irls_peer
 "$target/release/irls_peer" --out "$out/irls"
 "$py" benches/peers/irls_statsmodels.py "$out/irls/designs" >"$out/irls/statsmodels.jsonl"
+# Where the IRLS time goes on the tall design (perf, when usable).
+if perf record -q -o "$out/irls/perf.data" -- true >/dev/null 2>&1; then
+	echo 'perf record -F 199 -- irls_peer --curet none --min-seconds 0 --out $PEERS_OUT/irls/profile' >>"$out/commands.txt"
+	perf record -q -F 199 -o "$out/irls/perf.data" -- "$target/release/irls_peer" --curet none \
+		--min-seconds 0 --out "$out/irls/profile" >/dev/null 2>&1
+	perf report -i "$out/irls/perf.data" --stdio --no-children --sort symbol \
+		2>/dev/null | grep -v '^#' | grep -v '^$' >"$out/irls/profile.txt"
+	rm -rf "$out/irls/profile" "$out/irls/perf.data"
+fi
 
 if [ "$only" = all ]; then
 	# Where the time goes: a flat profile (self time per function) of the two
