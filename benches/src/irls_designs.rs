@@ -150,3 +150,46 @@ pub fn export(designs: &[&Design], dir: &Path) -> Result<(), PeerError> {
     let path = dir.join("manifest.json");
     std::fs::write(&path, format!("{manifest:#}\n")).map_err(io(&path))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The export reads back as written: row-major, the response last, and
+    /// a manifest naming rows, columns and file.
+    #[test]
+    fn export_round_trip() {
+        let d = synthetic(7, 3);
+        let dir = std::env::temp_dir().join(format!("irls-designs-test-{}", std::process::id()));
+        export(&[&d], &dir).expect("export");
+        let bytes = std::fs::read(dir.join("synthetic-7x3.f64")).expect("design file");
+        assert_eq!(bytes.len(), 7 * 4 * 8);
+        let v: Vec<f64> = bytes
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect();
+        for i in 0..7 {
+            for j in 0..3 {
+                assert_eq!(v[i * 4 + j], d.x[(i, j)]);
+            }
+            assert_eq!(v[i * 4 + 3], d.y[i]);
+        }
+        let m: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join("manifest.json")).expect("manifest"),
+        )
+        .expect("manifest JSON");
+        let e = &m["designs"][0];
+        assert_eq!(e["name"], "synthetic-7x3");
+        assert_eq!((e["rows"].as_u64(), e["cols"].as_u64()), (Some(7), Some(3)));
+        assert_eq!(e["file"], "synthetic-7x3.f64");
+        std::fs::remove_dir_all(&dir).expect("clean up");
+    }
+
+    /// The synthetic design is the same in every run and has its intercept.
+    #[test]
+    fn synthetic_is_deterministic() {
+        let (a, b) = (synthetic(50, 4), synthetic(50, 4));
+        assert_eq!(a.y, b.y);
+        assert!((0..50).all(|i| a.x[(i, 0)] == 1.0 && a.x[(i, 1)].abs() <= 1.0));
+    }
+}
