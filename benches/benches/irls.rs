@@ -17,45 +17,9 @@
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 
-use brdf_core::SampleSet;
-use brdf_models::{ModelConfig, build_for};
+use brdf_benches::irls_designs::{self, Design, synthetic};
 use brdf_solve::{IrlsOptions, irls};
 use criterion::{Criterion, criterion_group};
-use faer::Mat;
-
-/// A named design `X` and response `y`.
-struct Design {
-    name: String,
-    x: Mat<f64>,
-    y: Vec<f64>,
-}
-
-/// Kurt's degree-7 polynomial design of one grey CUReT sample set, built as
-/// `brdf-study`'s `fit_all_linear` builds it (columns that are zero on every
-/// row dropped).
-fn polynomial_design(set: &SampleSet) -> Design {
-    let config = ModelConfig {
-        channels: 1,
-        degree: 7,
-        ..ModelConfig::default()
-    };
-    let model = build_for("polynomial", &config, set.pairs()).expect("polynomial model");
-    let (n, np) = (set.len(), model.n_params());
-    let zero = vec![0.0; np];
-    let mut offset = vec![0.0; n];
-    let mut jac = vec![0.0; n * np];
-    model.eval_grad_batch_at(&zero, set.pairs(), &mut offset, &mut jac);
-    let cols: Vec<usize> = (0..np)
-        .filter(|&k| (0..n).any(|j| jac[j * np + k] != 0.0))
-        .collect();
-    let (w, lz, v) = (set.weights(), &set.pairs().lz, set.channel(0));
-    let s: Vec<f64> = (0..n).map(|j| w[j].sqrt() * lz[j]).collect();
-    Design {
-        name: set.name.split(' ').next().unwrap_or("curet").to_string(),
-        x: Mat::from_fn(n, cols.len(), |j, k| s[j] * jac[j * np + cols[k]]),
-        y: (0..n).map(|j| s[j] * (v[j] - offset[j])).collect(),
-    }
-}
 
 /// The design of every isotropic CUReT material (Kurt's 52), or nothing when `BRDF_DATA` is unset.
 fn curet_designs() -> Vec<Design> {
@@ -63,101 +27,14 @@ fn curet_designs() -> Vec<Design> {
         eprintln!("BRDF_DATA unset: CUReT IRLS benches skipped");
         return Vec::new();
     };
-    let dir = Path::new(&root).join("curet");
-    let sets = brdf_io::curet::read_grey(&dir.join("abrdf.dat"), &dir.join("table.txt"))
-        .expect("CUReT abrdf.dat and table.txt under BRDF_DATA");
-    sets.iter()
-        .filter(|s| {
-            let n = s
-                .name
-                .split(' ')
-                .next()
-                .and_then(|t| t.strip_prefix("curet#"));
-            n.and_then(|n| n.parse().ok())
-                .is_some_and(brdf_io::curet::is_isotropic)
-        })
-        .map(|s| {
-            let (s, _) = s.filter_invalid(false);
-            let (s, _) = s.filter_angle_limit(80f64.to_radians());
-            polynomial_design(&s)
-        })
-        .collect()
-}
-
-/// SplitMix64: a fixed-seed generator (uniform in [0, 1)).
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-/// `m x p` design (intercept and uniform features), `y = X beta + noise`
-/// with 5% of the rows shifted by a gross error.
-fn synthetic(m: usize, p: usize) -> Design {
-    let mut g = SplitMix(20261201);
-    let x = Mat::from_fn(m, p, |_, j| if j == 0 { 1.0 } else { 0.0 });
-    let mut x = x;
-    let mut y = vec![0.0; m];
-    for i in 0..m {
-        let mut fit = 0.0;
-        for j in 1..p {
-            x[(i, j)] = 2.0 * g.next() - 1.0;
-            fit += x[(i, j)] / j as f64;
-        }
-        let noise = 0.1 * (g.next() + g.next() + g.next() - 1.5);
-        let outlier = if g.next() < 0.05 {
-            20.0 * (g.next() - 0.3)
-        } else {
-            0.0
-        };
-        y[i] = 1.0 + fit + noise + outlier;
-    }
-    Design {
-        name: format!("synthetic-{m}x{p}"),
-        x,
-        y,
-    }
+    irls_designs::curet_designs(Path::new(&root), None)
+        .expect("CUReT abrdf.dat and table.txt under BRDF_DATA")
 }
 
 fn export_dir() -> PathBuf {
     std::env::var_os("BRDF_IRLS_EXPORT")
         .map(PathBuf::from)
         .unwrap_or_else(|| Path::new(env!("CARGO_TARGET_TMPDIR")).join("irls-designs"))
-}
-
-/// Write the designs for the statsmodels peer script.
-fn export(designs: &[&Design], dir: &Path) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
-    let mut entries = Vec::new();
-    for d in designs {
-        let (m, p) = (d.x.nrows(), d.x.ncols());
-        let mut bytes = Vec::with_capacity(m * (p + 1) * 8);
-        for i in 0..m {
-            for j in 0..p {
-                bytes.extend_from_slice(&d.x[(i, j)].to_le_bytes());
-            }
-            bytes.extend_from_slice(&d.y[i].to_le_bytes());
-        }
-        let file = format!("{}.f64", d.name.replace('#', "-"));
-        std::fs::write(dir.join(&file), bytes)?;
-        entries.push(format!(
-            "{{\"name\": \"{}\", \"rows\": {m}, \"cols\": {p}, \"file\": \"{file}\"}}",
-            d.name
-        ));
-    }
-    std::fs::write(
-        dir.join("manifest.json"),
-        format!(
-            "{{\"layout\": \"row-major f64 LE, response last\", \"designs\": [\n{}\n]}}\n",
-            entries.join(",\n")
-        ),
-    )
 }
 
 /// JSON of selected CUReT designs for brdf-solve's tests.
@@ -222,7 +99,7 @@ fn benches(c: &mut Criterion) {
     let dir = export_dir();
     let mut all: Vec<&Design> = curet.iter().collect();
     all.push(&big);
-    export(&all, &dir).expect("export of the IRLS designs");
+    irls_designs::export(&all, &dir).expect("export of the IRLS designs");
     eprintln!("IRLS designs written to {}", dir.display());
     if let Some(f) = std::env::var_os("BRDF_IRLS_FIXTURE") {
         write_fixture(&curet, Path::new(&f)).expect("fixture");

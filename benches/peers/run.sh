@@ -11,9 +11,15 @@
 # 3. peers.py: checks the NumPy model against Rust's, fits with SciPy
 #    (trf in the box, lm unbounded) and evaluates the one shared cost at
 #    every solver's result;
-# 4. statsmodels IRLS timing (benches/peers/irls_*.py), if present;
+# 4. IRLS side by side: irls_peer (release) writes the IRLS designs to
+#    $PEERS_OUT/irls/designs and times brdf_solve::irls on them
+#    ($PEERS_OUT/irls/rust.jsonl); irls_statsmodels.py times statsmodels
+#    RLM on the same files ($PEERS_OUT/irls/statsmodels.jsonl);
 # 5. profiles of the full-grid grey fit (perf, else callgrind on CUReT);
 # 6. report.py writes results/performance.md.
+#
+# PEERS_ONLY=irls runs step 4 alone (no fit peers, no profiles) and the
+# report then holds the IRLS section only.
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -35,75 +41,99 @@ if [ "$threads" != default ]; then
 	export RAYON_NUM_THREADS="$threads" OPENBLAS_NUM_THREADS="$threads" OMP_NUM_THREADS="$threads" MKL_NUM_THREADS="$threads"
 fi
 out="${PEERS_OUT:-$target/peers}"
+only="${PEERS_ONLY:-all}"
+case "$only" in
+all | irls) ;;
+*)
+	echo "run.sh: PEERS_ONLY must be all or irls, not $only" >&2
+	exit 1
+	;;
+esac
 mkdir -p "$out"
+echo "$only" >"$out/only.txt"
 cd "$repo"
 
 if [ ! -x "$venv/bin/python" ]; then
 	python3 -m venv "$venv"
 fi
-"$venv/bin/pip" install -q -r benches/peers/requirements.txt
+"$venv/bin/pip" install -q -r benches/peers/requirements.txt -r benches/peers/irls_requirements.txt
 py="$venv/bin/python"
 
-{
-	echo 'cargo build --release -p brdf-benches --bin peer_fits'
-	echo 'peer_fits --out $PEERS_OUT'
-	echo 'python benches/peers/peers.py $PEERS_OUT'
-} >"$out/commands.txt"
-
+: >"$out/commands.txt"
 uptime >"$out/load_before.txt"
 echo "$threads" >"$out/threads.txt"
-cargo build --release -p brdf-benches --bin peer_fits
-bin="$target/release/peer_fits"
-"$bin" --out "$out" | tee "$out/rust.log"
-"$py" benches/peers/peers.py "$out" | tee "$out/python.log"
-
-# statsmodels IRLS timing, written by another part of issue 16.
-rm -f "$out/irls.log"
-for s in benches/peers/irls_*.py; do
-	[ -f "$s" ] || continue
-	echo "python $s" >>"$out/commands.txt"
-	if ! "$py" "$s" >>"$out/irls.log" 2>&1; then
-		echo "($s failed; its output is above)" >>"$out/irls.log"
-	fi
-done
-
-# Where the time goes: a flat profile (self time per function) of the two
-# Rust paths on the full-grid grey problem.
-rm -f "$out"/profile_*.txt
-profile_cmd=(--out "$out" --only paper_white_grey_as --no-export)
-if perf record -q -o "$out/perf.data" -- true >/dev/null 2>&1; then
-	for s in bounded varpro; do
-		echo "perf record -F 499 -- peer_fits --only paper_white_grey_as --no-export --solvers $s" >>"$out/commands.txt"
-		perf record -q -F 499 -o "$out/perf_$s.data" -- "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null 2>&1
-		perf report -i "$out/perf_$s.data" --stdio --no-children --sort symbol \
-			2>/dev/null | grep -v '^#' | grep -v '^$' >"$out/profile_$s.txt"
-		/usr/bin/time -f "%e s elapsed, %U s user, %S s system, %F major + %R minor page faults, %M KiB max RSS" \
-			-o "$out/time_$s.txt" "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null
-	done
-	echo perf >"$out/profiler.txt"
-else
-	for s in bounded varpro; do
-		echo "valgrind --tool=callgrind -- peer_fits --only curet25_as --no-export --solvers $s" >>"$out/commands.txt"
-		valgrind --tool=callgrind --callgrind-out-file="$out/callgrind_$s.out" \
-			"$bin" --out "$out" --only curet25_as --no-export --solvers "$s" >/dev/null 2>&1
-		callgrind_annotate "$out/callgrind_$s.out" 2>/dev/null | head -40 >"$out/profile_$s.txt"
-	done
-	echo callgrind >"$out/profiler.txt"
+if [ "$only" = all ]; then
+	{
+		echo 'cargo build --release -p brdf-benches --bin peer_fits'
+		echo 'peer_fits --out $PEERS_OUT'
+		echo 'python benches/peers/peers.py $PEERS_OUT'
+	} >>"$out/commands.txt"
+	cargo build --release -p brdf-benches --bin peer_fits
+	bin="$target/release/peer_fits"
+	"$bin" --out "$out" | tee "$out/rust.log"
+	"$py" benches/peers/peers.py "$out" | tee "$out/python.log"
 fi
-# Optional: the full-grid grey bounded fit with the libraries' default
-# thread counts, against the same fit on one thread (minutes on a busy
-# machine).
-rm -f "$out/thread_check.txt"
-if [ "${PEERS_THREAD_CHECK:-0}" = 1 ]; then
-	echo "peer_fits --only paper_white_grey_as --no-export --solvers bounded   # RAYON_NUM_THREADS=1, then unset" >>"$out/commands.txt"
-	for t in 1 default; do
-		if [ "$t" = 1 ]; then
-			line=$(RAYON_NUM_THREADS=1 "$bin" --out "$out" --only paper_white_grey_as --no-export --solvers bounded | tail -1)
-		else
-			line=$(env -u RAYON_NUM_THREADS "$bin" --out "$out" --only paper_white_grey_as --no-export --solvers bounded | tail -1)
-		fi
-		echo "rayon threads $t: $line" >>"$out/thread_check.txt"
-	done
+
+# IRLS side by side: the Rust side writes the designs and times itself, then
+# statsmodels reads the same files.
+{
+	echo 'cargo build --release -p brdf-benches --bin irls_peer'
+	echo 'irls_peer --out $PEERS_OUT/irls'
+	echo 'python benches/peers/irls_statsmodels.py $PEERS_OUT/irls/designs > $PEERS_OUT/irls/statsmodels.jsonl'
+} >>"$out/commands.txt"
+rm -rf "$out/irls"
+cargo build --release -p brdf-benches --bin irls_peer
+"$target/release/irls_peer" --out "$out/irls"
+"$py" benches/peers/irls_statsmodels.py "$out/irls/designs" >"$out/irls/statsmodels.jsonl"
+# Where the IRLS time goes on the tall design (perf, when usable).
+if perf record -q -o "$out/irls/perf.data" -- true >/dev/null 2>&1; then
+	echo 'perf record -F 199 -- irls_peer --curet none --min-seconds 0 --out $PEERS_OUT/irls/profile' >>"$out/commands.txt"
+	perf record -q -F 199 -o "$out/irls/perf.data" -- "$target/release/irls_peer" --curet none \
+		--min-seconds 0 --out "$out/irls/profile" >/dev/null 2>&1
+	perf report -i "$out/irls/perf.data" --stdio --no-children --sort symbol \
+		2>/dev/null | grep -v '^#' | grep -v '^$' >"$out/irls/profile.txt"
+	rm -rf "$out/irls/profile" "$out/irls/perf.data"
+fi
+
+if [ "$only" = all ]; then
+	# Where the time goes: a flat profile (self time per function) of the two
+	# Rust paths on the full-grid grey problem.
+	rm -f "$out"/profile_*.txt
+	profile_cmd=(--out "$out" --only paper_white_grey_as --no-export)
+	if perf record -q -o "$out/perf.data" -- true >/dev/null 2>&1; then
+		for s in bounded varpro; do
+			echo "perf record -F 499 -- peer_fits --only paper_white_grey_as --no-export --solvers $s" >>"$out/commands.txt"
+			perf record -q -F 499 -o "$out/perf_$s.data" -- "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null 2>&1
+			perf report -i "$out/perf_$s.data" --stdio --no-children --sort symbol \
+				2>/dev/null | grep -v '^#' | grep -v '^$' >"$out/profile_$s.txt"
+			/usr/bin/time -f "%e s elapsed, %U s user, %S s system, %F major + %R minor page faults, %M KiB max RSS" \
+				-o "$out/time_$s.txt" "$bin" "${profile_cmd[@]}" --solvers "$s" >/dev/null
+		done
+		echo perf >"$out/profiler.txt"
+	else
+		for s in bounded varpro; do
+			echo "valgrind --tool=callgrind -- peer_fits --only curet25_as --no-export --solvers $s" >>"$out/commands.txt"
+			valgrind --tool=callgrind --callgrind-out-file="$out/callgrind_$s.out" \
+				"$bin" --out "$out" --only curet25_as --no-export --solvers "$s" >/dev/null 2>&1
+			callgrind_annotate "$out/callgrind_$s.out" 2>/dev/null | head -40 >"$out/profile_$s.txt"
+		done
+		echo callgrind >"$out/profiler.txt"
+	fi
+	# Optional: the full-grid grey bounded fit with the libraries' default
+	# thread counts, against the same fit on one thread (minutes on a busy
+	# machine).
+	rm -f "$out/thread_check.txt"
+	if [ "${PEERS_THREAD_CHECK:-0}" = 1 ]; then
+		echo "peer_fits --only paper_white_grey_as --no-export --solvers bounded   # RAYON_NUM_THREADS=1, then unset" >>"$out/commands.txt"
+		for t in 1 default; do
+			if [ "$t" = 1 ]; then
+				line=$(RAYON_NUM_THREADS=1 "$bin" --out "$out" --only paper_white_grey_as --no-export --solvers bounded | tail -1)
+			else
+				line=$(env -u RAYON_NUM_THREADS "$bin" --out "$out" --only paper_white_grey_as --no-export --solvers bounded | tail -1)
+			fi
+			echo "rayon threads $t: $line" >>"$out/thread_check.txt"
+		done
+	fi
 fi
 uptime >"$out/load_after.txt"
 

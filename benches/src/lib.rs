@@ -1,5 +1,6 @@
 //! Benchmark crate: shared fixed-seed inputs for the criterion benches in
-//! `benches/`. Nothing here is published.
+//! `benches/`, the IRLS designs ([`irls_designs`]) and the peer comparison
+//! ([`peers`]). Nothing here is published.
 
 use brdf_core::{DirPairs, spherical_to_cartesian};
 
@@ -22,4 +23,5 @@ pub fn fixed_pairs(n: usize) -> DirPairs {
     p
 }
 
+pub mod irls_designs;
 pub mod peers;
