@@ -109,11 +109,28 @@ const GRAM_MIN_PIVOT2: f64 = 1e-6;
 /// (a zero or non-finite column, a failed or ill-conditioned Cholesky
 /// factorisation: see the module doc), so the caller uses QR instead.
 pub fn gram_triangle(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Option<(Mat<f64>, Mat<f64>)> {
+    gram_triangle_weighted(a, b, None)
+}
+
+/// [`gram_triangle`] of the row-weighted `W^(1/2) A` and `W^(1/2) B`
+/// (`weights` `w_i >= 0`, one per row), without forming them: the weighted
+/// least-squares step of IRLS. `None` also for a negative or non-finite
+/// weight (the caller's QR path reports it).
+pub fn gram_triangle_weighted(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    weights: Option<&[f64]>,
+) -> Option<(Mat<f64>, Mat<f64>)> {
     let k = a.ncols();
     if k == 0 || a.nrows() < k || b.nrows() != a.nrows() {
         return None;
     }
-    let (g, h) = gram(a, b);
+    if let Some(w) = weights
+        && (w.len() != a.nrows() || w.iter().any(|v| !(v.is_finite() && *v >= 0.0)))
+    {
+        return None;
+    }
+    let (g, h) = gram(a, b, weights);
     let d: Vec<f64> = (0..k).map(|i| g[(i, i)].sqrt()).collect();
     if d.iter().any(|v| !(v.is_finite() && *v > 0.0)) || !h.as_ref().is_all_finite() {
         return None;
@@ -133,27 +150,33 @@ pub fn gram_triangle(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> Option<(Mat<f64>
     qtb.as_ref().is_all_finite().then_some((r, qtb))
 }
 
-/// `A^T A` and `A^T B`, summed over row blocks in block order (in parallel
-/// with rayon for tall matrices).
-fn gram(a: MatRef<'_, f64>, b: MatRef<'_, f64>) -> (Mat<f64>, Mat<f64>) {
+/// `A^T W A` and `A^T W B` (`W = I` without weights), summed over row
+/// blocks in block order (in parallel with rayon for tall matrices).
+fn gram(a: MatRef<'_, f64>, b: MatRef<'_, f64>, w: Option<&[f64]>) -> (Mat<f64>, Mat<f64>) {
     let (m, k, c) = (a.nrows(), a.ncols(), b.ncols());
     let block = |start: usize| {
         let rows = BLOCK_ROWS.min(m - start);
         let (ab, bb) = (a.subrows(start, rows), b.subrows(start, rows));
         let mut g = Mat::<f64>::zeros(k, k);
         let mut h = Mat::<f64>::zeros(k, c);
+        // W A of the block (one block-sized copy) when weighted.
+        let wa = w.map(|w| {
+            let wb = &w[start..start + rows];
+            Mat::from_fn(rows, k, |i, j| wb[i] * ab[(i, j)])
+        });
+        let wa = wa.as_ref().map_or(ab, |x| x.as_ref());
         matmul(
             g.as_mut(),
             Accum::Replace,
             ab.transpose(),
-            ab,
+            wa,
             1.0,
             Par::Seq,
         );
         matmul(
             h.as_mut(),
             Accum::Replace,
-            ab.transpose(),
+            wa.transpose(),
             bb,
             1.0,
             Par::Seq,
