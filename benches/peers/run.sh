@@ -96,6 +96,21 @@ if perf record -q -o "$out/irls/perf.data" -- true >/dev/null 2>&1; then
 fi
 
 if [ "$only" = all ]; then
+	# The automatic fits as `brdf fit` runs them (12 starts, projection,
+	# polish): every Kurt model on CUReT sample 25, and RGB fits of an RGL
+	# material, timed by fit_loop (wall and processor time per fit).
+	echo 'cargo build --release -p brdf-benches --bin fit_loop' >>"$out/commands.txt"
+	cargo build --release -p brdf-benches --bin fit_loop
+	rm -f "$out/fit_loop.jsonl"
+	for m in phong blinn-phong ward ward-duer lafortune ashikhmin-shirley cook-torrance; do
+		echo "fit_loop \$BRDF_DATA/curet/abrdf.dat#25 $m --reps 30 --json" >>"$out/commands.txt"
+		"$target/release/fit_loop" "$BRDF_DATA/curet/abrdf.dat#25" "$m" --reps 30 --json >>"$out/fit_loop.jsonl"
+	done
+	for m in ashikhmin-shirley cook-torrance lafortune ward blinn-phong; do
+		echo "fit_loop \$BRDF_DATA/rgl/paper_white_rgb.bsdf $m --reps 3 --json" >>"$out/commands.txt"
+		"$target/release/fit_loop" "$BRDF_DATA/rgl/paper_white_rgb.bsdf" "$m" --reps 3 --json >>"$out/fit_loop.jsonl"
+	done
+
 	# Where the time goes: a flat profile (self time per function) of the two
 	# Rust paths on the full-grid grey problem.
 	rm -f "$out"/profile_*.txt
