@@ -154,8 +154,8 @@ impl pulp::WithSimd for AsKernel<'_> {
         match ds {
             None => {
                 for (j, sj) in s[..n].iter_mut().enumerate() {
-                    let (bp, fr, ..) = at(j);
-                    *sj = bp * fr;
+                    let (bp, fr, _, _, _, ok) = at(j);
+                    *sj = if ok { bp * fr } else { 0.0 };
                 }
             }
             Some(ds) => {
@@ -164,19 +164,23 @@ impl pulp::WithSimd for AsKernel<'_> {
                 let s = &mut s[..n];
                 let d2 = &mut d2[..if aniso { n } else { 0 }];
                 for j in 0..n {
-                    let (bp, fr, dfr, lnh, c2) = at(j);
+                    let (bp, fr, dfr, lnh, c2, ok) = at(j);
                     let v = bp * fr;
                     let dpw = v * lnh;
-                    let dnu = v * hu + dpw * c2;
-                    let dnv = v * hv + dpw * (1.0 - c2);
+                    // Invalid pairs are 0 whatever the parameters (no
+                    // 0 * inf from an extreme exponent).
+                    let z = |x: f64| if ok { x } else { 0.0 };
+                    let (v, dfr) = (z(v), z(bp * dfr));
+                    let dnu = z(v * hu + dpw * c2);
+                    let dnv = z(v * hv + dpw * (1.0 - c2));
                     s[j] = v;
                     if aniso {
                         d0[j] = dnu;
                         d1[j] = dnv;
-                        d2[j] = bp * dfr;
+                        d2[j] = dfr;
                     } else {
                         d0[j] = dnu + dnv;
-                        d1[j] = bp * dfr;
+                        d1[j] = dfr;
                     }
                 }
             }
@@ -194,26 +198,25 @@ struct AsGeometry<'a> {
     vz: &'a [f64],
 }
 
-/// The lobe at pair `j` without its Fresnel factor, branch-free (an invalid
-/// pair gives 0 by selection, so the loops vectorise): `(base (N.H)^e,
-/// F, dF/dF0, ln N.H, cos^2 phi_h)`.
+/// The lobe at pair `j` without its Fresnel factor, branch-free (the
+/// caller selects 0 for an invalid pair, so the loops vectorise): `(base
+/// (N.H)^e, F, dF/dF0, ln N.H, cos^2 phi_h, valid)`.
 #[inline(always)]
 fn as_lobe_at(
     (nu, nv, f0): (f64, f64, f64),
     norm: f64,
     g: &AsGeometry<'_>,
     j: usize,
-) -> (f64, f64, f64, f64, f64) {
+) -> (f64, f64, f64, f64, f64, bool) {
     let lnh = g.ln_nh[j];
     let ok = g.valid[j] & (lnh > f64::NEG_INFINITY);
     let lnh = if ok { lnh } else { 0.0 };
     let (c2, vh) = (g.cos2_phi_h[j], g.vh[j]);
     let pw = vmath::exp((nu * c2 + nv * (1.0 - c2)) * lnh);
     let base = norm / (vh * g.lz[j].max(g.vz[j]));
-    let base = if ok { base } else { 0.0 };
     let m = 1.0 - vh.clamp(0.0, 1.0);
     let m5 = m * m * m * m * m;
-    (base * pw, f0 + (1.0 - f0) * m5, 1.0 - m5, lnh, c2)
+    (base * pw, f0 + (1.0 - f0) * m5, 1.0 - m5, lnh, c2, ok)
 }
 
 /// Coupled diffuse `28/(23 pi) (1 - F0) (1 - (1 - N.L/2)^5)(1 - (1 - N.V/2)^5)`
