@@ -37,6 +37,23 @@ impl DirPairs {
         }
     }
 
+    /// The `len` pairs from `start` on, copied (for kernels that work on
+    /// cache-sized blocks of a large set).
+    ///
+    /// # Panics
+    /// If `start + len > self.len()`.
+    pub fn range(&self, start: usize, len: usize) -> DirPairs {
+        let cut = |v: &[f64]| v[start..start + len].to_vec();
+        DirPairs {
+            lx: cut(&self.lx),
+            ly: cut(&self.ly),
+            lz: cut(&self.lz),
+            vx: cut(&self.vx),
+            vy: cut(&self.vy),
+            vz: cut(&self.vz),
+        }
+    }
+
     /// Append a pair.
     pub fn push(&mut self, l: &Vector3<f64>, v: &Vector3<f64>) {
         self.lx.push(l.x);

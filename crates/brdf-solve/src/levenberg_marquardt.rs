@@ -164,6 +164,22 @@ fn sum_sq(r: &[f64]) -> f64 {
     r.iter().map(|v| v * v).sum()
 }
 
+/// `1/2 ||r||^2`, infinite when some residual is not finite; from the
+/// corner `r^T r` of the augmented Gram matrix when the problem formed it
+/// (a non-finite residual makes that corner non-finite too).
+fn cost_of(r: &[f64], gram: Option<&[f64]>) -> f64 {
+    let ssr = match gram {
+        Some(g) => g[g.len() - 1],
+        None if all_finite(r) => sum_sq(r),
+        None => f64::INFINITY,
+    };
+    if ssr.is_finite() {
+        0.5 * ssr
+    } else {
+        f64::INFINITY
+    }
+}
+
 fn all_finite(v: &[f64]) -> bool {
     v.iter().all(|x| x.is_finite())
 }
@@ -183,7 +199,7 @@ impl Factored {
     /// Reduce `[J | r]` (`jac` row-major): by the guarded normal equations
     /// where they are accurate, else by QR in `ws`, the reused `m x (n+1)`
     /// workspace ([`tall_qr`]).
-    fn new(jac: &[f64], r: &[f64], n: usize, ws: &mut Mat<f64>) -> Self {
+    fn new(jac: &[f64], r: &[f64], n: usize, ws: &mut Option<Mat<f64>>) -> Self {
         Self::by_normal_equations(jac, r, n).unwrap_or_else(|| Self::by_qr(jac, r, n, ws))
     }
 
@@ -201,9 +217,24 @@ impl Factored {
         ))
     }
 
-    /// Householder QR of `[J | r]` in `ws`.
-    fn by_qr(jac: &[f64], r: &[f64], n: usize, ws: &mut Mat<f64>) -> Self {
+    /// The guarded normal equations a problem formed in its residual pass
+    /// (`gram`: the `(n+1) x (n+1)` row-major Gram matrix of `[J | r]`);
+    /// `None` where they are not accurate.
+    fn from_gram(gram: &[f64], n: usize) -> Option<Self> {
+        let w = n + 1;
+        let g = Mat::from_fn(n, n, |i, k| gram[i * w + k]);
+        let h = Mat::from_fn(n, 1, |i, _| gram[i * w + n]);
+        let (rr, qtr) = tall_qr::triangle_from_gram(g.as_ref(), h)?;
+        Some(Self::from_triangle(
+            rr,
+            (0..n).map(|i| qtr[(i, 0)]).collect(),
+        ))
+    }
+
+    /// Householder QR of `[J | r]` in `ws` (allocated on first use).
+    fn by_qr(jac: &[f64], r: &[f64], n: usize, ws: &mut Option<Mat<f64>>) -> Self {
         let m = r.len();
+        let ws = ws.get_or_insert_with(|| Mat::<f64>::zeros(m, n + 1));
         for k in 0..n {
             let col = ws
                 .col_mut(k)
@@ -308,10 +339,23 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
     let constrained = !constraints.is_unconstrained();
     let mut p = p0.to_vec();
     let mut r = vec![0.0; m];
-    problem.residuals(&p, &mut r);
+    // A problem that forms its normal equations in the residual pass gets
+    // them at every trial point (one pass per trial, the Jacobian never
+    // stored): a rejected trial wastes its derivatives, an accepted one
+    // needs no second pass. Not with the geodesic correction, which needs
+    // `J` itself.
+    let mut gram = vec![0.0; (n + 1) * (n + 1)];
+    let mut gram_new = gram.clone();
+    let mut fused =
+        !options.geodesic_acceleration && problem.residuals_and_gram(&p, &mut r, &mut gram);
+    if !fused {
+        problem.residuals(&p, &mut r);
+    }
+    // Whether `gram` holds the normal equations at `p`.
+    let mut have_gram = fused;
     let mut evaluations = 1;
     let mut jac = vec![0.0; m * n];
-    let mut ws = Mat::<f64>::zeros(m, n + 1);
+    let mut ws = None;
     let report = |p: Vec<f64>, ssr: f64, t, it, ev, g, l| SolverReport {
         bounds: constraints.status(&p),
         params: p,
@@ -322,7 +366,7 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
         gradient_norm: g,
         damping: l,
     };
-    if !all_finite(&r) {
+    if !cost_of(&r, have_gram.then_some(gram.as_slice())).is_finite() {
         return Ok(report(
             p,
             f64::NAN,
@@ -333,7 +377,7 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
             0.0,
         ));
     }
-    let mut cost = 0.5 * sum_sq(&r);
+    let mut cost = cost_of(&r, have_gram.then_some(gram.as_slice()));
     let mut d = vec![0.0f64; n];
 
     let mut lambda = f64::NAN;
@@ -345,10 +389,20 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
     let mut polished = 0;
     let mut fac;
     let termination = 'outer: loop {
-        problem.jacobian(&p, &mut jac);
+        let mut by_gram = if have_gram {
+            Factored::from_gram(&gram, n)
+        } else {
+            None
+        };
+        if by_gram.is_none() {
+            // The fused normal equations failed their guard: QR of the
+            // Jacobian from here on, without further speculation.
+            fused = false;
+            problem.jacobian(&p, &mut jac);
+            by_gram = Factored::by_normal_equations(&jac, &r, n);
+        }
         // The Gram path succeeds only for a finite Jacobian, so the scan for
         // non-finite entries is needed only when it does not.
-        let by_gram = Factored::by_normal_equations(&jac, &r, n);
         if by_gram.is_none() && !all_finite(&jac) {
             if iterations == 0 {
                 return Ok(report(
@@ -372,7 +426,7 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
         }
         let f = match by_gram {
             Some(f) => f,
-            None => Factored::new(&jac, &r, n, &mut ws),
+            None => Factored::by_qr(&jac, &r, n, &mut ws),
         };
         for k in 0..n {
             d[k] = match options.scaling {
@@ -448,13 +502,12 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
             if dnorm <= options.xtol * (pnorm + options.xtol) {
                 break 'outer Termination::SmallStep;
             }
-            problem.residuals(&p_new, &mut r_new);
+            let fused_new = fused && problem.residuals_and_gram(&p_new, &mut r_new, &mut gram_new);
+            if !fused_new {
+                problem.residuals(&p_new, &mut r_new);
+            }
             evaluations += 1;
-            let cost_new = if all_finite(&r_new) {
-                0.5 * sum_sq(&r_new)
-            } else {
-                f64::INFINITY
-            };
+            let cost_new = cost_of(&r_new, fused_new.then_some(gram_new.as_slice()));
             let actual = cost - cost_new;
             // At the noise level of the cost (reductions of a few ulps) the
             // cost can no longer rank steps, but the Gauss-Newton step is
@@ -474,6 +527,8 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
                 let rho = actual / pred;
                 std::mem::swap(&mut p, &mut p_new);
                 std::mem::swap(&mut r, &mut r_new);
+                std::mem::swap(&mut gram, &mut gram_new);
+                have_gram = fused_new;
                 let old = cost;
                 cost = cost_new;
                 match options.damping {
@@ -506,8 +561,11 @@ pub(crate) fn minimize<P: LeastSquaresProblem + ?Sized>(
     // accepted and ended the run (the relative-reduction test): only then
     // evaluate the Jacobian again.
     if termination == Termination::SmallReduction || fac.is_none() {
-        problem.jacobian(&p, &mut jac);
-        fac = all_finite(&jac).then(|| Factored::new(&jac, &r, n, &mut ws));
+        fac = have_gram.then(|| Factored::from_gram(&gram, n)).flatten();
+        if fac.is_none() {
+            problem.jacobian(&p, &mut jac);
+            fac = all_finite(&jac).then(|| Factored::new(&jac, &r, n, &mut ws));
+        }
     }
     let (termination, gn) = match &fac {
         Some(f) => {

@@ -19,6 +19,13 @@
 //! the full problem's residuals and Jacobian combine the basis with the
 //! coefficients, and the separable form has one block per channel sharing
 //! one basis matrix (no zero blocks, one factorisation for all channels).
+//!
+//! Large sample sets (from [`blocked::MIN_SAMPLES`] on) are also cut into
+//! cache-sized blocks once: their residuals, and the normal equations the
+//! solvers ask for in the same pass, are computed block by block in
+//! parallel without storing the Jacobian ([`blocked`]).
+
+mod blocked;
 
 use brdf_core::{DirPairs, PairGeometry, Parametric, SharedBasis};
 
@@ -43,6 +50,8 @@ pub struct ModelProblem<'a> {
     /// Parameter index of each linear coefficient, in coefficient order.
     coefficients: Vec<usize>,
     pool: ScratchPool,
+    /// The samples in cache-sized blocks (empty for small sets).
+    blocks: Vec<blocked::Block>,
 }
 
 impl<'a> ModelProblem<'a> {
@@ -86,6 +95,11 @@ impl<'a> ModelProblem<'a> {
                 .collect(),
             None => linear.clone(),
         };
+        let blocks = if n >= blocked::MIN_SAMPLES {
+            blocked::blocks(pairs, shared.is_some())
+        } else {
+            Vec::new()
+        };
         Ok(Self {
             model,
             pairs,
@@ -97,6 +111,7 @@ impl<'a> ModelProblem<'a> {
             shared,
             coefficients,
             pool: ScratchPool::new(),
+            blocks,
         })
     }
 
@@ -198,6 +213,9 @@ impl LeastSquaresProblem for ModelProblem<'_> {
     }
 
     fn residuals(&self, p: &[f64], out: &mut [f64]) {
+        if !self.blocks.is_empty() {
+            return self.blocked_pass(p, out, None);
+        }
         if let Some(sb) = &self.shared {
             return self.shared_residuals(sb, p, out);
         }
@@ -206,6 +224,14 @@ impl LeastSquaresProblem for ModelProblem<'_> {
         for (i, o) in out.iter_mut().enumerate() {
             *o = *o * self.scale[i % n] - self.targets[i];
         }
+    }
+
+    fn residuals_and_gram(&self, p: &[f64], out: &mut [f64], gram: &mut [f64]) -> bool {
+        if self.blocks.is_empty() {
+            return false;
+        }
+        self.blocked_pass(p, out, Some(gram));
+        true
     }
 
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {

@@ -4,7 +4,10 @@
 //! how to compute the residual vector `r(p)` and (optionally) its Jacobian
 //! `J = dr/dp`. The solvers minimise `1/2 ||r(p)||^2`; they know nothing
 //! else about the problem. A problem without an analytic Jacobian inherits
-//! a central finite-difference one ([`fd_jacobian`]).
+//! a central finite-difference one ([`fd_jacobian`]). A problem over
+//! millions of rows can also offer the normal equations in the same pass as
+//! its residuals ([`LeastSquaresProblem::residuals_and_gram`]), so the
+//! solver never stores the Jacobian.
 
 /// A non-linear least-squares problem `min_p 1/2 sum_i r_i(p)^2`.
 pub trait LeastSquaresProblem {
@@ -19,6 +22,16 @@ pub trait LeastSquaresProblem {
     /// Defaults to central finite differences.
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
         fd_jacobian(self, p, jac);
+    }
+    /// The residuals and the normal equations at `p` in one pass over the
+    /// data, without storing the Jacobian: `r(p)` into `out` (length `m`)
+    /// and the Gram matrix of the augmented Jacobian `[J | r]` into `gram`
+    /// (`(n+1) x (n+1)`, row-major: `J^T J`, then `J^T r` in the last column
+    /// and row, `r^T r` in the corner). Returns false, writing nothing, when
+    /// the problem has no such pass (the default); the solvers then call
+    /// [`residuals`](Self::residuals) and [`jacobian`](Self::jacobian).
+    fn residuals_and_gram(&self, _p: &[f64], _out: &mut [f64], _gram: &mut [f64]) -> bool {
+        false
     }
 }
 

@@ -131,6 +131,18 @@ pub fn gram_triangle_weighted(
         return None;
     }
     let (g, h) = gram(a, b, weights);
+    triangle_from_gram(g.as_ref(), h)
+}
+
+/// `R` and `Q^T B` from the normal equations `G = A^T A`, `H = A^T B`
+/// already formed (by a problem that accumulates them in its own pass over
+/// the data, never storing `A`), under the guard of [`gram_triangle`]:
+/// `None` when they are not accurate enough.
+pub fn triangle_from_gram(g: MatRef<'_, f64>, h: Mat<f64>) -> Option<(Mat<f64>, Mat<f64>)> {
+    let k = g.nrows();
+    if k == 0 || g.ncols() != k || h.nrows() != k {
+        return None;
+    }
     let d: Vec<f64> = (0..k).map(|i| g[(i, i)].sqrt()).collect();
     if d.iter().any(|v| !(v.is_finite() && *v > 0.0)) || !h.as_ref().is_all_finite() {
         return None;

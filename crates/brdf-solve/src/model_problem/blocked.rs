@@ -1,0 +1,258 @@
+//! The blocked pass of a [`ModelProblem`] over many rows: the residuals
+//! and, when asked, the normal equations of `[J | r]` accumulated block by
+//! block, so the Jacobian is never stored (issue 16: on the full MERL grid,
+//! writing and re-reading a row-major `J` of 0.9M x 4 entries cost as much
+//! as the model itself).
+//!
+//! The samples are cut once into blocks of [`BLOCK`] rows, each with its
+//! own copy of the pairs and of their half-vector geometry, small enough
+//! that the basis, its derivatives and the block's Jacobian stay in cache.
+//! Blocks are grouped into tasks of [`TASK_BLOCKS`] that rayon runs in
+//! parallel; a task sums its Gram matrices in block order and the tasks'
+//! sums are added in task order, so the result is the same for any number
+//! of threads. For a model with a channel-shared basis each channel's Gram
+//! matrix covers only that channel's coefficients and the non-linear
+//! parameters (no zero blocks) and is scattered into the full one.
+
+use brdf_core::{DirPairs, PairGeometry, SharedBasis};
+use faer::linalg::matmul::matmul;
+use faer::{Accum, MatMut, MatRef, Par};
+
+use super::ModelProblem;
+
+/// Rows per kernel call.
+const BLOCK: usize = 1024;
+/// Blocks per parallel task.
+const TASK_BLOCKS: usize = 32;
+/// Samples from which a problem is cut into blocks; below, one pass over
+/// whole arrays costs less than the bookkeeping.
+pub(super) const MIN_SAMPLES: usize = 8 * BLOCK;
+
+/// One block of samples: its first row, its pairs and their geometry.
+pub(super) struct Block {
+    start: usize,
+    pairs: DirPairs,
+    geom: Option<PairGeometry>,
+}
+
+/// `pairs` cut into blocks, with their geometry when the model reads it.
+pub(super) fn blocks(pairs: &DirPairs, with_geometry: bool) -> Vec<Block> {
+    (0..pairs.len())
+        .step_by(BLOCK)
+        .map(|start| {
+            let pairs = pairs.range(start, BLOCK.min(pairs.len() - start));
+            let geom = with_geometry.then(|| PairGeometry::new(&pairs));
+            Block { start, pairs, geom }
+        })
+        .collect()
+}
+
+/// Buffers of one task, reused by its blocks.
+#[derive(Default)]
+struct Work {
+    phi: Vec<f64>,
+    dphi: Vec<f64>,
+    a: Vec<f64>,
+    val: Vec<f64>,
+    jac: Vec<f64>,
+}
+
+/// `acc += A^T A` for the column-major `rows x w` matrix in `a`.
+fn add_gram(acc: &mut [f64], a: &[f64], rows: usize, w: usize) {
+    let a = MatRef::from_column_major_slice(&a[..rows * w], rows, w);
+    let acc = MatMut::from_column_major_slice_mut(acc, w, w);
+    matmul(acc, Accum::Add, a.transpose(), a, 1.0, Par::Seq);
+}
+
+impl ModelProblem<'_> {
+    /// The parameter index of every column of each accumulation group (a
+    /// channel of a shared-basis model, else the whole problem), the
+    /// residual column last (index `n_params`).
+    fn groups(&self) -> Vec<Vec<usize>> {
+        let np = self.model.n_params();
+        match &self.shared {
+            Some((b, _)) => {
+                let l = b.basis_len();
+                (0..self.model.channels())
+                    .map(|c| {
+                        let mut idx = self.coefficients[c * l..(c + 1) * l].to_vec();
+                        idx.extend(&self.nonlinear);
+                        idx.push(np);
+                        idx
+                    })
+                    .collect()
+            }
+            None => vec![(0..=np).collect()],
+        }
+    }
+
+    /// The residuals into `out` and, when `gram` is given, the row-major
+    /// Gram matrix of `[J | r]` into it (as
+    /// [`crate::LeastSquaresProblem::residuals_and_gram`]).
+    pub(super) fn blocked_pass(&self, p: &[f64], out: &mut [f64], gram: Option<&mut [f64]>) {
+        let n = self.pairs.len();
+        let groups = self.groups();
+        let w = groups[0].len();
+        let acc_len = if gram.is_some() {
+            groups.len() * w * w
+        } else {
+            0
+        };
+        // Each task's rows of every channel.
+        let tasks: Vec<&[Block]> = self.blocks.chunks(TASK_BLOCKS).collect();
+        let mut outs: Vec<Vec<&mut [f64]>> = tasks.iter().map(|_| Vec::new()).collect();
+        for channel in out.chunks_mut(n) {
+            for (t, piece) in channel.chunks_mut(TASK_BLOCKS * BLOCK).enumerate() {
+                outs[t].push(piece);
+            }
+        }
+        let run = |(blocks, mut outs): (&[Block], Vec<&mut [f64]>)| {
+            let mut acc = vec![0.0; acc_len];
+            let mut work = Work::default();
+            let first = blocks.first().map_or(0, |b| b.start);
+            for b in blocks {
+                let (off, len) = (b.start - first, b.pairs.len());
+                let mut rows: Vec<&mut [f64]> =
+                    outs.iter_mut().map(|o| &mut o[off..off + len]).collect();
+                let acc = (acc_len > 0).then_some(acc.as_mut_slice());
+                match &self.shared {
+                    Some((basis, _)) => self.shared_block(*basis, p, b, &mut rows, acc, &mut work),
+                    None => self.general_block(p, b, &mut rows, acc, &mut work),
+                }
+            }
+            acc
+        };
+        let jobs: Vec<_> = tasks.into_iter().zip(outs).collect();
+        #[cfg(feature = "rayon")]
+        let parts: Vec<Vec<f64>> = {
+            use rayon::prelude::*;
+            jobs.into_par_iter().map(run).collect()
+        };
+        #[cfg(not(feature = "rayon"))]
+        let parts: Vec<Vec<f64>> = jobs.into_iter().map(run).collect();
+        if let Some(gram) = gram {
+            let wg = self.model.n_params() + 1;
+            gram.fill(0.0);
+            for part in &parts {
+                for (g, idx) in groups.iter().enumerate() {
+                    let acc = &part[g * w * w..(g + 1) * w * w];
+                    for (a, &ia) in idx.iter().enumerate() {
+                        for (b, &ib) in idx.iter().enumerate() {
+                            gram[ia * wg + ib] += acc[a * w + b];
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// One block of a shared-basis model: per channel, the residual rows
+    /// and (with `acc`) that channel's Gram matrix over its coefficients,
+    /// the non-linear parameters and the residual.
+    fn shared_block(
+        &self,
+        basis: &dyn SharedBasis,
+        p: &[f64],
+        blk: &Block,
+        rows: &mut [&mut [f64]],
+        acc: Option<&mut [f64]>,
+        work: &mut Work,
+    ) {
+        let (n, len) = (self.pairs.len(), blk.pairs.len());
+        let (l, nq) = (basis.basis_len(), self.nonlinear.len());
+        let w = l + nq + 1;
+        let Some(geom) = &blk.geom else { return };
+        work.phi.resize(l * len, 0.0);
+        let phi = &mut work.phi[..l * len];
+        let dphi = match acc {
+            Some(_) => {
+                work.dphi.resize(l * nq * len, 0.0);
+                Some(&mut work.dphi[..l * nq * len])
+            }
+            None => None,
+        };
+        let with_gram = dphi.is_some();
+        basis.basis_batch(p, &blk.pairs, geom, phi, dphi);
+        let scale = &self.scale[blk.start..blk.start + len];
+        let mut acc = acc;
+        for (c, r) in rows.iter_mut().enumerate() {
+            let ks = &self.coefficients[c * l..(c + 1) * l];
+            let y = &self.targets[c * n + blk.start..c * n + blk.start + len];
+            for j in 0..len {
+                let mut v = 0.0;
+                for (t, &k) in ks.iter().enumerate() {
+                    v += p[k] * phi[t * len + j];
+                }
+                r[j] = v * scale[j] - y[j];
+            }
+            let Some(acc) = acc.as_deref_mut() else {
+                continue;
+            };
+            debug_assert!(with_gram);
+            work.a.resize(w * len, 0.0);
+            let (a, dphi) = (&mut work.a[..w * len], &work.dphi[..l * nq * len]);
+            for t in 0..l {
+                for j in 0..len {
+                    a[t * len + j] = phi[t * len + j] * scale[j];
+                }
+            }
+            for u in 0..nq {
+                let col = &mut a[(l + u) * len..(l + u + 1) * len];
+                col.fill(0.0);
+                for (t, &k) in ks.iter().enumerate() {
+                    let d = &dphi[(t * nq + u) * len..(t * nq + u + 1) * len];
+                    for j in 0..len {
+                        col[j] += p[k] * scale[j] * d[j];
+                    }
+                }
+            }
+            a[(w - 1) * len..].copy_from_slice(r);
+            add_gram(&mut acc[c * w * w..(c + 1) * w * w], a, len, w);
+        }
+    }
+
+    /// One block of any model: the residual rows and (with `acc`) the Gram
+    /// matrix of every parameter and the residual, from the model's batch
+    /// gradient.
+    fn general_block(
+        &self,
+        p: &[f64],
+        blk: &Block,
+        rows: &mut [&mut [f64]],
+        acc: Option<&mut [f64]>,
+        work: &mut Work,
+    ) {
+        let (n, len, np) = (self.pairs.len(), blk.pairs.len(), p.len());
+        let m = rows.len() * len;
+        work.val.resize(m, 0.0);
+        let val = &mut work.val[..m];
+        if acc.is_some() {
+            work.jac.resize(m * np, 0.0);
+            let jac = &mut work.jac[..m * np];
+            self.model.eval_grad_batch_at(p, &blk.pairs, val, jac);
+        } else {
+            self.model.eval_batch_at(p, &blk.pairs, val);
+        }
+        let scale = &self.scale[blk.start..blk.start + len];
+        for (c, r) in rows.iter_mut().enumerate() {
+            let y = &self.targets[c * n + blk.start..c * n + blk.start + len];
+            for j in 0..len {
+                r[j] = val[c * len + j] * scale[j] - y[j];
+            }
+        }
+        let Some(acc) = acc else { return };
+        let w = np + 1;
+        work.a.resize(w * m, 0.0);
+        let (a, jac) = (&mut work.a[..w * m], &work.jac[..m * np]);
+        for i in 0..m {
+            let s = scale[i % len];
+            for k in 0..np {
+                a[k * m + i] = jac[i * np + k] * s;
+            }
+        }
+        for (c, r) in rows.iter().enumerate() {
+            a[np * m + c * len..np * m + (c + 1) * len].copy_from_slice(r);
+        }
+        add_gram(acc, a, m, w);
+    }
+}
