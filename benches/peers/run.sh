@@ -111,6 +111,20 @@ if [ "$only" = all ]; then
 		"$target/release/fit_loop" "$BRDF_DATA/rgl/paper_white_rgb.bsdf" "$m" --reps 3 --json >>"$out/fit_loop.jsonl"
 	done
 
+	# The evaluation kernel of Ashikhmin-Shirley (criterion, one thread):
+	# value and value + derivatives over precomputed geometry.
+	echo "cargo bench -p brdf-benches --bench models -- 'kernels/ashikhmin-shirley/' --warm-up-time 2 --measurement-time 5" >>"$out/commands.txt"
+	rm -rf "$target"/criterion/kernels/ashikhmin-shirley_* "$out/kernels"
+	cargo bench -p brdf-benches --bench models -- 'kernels/ashikhmin-shirley/' --warm-up-time 2 --measurement-time 5 >"$out/kernels.log" 2>&1
+	mkdir -p "$out/kernels"
+	# criterion names the folders `ashikhmin-shirley_<path>`.
+	for f in "$target"/criterion/kernels/ashikhmin-shirley_*/new; do
+		name=$(basename "$(dirname "$f")")
+		name=${name#ashikhmin-shirley_}
+		cp "$f/estimates.json" "$out/kernels/$name.estimates.json"
+		cp "$f/benchmark.json" "$out/kernels/$name.benchmark.json"
+	done
+
 	# Where the time goes: a flat profile (self time per function) of the two
 	# Rust paths on the full-grid grey problem.
 	rm -f "$out"/profile_*.txt

@@ -15,7 +15,7 @@ use crate::peers::PeerError;
 
 /// A named design `X` and response `y`.
 pub struct Design {
-    /// Name (`curet#N` or `synthetic-MxP`).
+    /// Name (`curet#N` or `generated-MxP`: the fixed-seed design).
     pub name: String,
     /// The design matrix.
     pub x: Mat<f64>,
@@ -113,7 +113,7 @@ pub fn synthetic(m: usize, p: usize) -> Design {
         y[i] = 1.0 + fit + noise + outlier;
     }
     Design {
-        name: format!("synthetic-{m}x{p}"),
+        name: format!("generated-{m}x{p}"),
         x,
         y,
     }
@@ -162,7 +162,7 @@ mod tests {
         let d = synthetic(7, 3);
         let dir = std::env::temp_dir().join(format!("irls-designs-test-{}", std::process::id()));
         export(&[&d], &dir).expect("export");
-        let bytes = std::fs::read(dir.join("synthetic-7x3.f64")).expect("design file");
+        let bytes = std::fs::read(dir.join("generated-7x3.f64")).expect("design file");
         assert_eq!(bytes.len(), 7 * 4 * 8);
         let v: Vec<f64> = bytes
             .chunks_exact(8)
@@ -179,9 +179,9 @@ mod tests {
         )
         .expect("manifest JSON");
         let e = &m["designs"][0];
-        assert_eq!(e["name"], "synthetic-7x3");
+        assert_eq!(e["name"], "generated-7x3");
         assert_eq!((e["rows"].as_u64(), e["cols"].as_u64()), (Some(7), Some(3)));
-        assert_eq!(e["file"], "synthetic-7x3.f64");
+        assert_eq!(e["file"], "generated-7x3.f64");
         std::fs::remove_dir_all(&dir).expect("clean up");
     }
 

@@ -91,6 +91,7 @@ pub fn results(dir: &Path, prob: &PeerProblem, outcomes: &[Outcome]) -> Result<(
                 "repeats": o.repeats,
                 "residual_evals": o.residual_evals,
                 "jacobian_evals": o.jacobian_evals,
+                "passes": o.passes,
                 "termination": o.termination,
                 "inside_box": o.inside_box,
                 "own_cost": o.own_cost,

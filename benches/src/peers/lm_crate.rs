@@ -72,6 +72,7 @@ pub fn fit(prob: &PeerProblem) -> Result<Outcome, PeerError> {
         repeats,
         residual_evals: report.number_of_evaluations,
         jacobian_evals: Some(jacobians),
+        passes: None,
         termination: format!("{:?}", report.termination),
     })
 }

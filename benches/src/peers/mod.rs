@@ -67,6 +67,11 @@ pub struct Outcome {
     pub residual_evals: usize,
     /// Jacobian evaluations per fit (`None` when the solver does not say).
     pub jacobian_evals: Option<usize>,
+    /// Passes over the samples per fit, where one pass gives both the
+    /// residuals and the normal equations (the Rust solvers on large
+    /// problems: `ModelProblem`'s blocked pass); `None`: residual plus
+    /// Jacobian evaluations.
+    pub passes: Option<usize>,
     /// Why it stopped.
     pub termination: String,
     /// Whether the final parameters lie in the box.

@@ -185,6 +185,7 @@ pub fn fit(prob: &PeerProblem) -> Result<Outcome, PeerError> {
         repeats,
         residual_evals: evals,
         jacobian_evals: Some(jacobians),
+        passes: None,
         termination,
     })
 }
