@@ -9,8 +9,8 @@
 //! pessimistic by orders of magnitude (the Kronrod value is far more accurate
 //! than the Gauss value it is compared with), which is what lets the tests use
 //! it as a bound; kinks, jumps and sharp peaks must be break points
-//! ([`integrate_with_breaks`]), as [`directional_albedo`] does for the
-//! horizon and the mirror direction.
+//! ([`integrate_with_breaks`], [`integrate_around_peak`]), as
+//! [`directional_albedo`] does for the horizon and the mirror direction.
 //!
 //! The directional albedo `a(L) = int_{H^2} f(L, V) cos theta_o dV` is a nested
 //! integral in `mu = cos theta_o` and `phi_o`; the error of the inner integrals
@@ -177,8 +177,10 @@ pub fn integrate_with_breaks(
     }
     loop {
         let (total, err) = sum_intervals(&intervals, dim);
-        let ok = (0..dim).all(|d| err[d] <= opts.abs_tol.max(opts.rel_tol * total[d].abs()));
-        if ok || intervals.is_empty() || intervals.len() >= opts.max_intervals {
+        if meets_tolerance(&total, &err, opts)
+            || intervals.is_empty()
+            || intervals.len() >= opts.max_intervals
+        {
             return Integral {
                 value: total,
                 error: err,
@@ -203,6 +205,58 @@ pub fn integrate_with_breaks(
 }
 
 type Interval = (f64, f64, Vec<f64>, Vec<f64>);
+
+/// Whether every component's error estimate is within `max(abs_tol,
+/// rel_tol |value|)`.
+fn meets_tolerance(value: &[f64], error: &[f64], opts: &QuadratureOptions) -> bool {
+    value
+        .iter()
+        .zip(error)
+        .all(|(v, e)| *e <= opts.abs_tol.max(opts.rel_tol * v.abs()))
+}
+
+/// Break points that catch a peak at `c` in `[c - half, c + half]`:
+/// the ends, `c`, and `c +- half 10^-k` for `k = 1..=PEAK_DECADES`.
+fn peak_breaks(c: f64, half: f64) -> Vec<f64> {
+    let mut breaks = vec![c - half];
+    breaks.extend((1..=PEAK_DECADES).map(|k| c - half * 10f64.powi(-k)));
+    breaks.push(c);
+    breaks.extend((1..=PEAK_DECADES).rev().map(|k| c + half * 10f64.powi(-k)));
+    breaks.push(c + half);
+    breaks
+}
+
+/// Decades of [`peak_breaks`]: with `half = pi` the innermost intervals are
+/// `3e-7` wide, below the angular width `n^(-1/2) = 1e-6` of a lobe of
+/// exponent `1e12`, the sharpest the outer break points of
+/// [`directional_albedo`] catch.
+const PEAK_DECADES: i32 = 7;
+
+/// [`integrate`] over `[c - half, c + half]` for an integrand whose only
+/// sharp feature is a peak at `c`. One Gauss-Kronrod pass over the whole
+/// range samples `c` itself (its middle node); a smooth integrand meets the
+/// tolerance there. Otherwise plain bisection would cut at `c`, leaving the
+/// peak on interval ends where no node samples it (a zero integral with a
+/// zero error estimate), so the integral is redone from [`peak_breaks`].
+pub fn integrate_around_peak(
+    mut f: impl FnMut(f64, &mut [f64]),
+    c: f64,
+    half: f64,
+    dim: usize,
+    opts: &QuadratureOptions,
+) -> Integral {
+    let one_pass = QuadratureOptions {
+        max_intervals: 1,
+        ..*opts
+    };
+    let first = integrate(&mut f, c - half, c + half, dim, &one_pass);
+    if meets_tolerance(&first.value, &first.error, opts) {
+        return first;
+    }
+    let mut r = integrate_with_breaks(&mut f, &peak_breaks(c, half), dim, opts);
+    r.evaluations += first.evaluations;
+    r
+}
 
 fn sum_intervals(intervals: &[Interval], dim: usize) -> (Vec<f64>, Vec<f64>) {
     let mut total = vec![0.0; dim];
@@ -340,24 +394,25 @@ pub fn directional_albedo(
                 out.iter_mut().for_each(|x| *x = 0.0);
                 return;
             }
-            let inner = integrate(
-                |phi, o: &mut [f64]| {
-                    let local = Vector3::new(s * phi.cos(), s * phi.sin(), mu);
-                    let v = pole.from_local(&local);
-                    if v.z <= 0.0 {
-                        o.iter_mut().for_each(|x| *x = 0.0);
-                        return;
-                    }
-                    brdf.eval(l, &v, &mut fbuf);
-                    for c in 0..nc {
-                        o[c] = fbuf[c] * v.z;
-                    }
-                },
-                center - half,
-                center + half,
-                nc,
-                opts,
-            );
+            let integrand = |phi: f64, o: &mut [f64]| {
+                let local = Vector3::new(s * phi.cos(), s * phi.sin(), mu);
+                let v = pole.from_local(&local);
+                if v.z <= 0.0 {
+                    o.iter_mut().for_each(|x| *x = 0.0);
+                    return;
+                }
+                brdf.eval(l, &v, &mut fbuf);
+                for c in 0..nc {
+                    o[c] = fbuf[c] * v.z;
+                }
+            };
+            // In the Normal frame a lobe around the mirror direction is a
+            // peak in the azimuth at `center`; in the Mirror frame it is at
+            // the pole of the outer variable instead.
+            let inner = match frame {
+                AlbedoFrame::Normal => integrate_around_peak(integrand, center, half, nc, opts),
+                AlbedoFrame::Mirror => integrate(integrand, center - half, center + half, nc, opts),
+            };
             evals += inner.evaluations;
             out[..nc].copy_from_slice(&inner.value);
             out[nc..].copy_from_slice(&inner.error);

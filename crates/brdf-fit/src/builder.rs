@@ -18,9 +18,10 @@ use brdf_models::saved_model::{Provenance, SavedModel};
 use brdf_models::{ModelConfig, ModelEntry};
 
 use crate::FitError;
+use crate::boxed::BoxedModel;
 use crate::names::resolve;
 use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
-use crate::scaling::{ScaledBox, fit_scaled};
+use crate::scaling::fit_scaled;
 
 /// Which channels a fit uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -289,7 +290,7 @@ impl Fit {
         )?;
         // The one-channel stage sees the same boxes as the full model.
         if scale != 1.0 {
-            let mut grey = ScaledBox::new(grey, scale);
+            let mut grey = BoxedModel::scaled(grey, scale);
             fit_sopp(&mut grey, model, data, options)
         } else {
             let mut grey = grey;

@@ -36,6 +36,7 @@
 //! | [`builder`] | [`Fit`] (the builder) and [`FitReport`] |
 //! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
+//! | [`boxed`] | [`BoxedModel`]: a model fitted in other parameter boxes than its own |
 //! | [`scaling`] | internal scaling of extreme data and weights (scale invariance) |
 //! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
 //! | [`linear_box`] | linear least squares within `[0, upper]` when NNLS exceeds an upper bound |
@@ -43,6 +44,7 @@
 //! | [`report_json`] | the JSON report of `brdf fit --json`, data names for outputs |
 //! | [`error`] | [`FitError`] |
 
+pub mod boxed;
 pub mod builder;
 pub mod error;
 pub mod fit_linear;
@@ -53,6 +55,7 @@ pub mod report_json;
 pub mod scaling;
 pub mod select;
 
+pub use boxed::BoxedModel;
 pub use builder::{Channels, Fit, FitReport};
 pub use error::FitError;
 pub use names::resolve;

@@ -14,7 +14,7 @@
 //! f(a, q)`, checked numerically on the data's directions), the fit of
 //! `D / s` with the linear parameters' boxes divided by `s` gives the
 //! fit of `D` after multiplying the linear parameters by `s`. The box of
-//! the linear parameters moves with the data ([`ScaledBox`]), so a box
+//! the linear parameters moves with the data ([`BoxedModel::scaled`]), so a box
 //! that the unscaled fit would reach (`kd <= 1` for data of `1e300`) is
 //! reached by the scaled fit too. The log objective is not scale
 //! invariant (`ln(1 + R cos)`), so its values are never scaled.
@@ -23,10 +23,10 @@
 //! common factor of all residuals, so dividing them changes nothing but
 //! the magnitude the solver sees.
 
-use brdf_core::nalgebra::Vector3;
-use brdf_core::{Brdf, DirPairs, ParamError, ParamSpec, Parametric, SampleSet};
+use brdf_core::{DirPairs, ParamSpec, Parametric, SampleSet};
 
 use crate::FitError;
+use crate::boxed::BoxedModel;
 use crate::pipeline::{FitSummary, Objective};
 
 /// Binary exponents within this bound are left unscaled.
@@ -197,114 +197,6 @@ fn is_homogeneous(model: &dyn Parametric, pairs: &DirPairs) -> bool {
     largest > 0.0
 }
 
-/// A model whose linear parameters' boxes are divided by `scale` (the
-/// value scale of the data): the same function, fitted to data divided by
-/// `scale`. Everything else is delegated.
-pub struct ScaledBox {
-    inner: Box<dyn Parametric>,
-    specs: Vec<ParamSpec>,
-    params: Vec<f64>,
-}
-
-impl ScaledBox {
-    /// Wrap `inner`, dividing its linear parameters' boxes (and current
-    /// values) by `scale`.
-    pub fn new(inner: Box<dyn Parametric>, scale: f64) -> Self {
-        let specs: Vec<ParamSpec> = inner
-            .param_specs()
-            .iter()
-            .map(|s| {
-                let mut s = s.clone();
-                if s.linear {
-                    s.lower /= scale;
-                    s.upper /= scale;
-                    s.default /= scale;
-                }
-                s
-            })
-            .collect();
-        let params = inner
-            .params()
-            .iter()
-            .zip(&specs)
-            .map(|(x, s)| if s.linear { x / scale } else { *x })
-            .collect::<Vec<f64>>();
-        let params = params
-            .iter()
-            .zip(&specs)
-            .map(|(x, s)| x.clamp(s.lower, s.upper))
-            .collect();
-        ScaledBox {
-            inner,
-            specs,
-            params,
-        }
-    }
-
-    /// The wrapped model.
-    pub fn into_inner(self) -> Box<dyn Parametric> {
-        self.inner
-    }
-}
-
-impl Brdf for ScaledBox {
-    fn channels(&self) -> usize {
-        self.inner.channels()
-    }
-    fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
-        self.inner.eval_at(&self.params, l, v, out)
-    }
-}
-
-impl Parametric for ScaledBox {
-    fn name(&self) -> &str {
-        self.inner.name()
-    }
-    fn param_specs(&self) -> &[ParamSpec] {
-        &self.specs
-    }
-    fn params(&self) -> &[f64] {
-        &self.params
-    }
-    fn set_params(&mut self, p: &[f64]) -> Result<(), ParamError> {
-        brdf_core::params::validate(self.inner.name(), &self.specs, p)?;
-        self.params = p.to_vec();
-        Ok(())
-    }
-    fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
-        self.inner.eval_at(p, l, v, out)
-    }
-    fn eval_grad_at(
-        &self,
-        p: &[f64],
-        l: &Vector3<f64>,
-        v: &Vector3<f64>,
-        out: &mut [f64],
-        grad: &mut [f64],
-    ) {
-        self.inner.eval_grad_at(p, l, v, out, grad)
-    }
-    fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
-        self.inner.eval_batch_at(p, pairs, out)
-    }
-    fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
-        self.inner.eval_grad_batch_at(p, pairs, out, jac)
-    }
-    fn shared_basis(&self) -> Option<&dyn brdf_core::SharedBasis> {
-        self.inner.shared_basis()
-    }
-    fn clone_box(&self) -> Box<dyn Parametric> {
-        Box::new(ScaledBox {
-            inner: self.inner.clone_box(),
-            specs: self.specs.clone(),
-            params: self.params.clone(),
-        })
-    }
-    fn is_reciprocal(&self) -> bool {
-        self.inner.is_reciprocal()
-    }
-}
-
 /// Fit `model` to `data` through the scaling: choose the scales, wrap the
 /// model if its values scale, run `fit` on the scaled data (`fit` gets the
 /// model, the data it sees and the value scale), and return the unwrapped
@@ -326,7 +218,7 @@ where
     }
     let scaled = scale.apply(data)?;
     let (model, mut summary) = if scale.value != 1.0 {
-        let mut wrapped = ScaledBox::new(model, scale.value);
+        let mut wrapped = BoxedModel::scaled(model, scale.value);
         let mut summary = fit(&mut wrapped, &scaled, scale.value)?;
         let p = wrapped.params().to_vec();
         for ((fp, spec), v) in summary

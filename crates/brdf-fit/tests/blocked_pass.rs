@@ -4,6 +4,8 @@
 //! bits for one and for two threads, and the bounded solver reaches the
 //! same fit with it as without it.
 
+use std::f64::consts::TAU;
+
 use brdf_core::{DirPairs, Parametric};
 use brdf_models::catalogue::{ModelConfig, build};
 use brdf_solve::{
@@ -27,7 +29,7 @@ fn pairs(n: usize) -> DirPairs {
             (f * 0.732_050_807_57).fract(),
             (f * 0.236_067_977_5).fract(),
         );
-        out.push(&dir(a, 6.283 * b), &dir(c, 6.283 * d));
+        out.push(&dir(a, TAU * b), &dir(c, TAU * d));
     }
     out
 }

@@ -18,7 +18,8 @@
 //!
 //! [`load`](fn@load) detects the format by name (`PATH` or `PATH#SAMPLE`, see
 //! [`load::Format`]) and returns the sample set; [`load_dense`] gives an
-//! evaluable BRDF for the dense formats (MERL, RGL).
+//! evaluable BRDF for the dense formats (MERL, RGL); [`materials`](fn@materials)
+//! lists the data sets a folder or a CUReT file stands for.
 //!
 //! ```no_run
 //! let samples = brdf_io::load("curet/abrdf.dat#25")?;
@@ -32,6 +33,7 @@ pub mod csv_samples;
 pub mod curet;
 pub mod error;
 pub mod load;
+pub mod materials;
 pub mod merl;
 pub mod nist;
 pub mod rgl;
@@ -39,3 +41,4 @@ pub mod sopp_grid;
 
 pub use error::IoError;
 pub use load::{Format, format_of, load, load_dense, split_sample};
+pub use materials::materials;

@@ -2,9 +2,6 @@
 //! --json`), the materials a path stands for (as `brdf batch --data`),
 //! canonical model names and data names for outputs.
 
-use std::path::Path;
-
-use brdf_io::IoError;
 use brdf_models::ModelConfig;
 use pyo3::prelude::*;
 use serde_json::{Value, json};
@@ -72,39 +69,5 @@ pub fn data_name(spec: &str) -> String {
 #[pyfunction]
 pub fn materials(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Vec<String>> {
     let spec = path.display().to_string();
-    let mut out = py.detach(|| expand(&spec)).map_err(to_py)?;
-    out.sort();
-    out.dedup();
-    Ok(out)
-}
-
-fn expand(spec: &str) -> Result<Vec<String>, IoError> {
-    let path = Path::new(spec);
-    let io = |source| IoError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    if path.is_dir() {
-        let mut out = Vec::new();
-        for e in std::fs::read_dir(path).map_err(io)? {
-            let p = e.map_err(io)?.path();
-            if p.is_file() && brdf_io::format_of(&p).is_ok() {
-                out.extend(expand(&p.display().to_string())?);
-            }
-        }
-        return Ok(out);
-    }
-    let (file, sample) = brdf_io::split_sample(spec);
-    if sample.is_none() && brdf_io::format_of(&file)? == brdf_io::Format::Curet {
-        let table = file.parent().unwrap_or(Path::new(".")).join("table.txt");
-        let sets = brdf_io::curet::read_grey(&file, &table)?;
-        return Ok(sets
-            .iter()
-            .filter_map(|s| {
-                let n = s.name.strip_prefix("curet#")?.split(' ').next()?;
-                Some(format!("{spec}#{n}"))
-            })
-            .collect());
-    }
-    Ok(vec![spec.to_string()])
+    py.detach(|| brdf_io::materials(&spec)).map_err(to_py)
 }

@@ -95,7 +95,7 @@ pub fn run(args: &BatchArgs) -> Result<(), StudyError> {
     let (shard, shards) = parse_shard(args.shard.as_deref())?;
     let mut materials = Vec::new();
     for d in &args.data {
-        materials.extend(expand(d)?);
+        materials.extend(brdf_io::materials(d)?);
     }
     materials.sort();
     materials.dedup();
@@ -222,35 +222,6 @@ fn parse_shard(s: Option<&str>) -> Result<(usize, usize), StudyError> {
         return Err(bad());
     }
     Ok((i - 1, n))
-}
-
-/// The data specs a PATH stands for.
-fn expand(spec: &str) -> Result<Vec<String>, StudyError> {
-    let path = Path::new(spec);
-    if path.is_dir() {
-        let mut out = Vec::new();
-        let entries = std::fs::read_dir(path).map_err(io_err(path))?;
-        for e in entries {
-            let p = e.map_err(io_err(path))?.path();
-            if p.is_file() && brdf_io::format_of(&p).is_ok() {
-                out.extend(expand(&p.display().to_string())?);
-            }
-        }
-        return Ok(out);
-    }
-    let (file, sample) = brdf_io::split_sample(spec);
-    if sample.is_none() && brdf_io::format_of(&file)? == brdf_io::Format::Curet {
-        let table = file.parent().unwrap_or(Path::new(".")).join("table.txt");
-        let sets = brdf_io::curet::read_grey(&file, &table)?;
-        return Ok(sets
-            .iter()
-            .filter_map(|s| {
-                let n = s.name.strip_prefix("curet#")?.split(' ').next()?;
-                Some(format!("{spec}#{n}"))
-            })
-            .collect());
-    }
-    Ok(vec![spec.to_string()])
 }
 
 /// The fits already in a `fits.jsonl`, keyed by (data, model); a

@@ -5,6 +5,7 @@
 pub mod figure_9_4;
 pub mod figure_9_5;
 pub mod lafortune_box;
+pub mod ranked_figure;
 pub mod table_9_1;
 pub mod table_9_2;
 pub mod table_9_4;

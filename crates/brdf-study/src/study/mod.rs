@@ -10,7 +10,6 @@ pub mod models;
 pub mod parts;
 pub mod progress;
 pub mod readme;
-pub mod restricted_box;
 pub mod spec;
 
 use std::collections::HashMap;

@@ -5,7 +5,7 @@
 //! (the shape of a lobe switched off) named.
 
 use brdf_core::{Parametric, SampleSet};
-use brdf_fit::{FitOptions, FitSummary, Objective, Solver};
+use brdf_fit::{BoxedModel, FitOptions, FitSummary, Objective, Solver};
 use brdf_models::{ModelConfig, build_for};
 
 use super::spec::LafortuneBox;
@@ -39,6 +39,12 @@ pub fn nine_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig
     ]
 }
 
+/// Kurt's box for Lafortune's lobes, `(name prefix, lower, upper)`: he
+/// fitted `Cxy` in `[-1, 0]` and `Cz` in `[0, 1]` (every value of his
+/// Appendix 3 lies there), while the catalogue allows `[-1, 1]` for both.
+/// A fit in the narrow box is the same model, constrained.
+pub const KURT_LAFORTUNE_BOX: [(&str, f64, f64); 2] = [("cxy", -1.0, 0.0), ("cz", 0.0, 1.0)];
+
 /// Build catalogue model `name` for `set`, in Kurt's box for Lafortune
 /// when `lbox` says so.
 pub fn build_model(
@@ -49,9 +55,7 @@ pub fn build_model(
 ) -> Result<Box<dyn Parametric>, StudyError> {
     let model = build_for(name, &config, set.pairs())?;
     if name == "lafortune" && lbox == LafortuneBox::Kurt {
-        return Ok(Box::new(super::restricted_box::Restricted::kurt_lafortune(
-            model,
-        )?));
+        return Ok(Box::new(BoxedModel::narrowed(model, &KURT_LAFORTUNE_BOX)?));
     }
     Ok(model)
 }
@@ -152,6 +156,8 @@ fn lobe_number(name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use brdf_core::Brdf;
+    use brdf_core::nalgebra::Vector3;
     use brdf_fit::FittedParam;
 
     fn summary(params: &[(&str, f64, bool)]) -> FitSummary {
@@ -216,5 +222,44 @@ mod tests {
         // Oren-Nayar has no lobe: sigma stays determined.
         let on = summary(&[("kd", 0.3, true), ("sigma", 0.0, false)]);
         assert!(undetermined(&on).is_empty());
+    }
+
+    #[test]
+    fn kurt_box_narrows_only_the_axis_weights_and_evaluates_the_same() {
+        let inner = brdf_models::build("lafortune", &ModelConfig::default()).unwrap();
+        let m = BoxedModel::narrowed(inner.clone_box(), &KURT_LAFORTUNE_BOX).unwrap();
+        for s in m.param_specs() {
+            let (lo, hi) = match s.name.as_str() {
+                "cxy1" => (-1.0, 0.0),
+                "cz1" => (0.0, 1.0),
+                _ => {
+                    let o = inner
+                        .param_specs()
+                        .iter()
+                        .find(|o| o.name == s.name)
+                        .unwrap();
+                    (o.lower, o.upper)
+                }
+            };
+            assert_eq!((s.lower, s.upper), (lo, hi), "{}", s.name);
+        }
+        let (l, v) = (
+            Vector3::new(0.3, 0.1, 0.9).normalize(),
+            Vector3::new(-0.2, 0.4, 0.8).normalize(),
+        );
+        let (mut a, mut b) = ([0.0], [0.0]);
+        m.eval(&l, &v, &mut a);
+        inner.eval(&l, &v, &mut b);
+        assert_eq!(a, b);
+        // A back-scattering lobe (Cxy > 0) is outside Kurt's box.
+        let mut m = m;
+        let mut p = m.params().to_vec();
+        let k = m
+            .param_specs()
+            .iter()
+            .position(|s| s.name == "cxy1")
+            .unwrap();
+        p[k] = 0.5;
+        assert!(m.set_params(&p).is_err());
     }
 }
