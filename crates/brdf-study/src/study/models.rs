@@ -1,4 +1,5 @@
-//! Kurt's nine models and how the study fits them: built for the data,
+//! Kurt's nine models, the renderer models compared with them, and how the
+//! study fits them: built for the data,
 //! Lafortune in Kurt's box unless the wide box is asked for, fitted by the
 //! pipeline from automatic starts (the polynomial by robust IRLS as Kurt
 //! did, or by OLS when asked), and the parameters a fit leaves undetermined
@@ -36,6 +37,23 @@ pub fn nine_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig
             "polynomial",
             ModelConfig { degree: 7, ..c },
         ),
+    ]
+}
+
+/// The renderer models set beside Kurt's nine (Table 9.3 stand-in, error
+/// against time): `(label, catalogue name, config)`, GGX with `lobes`
+/// lobes as Cook-Torrance.
+pub fn renderer_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig)> {
+    let c = ModelConfig {
+        lobes,
+        ..ModelConfig::default()
+    };
+    vec![
+        ("GGX", "ggx", c),
+        ("GGX separable", "ggx-separable", c),
+        ("Principled", "principled", c),
+        ("glTF", "gltf", c),
+        ("glTF + KHR", "gltf-ext", c),
     ]
 }
 
