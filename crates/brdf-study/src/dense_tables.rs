@@ -203,6 +203,9 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
     );
     if !renderers.is_empty() {
         t.note.push_str(RENDERER_NOTE);
+        if !models.is_empty() {
+            t.note.push_str(&lowest_l2(&t, &labels));
+        }
     }
     t.write(&study.out, "kurt_9_3")?;
     study.wrote("kurt_9_3.{csv,md}", "Table 9.3 stand-in: L2 and rendering PSNR of Kurt's models and the renderer models (GGX, principled, glTF; how each fit ended) on the RGL materials and Cornell paints; Fig. 9.6 reciprocity check", "`rgl/*.bsdf`, `cornell/*.brdf` (RGB)");
@@ -258,4 +261,89 @@ fn renderer_rgl(
     }
     spheres.add(name, reference, exposure, &images);
     Ok(cells)
+}
+
+/// The comparison the renderer columns are for, read off the table: per
+/// material, the lowest L2 of the renderer models (`renderer` labels)
+/// against the lowest of the other models.
+fn lowest_l2(t: &Table, renderer: &[&str]) -> String {
+    let mut wins = 0;
+    let mut each = Vec::new();
+    for row in &t.rows {
+        let (mut ours, mut theirs) = (None::<(&str, f64)>, None::<(&str, f64)>);
+        for (col, cell) in t.columns.iter().zip(row) {
+            let (Some(label), Cell::Num(v, _)) = (col.strip_suffix(" L2"), cell) else {
+                continue;
+            };
+            let best = if renderer.contains(&label) {
+                &mut ours
+            } else {
+                &mut theirs
+            };
+            if best.is_none_or(|(_, b)| *v < b) {
+                *best = Some((label, *v));
+            }
+        }
+        let (Some(Cell::Text(name)), Some((rl, rv)), Some((tl, tv))) = (row.first(), ours, theirs)
+        else {
+            continue;
+        };
+        wins += usize::from(rv < tv);
+        each.push(format!(
+            "{name} {rl} {} against {tl} {}",
+            crate::report::fmt_sig(rv, 4),
+            crate::report::fmt_sig(tv, 4)
+        ));
+    }
+    format!(
+        " Lowest L2 of a renderer model against the lowest of Kurt's models: the renderer model's is lower on {wins} of {} materials ({}).",
+        each.len(),
+        each.join("; ")
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lowest_l2_compares_the_best_of_each_group_per_material() {
+        let mut t = Table::new(
+            "t",
+            &[
+                "material",
+                "Ward L2",
+                "Ward PSNR (dB)",
+                "GGX L2",
+                "GGX fit",
+                "glTF L2",
+            ],
+        );
+        let num = |v| Cell::Num(v, 4);
+        let fit = || Cell::Text("converged".into());
+        t.rows = vec![
+            // Best renderer model glTF (0.02) beats Ward (0.03).
+            vec![
+                Cell::Text("a".into()),
+                num(0.03),
+                num(30.0),
+                num(0.05),
+                fit(),
+                num(0.02),
+            ],
+            // Ward (0.01) beats GGX (0.04); glTF failed (empty).
+            vec![
+                Cell::Text("b".into()),
+                num(0.01),
+                num(31.0),
+                num(0.04),
+                fit(),
+                Cell::Empty,
+            ],
+        ];
+        assert_eq!(
+            lowest_l2(&t, &["GGX", "glTF"]),
+            " Lowest L2 of a renderer model against the lowest of Kurt's models: the renderer model's is lower on 1 of 2 materials (a glTF 0.02000 against Ward 0.03000; b GGX 0.04000 against Ward 0.01000)."
+        );
+    }
 }
