@@ -9,7 +9,9 @@
 //! renderings are a labelled grid: measured and every model, and their
 //! difference images with a colour bar. The reciprocity check of Fig. 9.6:
 //! the polynomial fit rendered with `L` and `V` swapped must give the same
-//! image.
+//! image. The renderer models (GGX, principled, glTF) get the same metrics
+//! in columns after the nine, with how each fit ended, and their own grid
+//! of measured against fitted spheres ([`crate::renderer_spheres`]).
 
 use std::path::Path;
 
@@ -24,6 +26,8 @@ use rayon::prelude::*;
 use crate::StudyError;
 use crate::figures::{QUANTILE, SIZE, light, sphere, tone_note};
 use crate::render::{Image, render_sphere};
+use crate::renderer_fits::{fit_sets, status};
+use crate::renderer_spheres::RendererSpheres;
 use crate::report::{Cell, Table};
 use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::models::{FitHow, fit_model};
@@ -70,6 +74,7 @@ fn fit_all(
 /// Run the part.
 pub fn write(study: &mut Study) -> Result<(), StudyError> {
     let models = study.models();
+    let renderers = study.renderer_models();
     let how = FitHow {
         lbox: study.spec.lafortune_box,
         ..FitHow::default()
@@ -78,6 +83,11 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
     for (label, _, _) in &models {
         hdr.push(format!("{label} L2"));
         hdr.push(format!("{label} PSNR (dB)"));
+    }
+    for (label, _, _) in &renderers {
+        hdr.push(format!("{label} L2"));
+        hdr.push(format!("{label} PSNR (dB)"));
+        hdr.push(format!("{label} fit"));
     }
     let hdr_ref: Vec<&str> = hdr.iter().map(String::as_str).collect();
     let mut t = Table::new(
@@ -91,6 +101,8 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
             .collect(),
         ..Grid::default()
     };
+    let labels: Vec<&str> = renderers.iter().map(|m| m.0).collect();
+    let mut spheres = RendererSpheres::new(&labels);
     let mut reciprocity_max = 0.0f64;
     if let Some(rgl_dir) = study.data_dir("rgl") {
         for name in crate::sopp_tables::MATERIALS {
@@ -131,6 +143,15 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
                     tone: Tone::Exposure(exposure),
                 }));
             }
+            row.extend(renderer_rgl(
+                &renderers,
+                &set,
+                how,
+                name,
+                &reference,
+                exposure,
+                &mut spheres,
+            )?);
             t.rows.push(row);
             grid.rows.push(format!(
                 "{name}\nexposure x{}",
@@ -154,6 +175,17 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
                 row.push(Cell::Num(r.ngan_l2, 4));
                 row.push(Cell::Text("n/a (scattered)".into()));
             }
+            for f in fit_sets(&renderers, std::slice::from_ref(&set), 3, how, name)
+                .into_iter()
+                .flatten()
+            {
+                row.push(
+                    f.as_ref()
+                        .map_or(Cell::Empty, |(_, r)| Cell::Num(r.ngan_l2, 4)),
+                );
+                row.push(Cell::Text("n/a (scattered)".into()));
+                row.push(Cell::Text(status(&f)));
+            }
             t.rows.push(row);
         }
     }
@@ -169,12 +201,149 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
         tone_note(QUANTILE),
         crate::kurt::lafortune_note(how.lbox)
     );
+    if !renderers.is_empty() {
+        t.note.push_str(RENDERER_NOTE);
+        if !models.is_empty() {
+            t.note.push_str(&lowest_l2(&t, &labels));
+        }
+    }
     t.write(&study.out, "kurt_9_3")?;
-    study.wrote("kurt_9_3.{csv,md}", "Table 9.3 stand-in: L2 and rendering PSNR of the models on the RGL materials and Cornell paints; Fig. 9.6 reciprocity check", "`rgl/*.bsdf`, `cornell/*.brdf` (RGB)");
-    if !grid.tiles.is_empty() {
+    study.wrote("kurt_9_3.{csv,md}", "Table 9.3 stand-in: L2 and rendering PSNR of Kurt's models and the renderer models (GGX, principled, glTF; how each fit ended) on the RGL materials and Cornell paints; Fig. 9.6 reciprocity check", "`rgl/*.bsdf`, `cornell/*.brdf` (RGB)");
+    if !spheres.is_empty() {
+        spheres.write(&study.path("kurt_fig_9_3_renderer.png"))?;
+        study.wrote("kurt_fig_9_3_renderer.png", "Renderer models: measured RGL spheres beside the fitted GGX, principled and glTF spheres and their differences with colour bars", "`rgl/*.bsdf`");
+    }
+    if !grid.tiles.is_empty() && !models.is_empty() {
         grid.footer = vec![tone_note(QUANTILE)];
         grid.write_png(&study.path("kurt_fig_9_3.png"))?;
         study.wrote("kurt_fig_9_3.png", "Figure 9.3 stand-in: measured RGL spheres, every model's sphere, difference images with colour bars", "`rgl/*.bsdf`");
     }
     Ok(())
+}
+
+/// The note on the renderer models' columns.
+const RENDERER_NOTE: &str = " Renderer models after the nine, fitted by the same pipeline in the renderers' own boxes: GGX (`ggx`: height-correlated Smith, Schlick Fresnel), GGX separable (`ggx-separable`: separable Smith, as Mitsuba 3), Principled (Disney, as Mitsuba 3's `principled`), glTF (2.0 metallic-roughness) and glTF + KHR (`gltf-ext`: with KHR_materials_ior, _specular, _clearcoat). Their `fit` column says whether the fit converged, which parameters it left on a bound, or that it failed (its other cells then empty). Their spheres: `kurt_fig_9_3_renderer.png`.";
+
+/// The renderer models on one RGL material: fitted, rendered, added to the
+/// grid; their cells (L2, PSNR, how the fit ended).
+fn renderer_rgl(
+    renderers: &[crate::renderer_fits::Model],
+    set: &SampleSet,
+    how: FitHow,
+    name: &str,
+    reference: &Image,
+    exposure: f64,
+    spheres: &mut RendererSpheres,
+) -> Result<Vec<Cell>, StudyError> {
+    if renderers.is_empty() {
+        return Ok(Vec::new());
+    }
+    let peak = reference.peak().max(1e-12);
+    let fits: Vec<_> = fit_sets(renderers, std::slice::from_ref(set), 3, how, name)
+        .into_iter()
+        .flatten()
+        .collect();
+    let images: Vec<Option<Image>> = fits
+        .iter()
+        .map(|f| f.as_ref().ok().map(|(m, _)| sphere(m.as_ref())))
+        .collect();
+    let mut cells = Vec::new();
+    for (f, img) in fits.iter().zip(&images) {
+        cells.push(
+            f.as_ref()
+                .map_or(Cell::Empty, |(_, r)| Cell::Num(r.ngan_l2, 4)),
+        );
+        cells.push(match img {
+            Some(i) => Cell::Num(psnr(&reference.data, &i.data, peak)?, 4),
+            None => Cell::Empty,
+        });
+        cells.push(Cell::Text(status(f)));
+    }
+    spheres.add(name, reference, exposure, &images);
+    Ok(cells)
+}
+
+/// The comparison the renderer columns are for, read off the table: per
+/// material, the lowest L2 of the renderer models (`renderer` labels)
+/// against the lowest of the other models.
+fn lowest_l2(t: &Table, renderer: &[&str]) -> String {
+    let mut wins = 0;
+    let mut each = Vec::new();
+    for row in &t.rows {
+        let (mut ours, mut theirs) = (None::<(&str, f64)>, None::<(&str, f64)>);
+        for (col, cell) in t.columns.iter().zip(row) {
+            let (Some(label), Cell::Num(v, _)) = (col.strip_suffix(" L2"), cell) else {
+                continue;
+            };
+            let best = if renderer.contains(&label) {
+                &mut ours
+            } else {
+                &mut theirs
+            };
+            if best.is_none_or(|(_, b)| *v < b) {
+                *best = Some((label, *v));
+            }
+        }
+        let (Some(Cell::Text(name)), Some((rl, rv)), Some((tl, tv))) = (row.first(), ours, theirs)
+        else {
+            continue;
+        };
+        wins += usize::from(rv < tv);
+        each.push(format!(
+            "{name} {rl} {} against {tl} {}",
+            crate::report::fmt_sig(rv, 4),
+            crate::report::fmt_sig(tv, 4)
+        ));
+    }
+    format!(
+        " Lowest L2 of a renderer model against the lowest of Kurt's models: the renderer model's is lower on {wins} of {} materials ({}).",
+        each.len(),
+        each.join("; ")
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lowest_l2_compares_the_best_of_each_group_per_material() {
+        let mut t = Table::new(
+            "t",
+            &[
+                "material",
+                "Ward L2",
+                "Ward PSNR (dB)",
+                "GGX L2",
+                "GGX fit",
+                "glTF L2",
+            ],
+        );
+        let num = |v| Cell::Num(v, 4);
+        let fit = || Cell::Text("converged".into());
+        t.rows = vec![
+            // Best renderer model glTF (0.02) beats Ward (0.03).
+            vec![
+                Cell::Text("a".into()),
+                num(0.03),
+                num(30.0),
+                num(0.05),
+                fit(),
+                num(0.02),
+            ],
+            // Ward (0.01) beats GGX (0.04); glTF failed (empty).
+            vec![
+                Cell::Text("b".into()),
+                num(0.01),
+                num(31.0),
+                num(0.04),
+                fit(),
+                Cell::Empty,
+            ],
+        ];
+        assert_eq!(
+            lowest_l2(&t, &["GGX", "glTF"]),
+            " Lowest L2 of a renderer model against the lowest of Kurt's models: the renderer model's is lower on 1 of 2 materials (a glTF 0.02000 against Ward 0.03000; b GGX 0.04000 against Ward 0.01000)."
+        );
+    }
 }

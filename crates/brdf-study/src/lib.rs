@@ -20,6 +20,8 @@ pub mod kurt;
 pub mod nist;
 pub mod plots;
 pub mod render;
+pub mod renderer_fits;
+pub mod renderer_spheres;
 pub mod report;
 pub mod sopp_tables;
 pub mod stability;

@@ -267,6 +267,15 @@ impl Study {
             .collect()
     }
 
+    /// The selected renderer models (GGX, principled, glTF), compared with
+    /// the nine in the Table 9.3 stand-in and the error against time.
+    pub fn renderer_models(&self) -> Vec<(&'static str, &'static str, ModelConfig)> {
+        models::renderer_models(self.spec.lobes)
+            .into_iter()
+            .filter(|(label, name, _)| self.spec.has_model(label, name))
+            .collect()
+    }
+
     /// How the thesis tables are fitted in the current variant.
     pub fn how(&self) -> Result<FitHow, StudyError> {
         Ok(FitHow {

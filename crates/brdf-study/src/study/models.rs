@@ -1,4 +1,5 @@
-//! Kurt's nine models and how the study fits them: built for the data,
+//! Kurt's nine models, the renderer models compared with them, and how the
+//! study fits them: built for the data,
 //! Lafortune in Kurt's box unless the wide box is asked for, fitted by the
 //! pipeline from automatic starts (the polynomial by robust IRLS as Kurt
 //! did, or by OLS when asked), and the parameters a fit leaves undetermined
@@ -44,6 +45,23 @@ pub fn nine_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig
 /// Appendix 3 lies there), while the catalogue allows `[-1, 1]` for both.
 /// A fit in the narrow box is the same model, constrained.
 pub const KURT_LAFORTUNE_BOX: [(&str, f64, f64); 2] = [("cxy", -1.0, 0.0), ("cz", 0.0, 1.0)];
+
+/// The renderer models set beside Kurt's nine (Table 9.3 stand-in, error
+/// against time): `(label, catalogue name, config)`, GGX with `lobes`
+/// lobes as Cook-Torrance.
+pub fn renderer_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig)> {
+    let c = ModelConfig {
+        lobes,
+        ..ModelConfig::default()
+    };
+    vec![
+        ("GGX", "ggx", c),
+        ("GGX separable", "ggx-separable", c),
+        ("Principled", "principled", c),
+        ("glTF", "gltf", c),
+        ("glTF + KHR", "gltf-ext", c),
+    ]
+}
 
 /// Build catalogue model `name` for `set`, in Kurt's box for Lafortune
 /// when `lbox` says so.

@@ -5,9 +5,9 @@
 //! ```toml
 //! tables = ["kurt_9_1", "kurt_9_2"]   # parts (default: all)
 //! materials = ["25", "cayman"]         # CUReT numbers or name parts (default: all)
-//! models = ["ward", "polynomial"]      # catalogue names or labels (default: nine)
+//! models = ["ward", "ggx"]             # catalogue names or labels (default: nine + renderer)
 //! degrees = [1, 2, 3]                  # Table 9.1 / Fig. 9.1 degrees (default 1..=12)
-//! lobes = 1                            # Lafortune / Cook-Torrance lobes
+//! lobes = 1                            # Lafortune / Cook-Torrance / GGX lobes
 //! metrics = ["ngan"]                   # objectives of the CUReT fits
 //! limits = [80.0]                      # angle limits (deg) of the CUReT fits
 //! lafortune_box = "kurt"               # or "wide" (Cxy, Cz in [-1, 1])
@@ -38,11 +38,12 @@ pub struct StudySpec {
     /// Materials: CUReT sample numbers or case-insensitive parts of a
     /// material's name; empty = all.
     pub materials: Vec<String>,
-    /// Models of Kurt's comparison: catalogue names or table labels; empty = all nine.
+    /// Models of Kurt's comparison and the renderer models beside them:
+    /// catalogue names or table labels; empty = all.
     pub models: Vec<String>,
     /// Polynomial degrees of Table 9.1 (and Fig. 9.1, up to 6).
     pub degrees: Vec<usize>,
-    /// Lobes of Lafortune and Cook-Torrance.
+    /// Lobes of Lafortune, Cook-Torrance and GGX.
     pub lobes: usize,
     /// Objectives of the CUReT fits (`ngan`, `lafortune`, `log`, ...).
     pub metrics: Vec<String>,
@@ -113,12 +114,15 @@ impl StudySpec {
             return Err(format!("limits: {l} is outside (0, 90] degrees"));
         }
         for m in &self.models {
-            if !super::models::nine_models(1)
-                .iter()
+            let known = super::models::nine_models(1)
+                .into_iter()
+                .chain(super::models::renderer_models(1));
+            if !known
+                .into_iter()
                 .any(|(label, name, _)| m.eq_ignore_ascii_case(label) || m == name)
             {
                 return Err(format!(
-                    "models: `{m}` is none of Kurt's nine (catalogue names or labels)"
+                    "models: `{m}` is none of Kurt's nine or the renderer models (catalogue names or labels)"
                 ));
             }
         }
@@ -178,6 +182,14 @@ mod tests {
         assert!(s.has_model("Ward", "ward") && !s.has_model("Blinn-Phong", "blinn-phong"));
         assert_eq!(s.lafortune_box, LafortuneBox::Kurt);
         assert_eq!(s.limits, vec![80.0]);
+    }
+
+    #[test]
+    fn renderer_models_are_selected_by_name_or_label() {
+        let s = StudySpec::parse("models = [\"ggx\", \"Principled\"]\n").unwrap();
+        assert!(s.has_model("GGX", "ggx") && s.has_model("Principled", "principled"));
+        assert!(!s.has_model("glTF", "gltf") && !s.has_model("Ward", "ward"));
+        assert!(StudySpec::parse("models = [\"gltf-ext\"]\n").is_ok());
     }
 
     #[test]
