@@ -12,6 +12,7 @@ use brdf_models::ModelConfig;
 use rayon::prelude::*;
 
 use crate::StudyError;
+use crate::kurt::converged;
 use crate::study::models::{FitHow, fit_model, undetermined};
 use crate::study::progress;
 
@@ -50,12 +51,6 @@ pub fn fit_sets(
         out.push(std::mem::replace(&mut done, rest));
     }
     out
-}
-
-/// Whether a fit ended converged. The solver's words for the other ends
-/// all begin "NOT converged" (and contain "converged"), hence the prefix.
-pub fn converged(r: &FitSummary) -> bool {
-    !r.termination.starts_with("NOT")
 }
 
 /// The parameters a fit left on a bound, as `name (lower|upper)`.

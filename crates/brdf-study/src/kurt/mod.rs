@@ -48,9 +48,11 @@ pub fn err(r: &FitSummary) -> f64 {
     r.error
 }
 
-/// Whether a fit ended converged (or was a direct solve).
+/// Whether a fit ended converged (or was a direct solve). The solvers'
+/// descriptions start with "converged" or with "NOT converged", so the
+/// test is on the start, not on the word anywhere.
 pub fn converged(r: &FitSummary) -> bool {
-    r.termination.contains("converged") || r.termination == "direct solve"
+    r.termination.starts_with("converged") || r.termination == "direct solve"
 }
 
 /// Note on how Lafortune was fitted.
@@ -62,5 +64,43 @@ pub fn lafortune_note(lbox: crate::study::spec::LafortuneBox) -> &'static str {
         crate::study::spec::LafortuneBox::Wide => {
             "Lafortune in the wide box (Cxy, Cz in [-1, 1], back-scattering lobes allowed), NOT Kurt's box; `lafortune_box.md` states the difference."
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::converged;
+    use brdf_fit::FitSummary;
+
+    fn ended(termination: &str) -> FitSummary {
+        FitSummary {
+            model: "phong".into(),
+            data: String::new(),
+            samples: 0,
+            parameters: vec![],
+            objective: "ngan",
+            error: 0.0,
+            error_per_channel: vec![],
+            ngan_l2: 0.0,
+            ngan_l2_per_channel: vec![],
+            solver: String::new(),
+            iterations: 0,
+            termination: termination.into(),
+            starts: (0, 0, 0),
+            seconds: 0.0,
+            stored_numbers: 0,
+        }
+    }
+
+    /// "NOT converged" contains the word "converged": only the start of the
+    /// description counts (the count of Table 9.4 once took it as converged).
+    #[test]
+    fn converged_reads_the_start_of_the_description() {
+        assert!(converged(&ended(
+            "converged: relative reduction below tolerance"
+        )));
+        assert!(converged(&ended("direct solve")));
+        assert!(!converged(&ended("NOT converged: iteration cap")));
+        assert!(!converged(&ended("NOT converged: iteration cap reached")));
     }
 }
