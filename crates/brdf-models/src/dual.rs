@@ -14,23 +14,27 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 pub const MAX_DERIV: usize = 24;
 
 /// `v + sum_k d_k eps_k`.
+///
+/// `N` is the room for derivatives: the value-only path runs with `N = 0`
+/// (no derivative storage to clear or copy), the gradient path with the
+/// smallest `N` that holds the model's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Dual {
+pub struct Dual<const N: usize = MAX_DERIV> {
     /// Value.
     pub v: f64,
     /// Partial derivatives (entries `n..` are 0).
-    pub d: [f64; MAX_DERIV],
+    pub d: [f64; N],
     /// Number of live derivatives.
     pub n: usize,
 }
 
-impl Dual {
+impl<const N: usize> Dual<N> {
     /// A constant.
     #[inline]
     pub fn c(v: f64) -> Self {
         Dual {
             v,
-            d: [0.0; MAX_DERIV],
+            d: [0.0; N],
             n: 0,
         }
     }
@@ -59,7 +63,7 @@ impl Dual {
 
     /// `g(self, b)` given `g`, `dg/dself` and `dg/db`.
     #[inline]
-    pub fn chain2(&self, b: &Dual, value: f64, da: f64, db: f64) -> Self {
+    pub fn chain2(&self, b: &Dual<N>, value: f64, da: f64, db: f64) -> Self {
         let mut r = Dual::c(value);
         r.n = self.n.max(b.n);
         for k in 0..r.n {
@@ -102,118 +106,118 @@ impl Dual {
 
     /// The larger of two duals.
     #[inline]
-    pub fn max(self, b: Dual) -> Self {
+    pub fn max(self, b: Dual<N>) -> Self {
         if self.v >= b.v { self } else { b }
     }
 
     /// Linear interpolation `a (1 - t) + b t` with weight `t = self`.
     #[inline]
-    pub fn lerp(self, a: Dual, b: Dual) -> Self {
+    pub fn lerp(self, a: Dual<N>, b: Dual<N>) -> Self {
         a + (b - a) * self
     }
 }
 
-impl Add for Dual {
-    type Output = Dual;
+impl<const N: usize> Add for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn add(self, b: Dual) -> Dual {
+    fn add(self, b: Dual<N>) -> Dual<N> {
         self.chain2(&b, self.v + b.v, 1.0, 1.0)
     }
 }
 
-impl Sub for Dual {
-    type Output = Dual;
+impl<const N: usize> Sub for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn sub(self, b: Dual) -> Dual {
+    fn sub(self, b: Dual<N>) -> Dual<N> {
         self.chain2(&b, self.v - b.v, 1.0, -1.0)
     }
 }
 
-impl Mul for Dual {
-    type Output = Dual;
+impl<const N: usize> Mul for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn mul(self, b: Dual) -> Dual {
+    fn mul(self, b: Dual<N>) -> Dual<N> {
         self.chain2(&b, self.v * b.v, b.v, self.v)
     }
 }
 
-impl Div for Dual {
-    type Output = Dual;
+impl<const N: usize> Div for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn div(self, b: Dual) -> Dual {
+    fn div(self, b: Dual<N>) -> Dual<N> {
         let q = self.v / b.v;
         self.chain2(&b, q, 1.0 / b.v, -q / b.v)
     }
 }
 
-impl Neg for Dual {
-    type Output = Dual;
+impl<const N: usize> Neg for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn neg(self) -> Dual {
+    fn neg(self) -> Dual<N> {
         self.chain(-self.v, -1.0)
     }
 }
 
-impl Add<f64> for Dual {
-    type Output = Dual;
+impl<const N: usize> Add<f64> for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn add(self, b: f64) -> Dual {
+    fn add(self, b: f64) -> Dual<N> {
         self.chain(self.v + b, 1.0)
     }
 }
 
-impl Sub<f64> for Dual {
-    type Output = Dual;
+impl<const N: usize> Sub<f64> for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn sub(self, b: f64) -> Dual {
+    fn sub(self, b: f64) -> Dual<N> {
         self.chain(self.v - b, 1.0)
     }
 }
 
-impl Mul<f64> for Dual {
-    type Output = Dual;
+impl<const N: usize> Mul<f64> for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn mul(self, b: f64) -> Dual {
+    fn mul(self, b: f64) -> Dual<N> {
         self.chain(self.v * b, b)
     }
 }
 
-impl Div<f64> for Dual {
-    type Output = Dual;
+impl<const N: usize> Div<f64> for Dual<N> {
+    type Output = Dual<N>;
     #[inline]
-    fn div(self, b: f64) -> Dual {
+    fn div(self, b: f64) -> Dual<N> {
         self.chain(self.v / b, 1.0 / b)
     }
 }
 
-impl Add<Dual> for f64 {
-    type Output = Dual;
+impl<const N: usize> Add<Dual<N>> for f64 {
+    type Output = Dual<N>;
     #[inline]
-    fn add(self, b: Dual) -> Dual {
+    fn add(self, b: Dual<N>) -> Dual<N> {
         b + self
     }
 }
 
-impl Sub<Dual> for f64 {
-    type Output = Dual;
+impl<const N: usize> Sub<Dual<N>> for f64 {
+    type Output = Dual<N>;
     #[inline]
-    fn sub(self, b: Dual) -> Dual {
+    fn sub(self, b: Dual<N>) -> Dual<N> {
         b.chain(self - b.v, -1.0)
     }
 }
 
-impl Mul<Dual> for f64 {
-    type Output = Dual;
+impl<const N: usize> Mul<Dual<N>> for f64 {
+    type Output = Dual<N>;
     #[inline]
-    fn mul(self, b: Dual) -> Dual {
+    fn mul(self, b: Dual<N>) -> Dual<N> {
         b * self
     }
 }
 
-impl Div<Dual> for f64 {
-    type Output = Dual;
+impl<const N: usize> Div<Dual<N>> for f64 {
+    type Output = Dual<N>;
     #[inline]
-    fn div(self, b: Dual) -> Dual {
+    fn div(self, b: Dual<N>) -> Dual<N> {
         let q = self / b.v;
         b.chain(q, -q / b.v)
     }
@@ -221,7 +225,7 @@ impl Div<Dual> for f64 {
 
 /// The parameter vector `p` as duals: seeded variables when `grad`, else
 /// constants. Writes `p.len()` entries into `out`.
-pub fn seed(p: &[f64], grad: bool, out: &mut [Dual]) {
+pub fn seed<const N: usize>(p: &[f64], grad: bool, out: &mut [Dual<N>]) {
     let n = if grad { p.len() } else { 0 };
     for (i, (&x, o)) in p.iter().zip(out.iter_mut()).enumerate() {
         *o = Dual::var(x, i, n);
@@ -237,8 +241,8 @@ mod tests {
         // f(x, y) = sqrt(x y) / (1 + x) + ln(y); at (2, 3):
         // df/dx = y / (2 sqrt(xy) (1+x)) - sqrt(xy)/(1+x)^2,
         // df/dy = x / (2 sqrt(xy) (1+x)) + 1/y.
-        let x = Dual::var(2.0, 0, 2);
-        let y = Dual::var(3.0, 1, 2);
+        let x = Dual::<2>::var(2.0, 0, 2);
+        let y = Dual::<2>::var(3.0, 1, 2);
         let f = (x * y).sqrt() / (1.0 + x) + y.ln();
         let s = 6f64.sqrt();
         assert!((f.v - (s / 3.0 + 3f64.ln())).abs() < 1e-15);

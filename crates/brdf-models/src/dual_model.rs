@@ -19,7 +19,13 @@ pub trait DualFormula: Clone + Send + Sync + 'static {
     /// Parameter descriptions for `channels` channels.
     fn specs(channels: usize) -> Vec<ParamSpec>;
     /// `f_c(L, V)` into `out[..channels]`, for `L`, `V` above the horizon.
-    fn eval(p: &[Dual], channels: usize, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [Dual]);
+    fn eval<const N: usize>(
+        p: &[Dual<N>],
+        channels: usize,
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [Dual<N>],
+    );
     /// Whether `f(L, V) = f(V, L)`.
     fn reciprocal() -> bool {
         true
@@ -63,19 +69,48 @@ impl<F: DualFormula> DualModel<F> {
         Ok(m)
     }
 
-    fn run(
+    /// The formula at `p` over duals with room for `N` derivatives
+    /// (seeded when `grad`).
+    fn run<const N: usize>(
         &self,
         p: &[f64],
         l: &Vector3<f64>,
         v: &Vector3<f64>,
         grad: bool,
-    ) -> [Dual; MAX_CHANNELS] {
-        let mut q = [Dual::c(0.0); MAX_DERIV];
+    ) -> [Dual<N>; MAX_CHANNELS] {
+        let mut q = [Dual::<N>::c(0.0); MAX_DERIV];
         let np = p.len().min(MAX_DERIV);
         seed(&p[..np], grad, &mut q[..np]);
-        let mut out = [Dual::c(0.0); MAX_CHANNELS];
+        let mut out = [Dual::<N>::c(0.0); MAX_CHANNELS];
         F::eval(&q[..np], self.channels, l, v, &mut out);
         out
+    }
+
+    /// The values and, in `grad` (`c * np + k`), the derivatives at `p`,
+    /// with the smallest dual that holds the parameters.
+    fn value_and_gradient(
+        &self,
+        p: &[f64],
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [f64],
+        grad: &mut [f64],
+    ) {
+        fn copy<const N: usize>(r: &[Dual<N>], np: usize, out: &mut [f64], grad: &mut [f64]) {
+            for (c, rc) in r.iter().enumerate().take(out.len()) {
+                out[c] = rc.v;
+                let k = rc.n.min(np).min(N);
+                grad[c * np..c * np + k].copy_from_slice(&rc.d[..k]);
+            }
+        }
+        let np = self.specs.len();
+        let nc = self.channels;
+        let (out, grad) = (&mut out[..nc], &mut grad[..nc * np]);
+        match np {
+            0..=8 => copy(&self.run::<8>(p, l, v, true), np, out, grad),
+            9..=16 => copy(&self.run::<16>(p, l, v, true), np, out, grad),
+            _ => copy(&self.run::<MAX_DERIV>(p, l, v, true), np, out, grad),
+        }
     }
 }
 
@@ -99,7 +134,8 @@ impl<F: DualFormula> Parametric for DualModel<F> {
             out[..nc].fill(0.0);
             return;
         }
-        let r = self.run(p, l, v, false);
+        // No derivatives: duals without derivative storage.
+        let r = self.run::<0>(p, l, v, false);
         for c in 0..nc {
             out[c] = r[c].v;
         }
@@ -119,12 +155,7 @@ impl<F: DualFormula> Parametric for DualModel<F> {
             out[..nc].fill(0.0);
             return;
         }
-        let r = self.run(p, l, v, true);
-        for c in 0..nc {
-            out[c] = r[c].v;
-            let row = &mut grad[c * np..(c + 1) * np];
-            row[..r[c].n.min(np)].copy_from_slice(&r[c].d[..r[c].n.min(np)]);
-        }
+        self.value_and_gradient(p, l, v, out, grad);
     }
     fn is_reciprocal(&self) -> bool {
         F::reciprocal()

@@ -94,13 +94,13 @@ fn core_specs(nc: usize) -> Vec<ParamSpec> {
 
 /// The glTF material; `ext`: parameters after the core ones are
 /// `ior, specular, specular_color (nc), clearcoat, clearcoat_roughness`.
-fn gltf_eval(
-    p: &[Dual],
+fn gltf_eval<const N: usize>(
+    p: &[Dual<N>],
     nc: usize,
     l: &Vector3<f64>,
     v: &Vector3<f64>,
     ext: bool,
-    out: &mut [Dual],
+    out: &mut [Dual<N>],
 ) {
     let base = &p[..nc];
     let (metallic, rough) = (p[nc], p[nc + 1]);
@@ -109,7 +109,7 @@ fn gltf_eval(
         let e = &p[nc + 2..];
         (e[0], e[1], &e[2..2 + nc], e[2 + nc], e[3 + nc])
     } else {
-        (Dual::c(1.5), one, &[] as &[Dual], Dual::c(0.0), one)
+        (Dual::c(1.5), one, &[] as &[Dual<N>], Dual::c(0.0), one)
     };
     let h = (l + v).normalize();
     let w = schlick_weight(v.dot(&h).abs());
@@ -151,7 +151,13 @@ impl DualFormula for GltfFormula {
     fn specs(channels: usize) -> Vec<ParamSpec> {
         core_specs(channels)
     }
-    fn eval(p: &[Dual], nc: usize, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [Dual]) {
+    fn eval<const N: usize>(
+        p: &[Dual<N>],
+        nc: usize,
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [Dual<N>],
+    ) {
         gltf_eval(p, nc, l, v, false, out)
     }
 }
@@ -205,7 +211,13 @@ impl DualFormula for GltfExtFormula {
         );
         s
     }
-    fn eval(p: &[Dual], nc: usize, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [Dual]) {
+    fn eval<const N: usize>(
+        p: &[Dual<N>],
+        nc: usize,
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [Dual<N>],
+    ) {
         gltf_eval(p, nc, l, v, true, out)
     }
     fn reciprocal() -> bool {

@@ -90,7 +90,7 @@ pub(crate) fn schlick_weight(c: f64) -> f64 {
 
 /// Luminance of a colour: Rec. 709 weights for three channels, the value
 /// itself for one, the mean otherwise.
-pub(crate) fn luminance(c: &[Dual]) -> Dual {
+pub(crate) fn luminance<const N: usize>(c: &[Dual<N>]) -> Dual<N> {
     match c.len() {
         1 => c[0],
         3 => c[0] * 0.212671 + c[1] * 0.715160 + c[2] * 0.072169,
@@ -99,7 +99,13 @@ pub(crate) fn luminance(c: &[Dual]) -> Dual {
 }
 
 /// The GGX lobe `D G / (4 N.L N.V)` at dual widths.
-pub(crate) fn ggx_dual(l: &Vector3<f64>, v: &Vector3<f64>, ax: Dual, ay: Dual, m: Masking) -> Dual {
+pub(crate) fn ggx_dual<const N: usize>(
+    l: &Vector3<f64>,
+    v: &Vector3<f64>,
+    ax: Dual<N>,
+    ay: Dual<N>,
+    m: Masking,
+) -> Dual<N> {
     match ggx_specular(l, v, ax.v, ay.v, m) {
         Some(s) => ax.chain2(&ay, s.value, s.d_ax, s.d_ay),
         None => Dual::c(0.0),
@@ -107,7 +113,7 @@ pub(crate) fn ggx_dual(l: &Vector3<f64>, v: &Vector3<f64>, ax: Dual, ay: Dual, m
 }
 
 /// Mitsuba's GTR1 clear-coat distribution at `N.H` for width `a`.
-fn gtr1(nh: f64, a: Dual) -> Dual {
+fn gtr1<const N: usize>(nh: f64, a: Dual<N>) -> Dual<N> {
     let a2 = a.sq();
     (a2 - 1.0) / (PI * a2.ln() * (1.0 + (a2 - 1.0) * (nh * nh)))
 }
@@ -163,7 +169,13 @@ impl DualFormula for PrincipledFormula {
         s
     }
 
-    fn eval(p: &[Dual], nc: usize, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [Dual]) {
+    fn eval<const N: usize>(
+        p: &[Dual<N>],
+        nc: usize,
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [Dual<N>],
+    ) {
         let base = &p[..nc];
         let [
             metallic,
@@ -180,7 +192,7 @@ impl DualFormula for PrincipledFormula {
         let cos_d = v.dot(&h).clamp(0.0, 1.0);
         let w = schlick_weight(cos_d);
         let lum = luminance(base);
-        let tint = |c: Dual| if lum.v > 0.0 { c / lum } else { Dual::c(1.0) };
+        let tint = |c: Dual<N>| if lum.v > 0.0 { c / lum } else { Dual::c(1.0) };
         // Keep sqrt away from 0, where d/dspecular of sqrt(0.08 s) is infinite
         // although the reflectance (~0.08 s) is smooth.
         let r = (specular.max_c(1e-12) * 0.08).sqrt();

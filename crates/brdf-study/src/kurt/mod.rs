@@ -48,11 +48,12 @@ pub fn err(r: &FitSummary) -> f64 {
     r.error
 }
 
-/// Whether a fit ended converged (or was a direct solve). The solvers'
-/// descriptions start with "converged" or with "NOT converged", so the
-/// test is on the start, not on the word anywhere.
+/// Whether a fit ended converged (or was a direct solve). The solvers say
+/// "converged: ..." or "NOT converged: ..." (after a tag such as "IRLS "),
+/// so the word alone does not decide.
 pub fn converged(r: &FitSummary) -> bool {
-    r.termination.starts_with("converged") || r.termination == "direct solve"
+    let t = &r.termination;
+    t == "direct solve" || (t.contains("converged") && !t.contains("NOT converged"))
 }
 
 /// Note on how Lafortune was fitted.
@@ -102,5 +103,11 @@ mod tests {
         assert!(converged(&ended("direct solve")));
         assert!(!converged(&ended("NOT converged: iteration cap")));
         assert!(!converged(&ended("NOT converged: iteration cap reached")));
+        assert!(converged(&ended(
+            "IRLS converged: coefficient change below tolerance (MATLAB test)"
+        )));
+        assert!(!converged(&ended(
+            "IRLS NOT converged: iteration cap reached"
+        )));
     }
 }
