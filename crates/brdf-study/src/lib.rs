@@ -27,6 +27,8 @@ pub mod sopp_tables;
 pub mod stability;
 pub mod study;
 pub mod synthetic;
+#[cfg(test)]
+mod test_support;
 
 pub use error::StudyError;
 

@@ -106,35 +106,13 @@ pub fn tally<'a>(fits: impl IntoIterator<Item = Option<&'a FitSummary>>) -> Stri
 #[cfg(test)]
 mod tests {
     use super::*;
-    use brdf_fit::FittedParam;
 
     fn summary(termination: &str, bounds: &[(&str, Option<&str>)]) -> FitSummary {
-        FitSummary {
-            model: "ggx".into(),
-            data: String::new(),
-            samples: 0,
-            parameters: bounds
-                .iter()
-                .map(|(n, b)| FittedParam {
-                    name: n.to_string(),
-                    value: 0.5,
-                    std_error: None,
-                    at_bound: b.map(str::to_string),
-                    projected: false,
-                })
-                .collect(),
-            objective: "ngan",
-            error: 0.0,
-            error_per_channel: vec![],
-            ngan_l2: 0.0,
-            ngan_l2_per_channel: vec![],
-            solver: String::new(),
-            iterations: 0,
-            termination: termination.into(),
-            starts: (0, 0, 0),
-            seconds: 0.0,
-            stored_numbers: 0,
-        }
+        let params = bounds
+            .iter()
+            .map(|(n, b)| crate::test_support::param(n, 0.5, *b, false))
+            .collect();
+        crate::test_support::summary(termination, params)
     }
 
     #[test]

@@ -74,23 +74,7 @@ mod tests {
     use brdf_fit::FitSummary;
 
     fn ended(termination: &str) -> FitSummary {
-        FitSummary {
-            model: "phong".into(),
-            data: String::new(),
-            samples: 0,
-            parameters: vec![],
-            objective: "ngan",
-            error: 0.0,
-            error_per_channel: vec![],
-            ngan_l2: 0.0,
-            ngan_l2_per_channel: vec![],
-            solver: String::new(),
-            iterations: 0,
-            termination: termination.into(),
-            starts: (0, 0, 0),
-            seconds: 0.0,
-            stored_numbers: 0,
-        }
+        crate::test_support::summary(termination, vec![])
     }
 
     /// "NOT converged" contains the word "converged": only the start of the

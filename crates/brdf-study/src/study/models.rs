@@ -176,35 +176,13 @@ mod tests {
     use super::*;
     use brdf_core::Brdf;
     use brdf_core::nalgebra::Vector3;
-    use brdf_fit::FittedParam;
 
     fn summary(params: &[(&str, f64, bool)]) -> FitSummary {
-        FitSummary {
-            model: String::new(),
-            data: String::new(),
-            samples: 0,
-            parameters: params
-                .iter()
-                .map(|(n, v, projected)| FittedParam {
-                    name: n.to_string(),
-                    value: *v,
-                    std_error: None,
-                    at_bound: None,
-                    projected: *projected,
-                })
-                .collect(),
-            objective: "ngan",
-            error: 0.0,
-            error_per_channel: vec![],
-            ngan_l2: 0.0,
-            ngan_l2_per_channel: vec![],
-            solver: String::new(),
-            iterations: 0,
-            termination: String::new(),
-            starts: (0, 0, 0),
-            seconds: 0.0,
-            stored_numbers: 0,
-        }
+        let params = params
+            .iter()
+            .map(|(n, v, projected)| crate::test_support::param(n, *v, None, *projected))
+            .collect();
+        crate::test_support::summary("", params)
     }
 
     #[test]
