@@ -3,7 +3,10 @@
 //! by the batch kernels of the models at every iteration.
 //!
 //! `H = (L + V)/|L + V|`; `nh = N.H` (clamped to `[-1, 1]`), `vh = V.H`
-//! (`= L.H`), `cos2_phi_h = H_x^2/(H_x^2 + H_y^2)` (1/2 when `H = N`).
+//! (`= L.H`), `cos2_phi_h = H_x^2/(H_x^2 + H_y^2)` (1/2 when `H = N`);
+//! and the parameter-free factors of the Ashikhmin-Shirley lobe, Schlick's
+//! `(1 - V.H)^5` and `1 / (V.H max(N.L, N.V))`, so its kernel does no
+//! division per sample and iteration.
 //! A pair with `L + V = 0` or either direction at or below the horizon is
 //! marked invalid (`valid[j] == false`); models return 0 there.
 
@@ -23,6 +26,10 @@ pub struct PairGeometry {
     pub ln_nh: Vec<f64>,
     /// Both directions above the horizon and `L + V != 0`.
     pub valid: Vec<bool>,
+    /// `(1 - V.H)^5`, `V.H` clamped to `[0, 1]` (Schlick's Fresnel weight).
+    pub schlick5: Vec<f64>,
+    /// `1 / (V.H max(N.L, N.V))` (0 for an invalid pair).
+    pub inv_vh_max_cos: Vec<f64>,
 }
 
 impl PairGeometry {
@@ -35,6 +42,8 @@ impl PairGeometry {
             cos2_phi_h: vec![0.5; n],
             ln_nh: vec![f64::NEG_INFINITY; n],
             valid: vec![false; n],
+            schlick5: vec![1.0; n],
+            inv_vh_max_cos: vec![0.0; n],
         };
         for j in 0..n {
             let (sx, sy, sz) = (
@@ -55,6 +64,11 @@ impl PairGeometry {
                 g.ln_nh[j] = g.nh[j].min(1.0).ln();
             }
             g.valid[j] = pairs.lz[j] > 0.0 && pairs.vz[j] > 0.0;
+            let m = 1.0 - g.vh[j].clamp(0.0, 1.0);
+            g.schlick5[j] = m * m * m * m * m;
+            if g.valid[j] {
+                g.inv_vh_max_cos[j] = 1.0 / (g.vh[j] * pairs.lz[j].max(pairs.vz[j]));
+            }
         }
         g
     }

@@ -146,9 +146,8 @@ impl pulp::WithSimd for AsKernel<'_> {
             ln_nh: &geom.ln_nh[..n],
             valid: &geom.valid[..n],
             cos2_phi_h: &geom.cos2_phi_h[..n],
-            vh: &geom.vh[..n],
-            lz: &pairs.lz[..n],
-            vz: &pairs.vz[..n],
+            schlick5: &geom.schlick5[..n],
+            inv_vh_max_cos: &geom.inv_vh_max_cos[..n],
         };
         let at = |j| as_lobe_at((nu, nv, f0), norm, &g, j);
         match ds {
@@ -193,9 +192,8 @@ struct AsGeometry<'a> {
     ln_nh: &'a [f64],
     valid: &'a [bool],
     cos2_phi_h: &'a [f64],
-    vh: &'a [f64],
-    lz: &'a [f64],
-    vz: &'a [f64],
+    schlick5: &'a [f64],
+    inv_vh_max_cos: &'a [f64],
 }
 
 /// The lobe at pair `j` without its Fresnel factor, branch-free (the
@@ -211,11 +209,10 @@ fn as_lobe_at(
     let lnh = g.ln_nh[j];
     let ok = g.valid[j] & (lnh > f64::NEG_INFINITY);
     let lnh = if ok { lnh } else { 0.0 };
-    let (c2, vh) = (g.cos2_phi_h[j], g.vh[j]);
+    let c2 = g.cos2_phi_h[j];
     let pw = vmath::exp((nu * c2 + nv * (1.0 - c2)) * lnh);
-    let base = norm / (vh * g.lz[j].max(g.vz[j]));
-    let m = 1.0 - vh.clamp(0.0, 1.0);
-    let m5 = m * m * m * m * m;
+    let base = norm * g.inv_vh_max_cos[j];
+    let m5 = g.schlick5[j];
     (base * pw, f0 + (1.0 - f0) * m5, 1.0 - m5, lnh, c2, ok)
 }
 
