@@ -237,7 +237,7 @@ const PEAK_DECADES: i32 = 7;
 /// range samples `c` itself (its middle node); a smooth integrand meets the
 /// tolerance there. Otherwise plain bisection would cut at `c`, leaving the
 /// peak on interval ends where no node samples it (a zero integral with a
-/// zero error estimate), so the integral is redone from [`peak_breaks`].
+/// zero error estimate), so the integral is redone from break points that close in geometrically on `c`.
 pub fn integrate_around_peak(
     mut f: impl FnMut(f64, &mut [f64]),
     c: f64,
