@@ -50,9 +50,11 @@
 //! Huber pass instead of least squares was tried and rejected: on 13 of the
 //! 46 CUReT designs where MATLAB's loop converges it leads the bisquare
 //! iteration to another fixed point (so does unrestricted acceleration).
-//! Some designs (CUReT 4, 7, 19, 20, 22, 50 with the 2004 scale) have no
-//! fixed point the loop reaches: it ends in a 2-cycle of the median scale,
-//! and the solution says `IterationCap`.
+//! On some designs (CUReT 4, 7, 19, 20, 22, 50 with the 2004 scale)
+//! MATLAB's plain loop reaches no fixed point: it ends in a 2-cycle of the
+//! median scale, and the solution says `IterationCap`; the accelerated loop
+//! finds one on 7 and 20 (the coefficient test holds there: `G(b) = b` to
+//! `sqrt(eps)`), and says `IterationCap` on the others.
 //!
 //! A zero scale (an exact fit of all but a few points) never divides by
 //! zero: the conventions' fallbacks apply, and if the scale is still zero
