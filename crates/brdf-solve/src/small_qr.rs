@@ -1,7 +1,7 @@
 //! Column-pivoted Householder QR of small dense least-squares problems
 //! (hundreds of rows, a few dozen columns) on buffers reused from call to
 //! call: the inner solve of IRLS (one weighted fit per iteration), of its
-//! Anderson acceleration and of NNLS.
+//! Anderson acceleration and of NNLS (one per change of its passive set).
 //!
 //! It computes what [`crate::lstsq`] with [`crate::LstsqMethod::PivotedQr`]
 //! computes on a full-rank problem (rows weighted by `sqrt(w)`, columns
@@ -53,7 +53,29 @@ impl SmallQr {
         w: Option<&[f64]>,
         scale_columns: bool,
     ) -> usize {
-        let (m, n) = (a.nrows(), a.ncols());
+        self.factor_selected(a, None, w, scale_columns)
+    }
+
+    /// [`SmallQr::factor`] of the columns `cols` of `A` only (unweighted);
+    /// the solution of [`SmallQr::solve`] is then indexed like `cols`.
+    pub(crate) fn factor_columns(
+        &mut self,
+        a: MatRef<'_, f64>,
+        cols: &[usize],
+        scale_columns: bool,
+    ) -> usize {
+        self.factor_selected(a, Some(cols), None, scale_columns)
+    }
+
+    fn factor_selected(
+        &mut self,
+        a: MatRef<'_, f64>,
+        cols: Option<&[usize]>,
+        w: Option<&[f64]>,
+        scale_columns: bool,
+    ) -> usize {
+        let m = a.nrows();
+        let n = cols.map_or(a.ncols(), <[usize]>::len);
         (self.m, self.n) = (m, n);
         self.sw.clear();
         match w {
@@ -65,7 +87,7 @@ impl SmallQr {
         self.scale.clear();
         for j in 0..n {
             let start = self.a.len();
-            let col = a.col(j);
+            let col = a.col(cols.map_or(j, |c| c[j]));
             self.a
                 .extend(self.sw.iter().enumerate().map(|(i, s)| s * col[i]));
             let s = norm(&self.a[start..]);
