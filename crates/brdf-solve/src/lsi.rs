@@ -10,11 +10,15 @@
 //!
 //! This is the subproblem of the bounded solver: every damped Gauss-Newton
 //! step is an LSI problem whose constraints keep the next iterate in the box
-//! and the linear inequalities.
+//! and the linear inequalities. `E` is small there (the damped, stacked
+//! Jacobian's triangle), so its QR is the column-scaled, column-pivoted
+//! [`SmallQr`] on one workspace (`E = Q R D P^T`, `D` the column scales,
+//! `P` the pivoting; `R D P^T` takes the place of `R` above), which also
+//! detects a rank-deficient `E` instead of dividing by a zero pivot.
 
-use faer::linalg::solvers::SolveLstsq;
 use faer::{Mat, MatRef};
 
+use crate::small_qr::SmallQr;
 use crate::{SolveError, nnls};
 
 /// Solve `min ||E x - f|| s.t. G x >= h` (E must have full column rank).
@@ -41,10 +45,15 @@ pub fn lsi(
             right: m,
         });
     }
-    let qr = e.qr();
-    let fm = Mat::from_fn(m, 1, |i, _| f[i]);
-    let x0m = qr.solve_lstsq(&fm);
-    let x0: Vec<f64> = (0..n).map(|i| x0m[(i, 0)]).collect();
+    let mut qr = SmallQr::new();
+    qr.factor(e, None, true);
+    let mut x0 = vec![0.0; n];
+    if !qr.solve(f, &mut x0) {
+        return Err(SolveError::Factorisation {
+            method: "LSI",
+            reason: "E is numerically rank-deficient (LSI needs full column rank)".into(),
+        });
+    }
     let mc = g.nrows();
     let gx0: Vec<f64> = (0..mc)
         .map(|i| (0..n).map(|k| g[(i, k)] * x0[k]).sum::<f64>())
@@ -52,10 +61,17 @@ pub fn lsi(
     if (0..mc).all(|i| gx0[i] >= h[i]) {
         return Ok(x0);
     }
-    let r = qr.thin_R();
-    // A^T = R^-T G^T: solve R^T X = G^T (R^T is lower triangular).
-    let mut at = Mat::from_fn(n, mc, |k, i| g[(i, k)]);
-    r.transpose().solve_lower_triangular_in_place(at.as_mut());
+    // A^T = R'^-T G^T with E = Q R', R' = R D P^T (pivoted, scaled QR).
+    let mut at = Mat::zeros(n, mc);
+    let mut row = vec![0.0; n];
+    for i in 0..mc {
+        row.iter_mut().enumerate().for_each(|(k, v)| *v = g[(i, k)]);
+        qr.solve_rt_in_place(&mut row);
+        at.col_mut(i)
+            .iter_mut()
+            .zip(&row)
+            .for_each(|(a, v)| *a = *v);
+    }
     let b: Vec<f64> = (0..mc).map(|i| h[i] - gx0[i]).collect();
     let mmat = Mat::from_fn(n + 1, mc, |k, i| if k < n { at[(k, i)] } else { b[i] });
     let mut rhs = vec![0.0; n + 1];
@@ -72,7 +88,37 @@ pub fn lsi(
             reason: "the linear inequality constraints are infeasible".into(),
         });
     }
-    let mut z = Mat::from_fn(n, 1, |k, _| -rho[k] / rho[n]);
-    r.solve_upper_triangular_in_place(z.as_mut());
-    Ok((0..n).map(|k| x0[k] + z[(k, 0)]).collect())
+    let z: Vec<f64> = (0..n).map(|k| -rho[k] / rho[n]).collect();
+    let mut dx = vec![0.0; n];
+    qr.solve_r(&z, &mut dx);
+    Ok((0..n).map(|k| x0[k] + dx[k]).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Columns of different norms in the wrong order, so the pivoted,
+    /// scaled QR permutes and scales them: `min (x0 - 1)^2 + 100 (x1 - 1)^2`
+    /// s.t. `x0 + x1 <= 1`. By hand (KKT: `2 (x0 - 1) = 200 (x1 - 1)` on
+    /// `x0 + x1 = 1`): `x = (1/101, 100/101)`.
+    #[test]
+    fn pivoted_scaled_factor_gives_the_hand_solution() {
+        let e = Mat::from_fn(3, 2, |i, j| [[1.0, 0.0], [0.0, 10.0], [0.0, 0.0]][i][j]);
+        let g = Mat::from_fn(1, 2, |_, _| -1.0);
+        let x = lsi(e.as_ref(), &[1.0, 10.0, 0.0], g.as_ref(), &[-1.0]).unwrap();
+        let want = [1.0 / 101.0, 100.0 / 101.0];
+        for (x, w) in x.iter().zip(want) {
+            assert!((x - w).abs() < 1e-14, "{x} vs {w}");
+        }
+        // Unconstrained optimum feasible: returned as is.
+        let x = lsi(e.as_ref(), &[0.25, 2.5, 0.0], g.as_ref(), &[-1.0]).unwrap();
+        assert!(
+            (x[0] - 0.25).abs() < 1e-15 && (x[1] - 0.25).abs() < 1e-15,
+            "{x:?}"
+        );
+        // A rank-deficient E is an error, not a division by zero.
+        let e = Mat::from_fn(3, 2, |i, _| i as f64);
+        assert!(lsi(e.as_ref(), &[1.0, 2.0, 3.0], g.as_ref(), &[-1.0]).is_err());
+    }
 }
