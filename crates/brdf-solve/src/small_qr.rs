@@ -209,40 +209,6 @@ impl SmallQr {
         ok
     }
 
-    /// With the factored matrix `A = Q R D P^T` (`D` the column scales,
-    /// `P` the pivoting): `v <- R^-T D^-1 P^T v`, `v` given in the input's
-    /// column order (length `n`; the factored matrix must have full rank).
-    pub(crate) fn solve_rt_in_place(&self, v: &mut [f64]) {
-        let (m, n) = (self.m, self.n);
-        let mut t: Vec<f64> = (0..n).map(|k| v[self.perm[k]] / self.scale[k]).collect();
-        for i in 0..n {
-            let mut x = t[i];
-            for j in 0..i {
-                x -= self.a[i * m + j] * t[j];
-            }
-            t[i] = x / self.a[i * m + i];
-        }
-        v[..n].copy_from_slice(&t);
-    }
-
-    /// `x <- P D^-1 R^-1 z` (the inverse of the map that
-    /// [`SmallQr::solve_rt_in_place`] transposes), `x` in the input's
-    /// column order.
-    pub(crate) fn solve_r(&self, z: &[f64], x: &mut [f64]) {
-        let (m, n) = (self.m, self.n);
-        let mut t = z[..n].to_vec();
-        for k in (0..n).rev() {
-            let mut v = t[k];
-            for j in k + 1..n {
-                v -= self.a[j * m + k] * t[j];
-            }
-            t[k] = v / self.a[k * m + k];
-        }
-        for k in 0..n {
-            x[self.perm[k]] = t[k] / self.scale[k];
-        }
-    }
-
     /// The leverages `h_i = ||Q_i||^2` over the first `rank` columns of `Q`
     /// (the diagonal of the hat matrix of the factored matrix's column
     /// space, as [`crate::linear::leverages`] defines them).
