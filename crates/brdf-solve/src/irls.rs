@@ -535,8 +535,6 @@ fn check_inputs(
 }
 
 /// Robust fit of `y ~ X b`.
-
-/// Robust fit of `y ~ X b`.
 pub fn irls(
     x: MatRef<'_, f64>,
     y: &[f64],
