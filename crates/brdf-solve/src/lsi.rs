@@ -41,6 +41,10 @@ pub fn lsi(
             right: m,
         });
     }
+    // faer's QR, not the crate's small one: with the workspace's default
+    // target (SSE2), removing faer's (AVX) calls here left the vector
+    // state dirty for the model code after each step, which then ran at
+    // half speed (Lafortune on CUReT; gone with target-cpu=x86-64-v3).
     let qr = e.qr();
     let fm = Mat::from_fn(m, 1, |i, _| f[i]);
     let x0m = qr.solve_lstsq(&fm);
