@@ -553,7 +553,10 @@ pub fn irls(
             leverages(x)?
         } else {
             work.qr.factor(x, None, false);
-            work.qr.leverages()
+            match work.qr.leverages() {
+                Some(h) => h,
+                None => leverages(x)?,
+            }
         };
         h.into_iter()
             .map(|h| 1.0 / (1.0 - h.min(0.9999)).sqrt())

@@ -1,41 +1,73 @@
-//! Column-pivoted Householder QR of small dense least-squares problems
-//! (hundreds of rows, a few dozen columns) on buffers reused from call to
-//! call: the inner solve of IRLS (one weighted fit per iteration), of its
-//! Anderson acceleration and of NNLS (one per change of its passive set).
+//! Householder QR of small dense least-squares problems (hundreds of rows,
+//! a few dozen columns) on buffers reused from call to call: the inner
+//! solve of IRLS (one weighted fit per iteration), of its Anderson
+//! acceleration and of NNLS (one per change of its passive set).
 //!
-//! It computes what [`crate::lstsq`] with [`crate::LstsqMethod::PivotedQr`]
-//! computes on a full-rank problem (rows weighted by `sqrt(w)`, columns
-//! scaled to unit norm, column-pivoted QR, rank counted as the `|R_kk| >
-//! max(m, n) eps |R_00|`, LAPACK's `xGELSY` convention), but unblocked and
-//! without allocating: at these sizes faer's blocked, pivoted factorisation
-//! spends most of its time in set-up and in its scaled column norms (a
-//! profile of IRLS on the CUReT polynomial designs: 60% of the time in
-//! `norm_l2`). A rank-deficient problem is not solved here: the caller falls
-//! back to [`crate::lstsq`], which re-solves it by SVD.
+//! The rows are weighted by `sqrt(w)` and the columns scaled to unit norm
+//! (as [`crate::lstsq`] does), then faer's unpivoted blocked QR factors the
+//! copy in place and faer's Householder and triangular kernels apply `Q^T`
+//! and solve `R`; the matrix, the reflector factors and faer's scratch
+//! memory are kept between calls, so a call allocates nothing once the
+//! buffers have grown to the problem's size. faer's column-pivoted QR is
+//! not used: at these sizes it spent most of its time in its scaled column
+//! norms (a profile of IRLS on the CUReT polynomial designs at 189 x 15:
+//! 60% of the time in `norm_l2`).
 //!
-//! The trailing column norms that choose the pivots are recomputed at every
-//! step (not downdated), so no cancellation can pick a wrong pivot; at these
-//! sizes that costs less than the factorisation itself.
+//! Without pivoting the rank check is a count: on unit-norm columns a
+//! column is dependent on the ones before it when its `|R_kk|` is at most
+//! `max(m, n) eps max_j |R_jj|` (LAPACK's `xGELSY` tolerance). faer itself
+//! skips a column whose `|R_kk|` is below `16 (m - k) eps` of the column's
+//! norm (its rank is then below `min(m, n)`), which also counts as rank
+//! deficiency. A rank-deficient problem is not solved here: the caller
+//! falls back to [`crate::lstsq`], which re-solves it by SVD.
 
-use faer::MatRef;
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::householder::{
+    apply_block_householder_sequence_on_the_left_in_place_scratch,
+    apply_block_householder_sequence_on_the_left_in_place_with_conj,
+    apply_block_householder_sequence_transpose_on_the_left_in_place_scratch,
+};
+use faer::linalg::qr::no_pivoting::factor::{
+    qr_in_place, qr_in_place_scratch, recommended_block_size,
+};
+use faer::linalg::qr::no_pivoting::solve::solve_lstsq_in_place_with_conj;
+use faer::{Conj, MatMut, MatRef, Par};
 
 /// Workspace of [`SmallQr::factor`]: the factored matrix and its reflectors.
-#[derive(Debug, Default)]
 pub(crate) struct SmallQr {
     m: usize,
     n: usize,
-    /// `R` above the diagonal, the reflectors' tails below (column-major).
+    /// `R` on and above the diagonal, the reflectors below (column-major).
     a: Vec<f64>,
-    tau: Vec<f64>,
-    /// Column `k` of the factored matrix is column `perm[k]` of the input.
-    perm: Vec<usize>,
+    /// faer's block reflector factors (`block x min(m, n)`, column-major).
+    coeff: Vec<f64>,
+    block: usize,
     /// Column scales (the input column's weighted norm, 1 for zero columns).
     scale: Vec<f64>,
     /// Square roots of the row weights.
     sw: Vec<f64>,
     /// Right-hand side buffer.
     rhs: Vec<f64>,
+    /// faer's scratch memory, grown when a problem needs more.
+    mem: MemBuffer,
     rank: usize,
+}
+
+impl Default for SmallQr {
+    fn default() -> Self {
+        Self {
+            m: 0,
+            n: 0,
+            a: Vec::new(),
+            coeff: Vec::new(),
+            block: 1,
+            scale: Vec::new(),
+            sw: Vec::new(),
+            rhs: Vec::new(),
+            mem: MemBuffer::new(StackReq::EMPTY),
+            rank: 0,
+        }
+    }
 }
 
 impl SmallQr {
@@ -77,106 +109,98 @@ impl SmallQr {
         let m = a.nrows();
         let n = cols.map_or(a.ncols(), <[usize]>::len);
         (self.m, self.n) = (m, n);
+        self.load(a, cols, w, scale_columns);
+        let size = m.min(n);
+        self.rank = 0;
+        if size == 0 {
+            return 0;
+        }
+        self.block = recommended_block_size::<f64>(m, n);
+        self.coeff.clear();
+        self.coeff.resize(self.block * size, 0.0);
+        self.reserve_scratch();
+        let info = qr_in_place(
+            MatMut::from_column_major_slice_mut(&mut self.a, m, n),
+            MatMut::from_column_major_slice_mut(&mut self.coeff, self.block, size),
+            Par::Seq,
+            MemStack::new(&mut self.mem),
+            Default::default(),
+        );
+        self.rank = if info.rank < size {
+            info.rank
+        } else {
+            self.count_rank()
+        };
+        self.rank
+    }
+
+    /// Copy `diag(sqrt(w)) A` (columns `cols`) into `a`, each column
+    /// divided by its norm when `scale_columns`.
+    fn load(
+        &mut self,
+        a: MatRef<'_, f64>,
+        cols: Option<&[usize]>,
+        w: Option<&[f64]>,
+        scale_columns: bool,
+    ) {
+        let m = a.nrows();
         self.sw.clear();
         match w {
             Some(w) => self.sw.extend(w.iter().map(|v| v.sqrt())),
             None => self.sw.resize(m, 1.0),
         }
         self.a.clear();
-        self.a.reserve(m * n);
+        self.a.reserve(m * self.n);
         self.scale.clear();
-        for j in 0..n {
+        for j in 0..self.n {
             let start = self.a.len();
             let col = a.col(cols.map_or(j, |c| c[j]));
             self.a
                 .extend(self.sw.iter().enumerate().map(|(i, s)| s * col[i]));
-            let s = norm(&self.a[start..]);
+            let s = MatRef::from_column_major_slice(&self.a[start..], m, 1).norm_l2();
             let s = if scale_columns && s > 0.0 { s } else { 1.0 };
             if s != 1.0 {
                 self.a[start..].iter_mut().for_each(|v| *v /= s);
             }
             self.scale.push(s);
         }
-        self.perm.clear();
-        self.perm.extend(0..n);
-        self.tau.clear();
-        let k_max = m.min(n);
-        let mut r00 = 0.0;
-        let tol = m.max(n) as f64 * f64::EPSILON;
-        self.rank = 0;
-        for k in 0..k_max {
-            self.pivot(k);
-            let beta = self.reflect(k);
-            if k == 0 {
-                r00 = beta.abs();
-            }
-            if beta.abs() > tol * r00 {
-                self.rank += 1;
-            }
-        }
-        self.rank
     }
 
-    /// Swap the column of largest trailing norm (rows `k..`) into place `k`.
-    fn pivot(&mut self, k: usize) {
-        let m = self.m;
-        let mut best = (k, -1.0);
-        for j in k..self.n {
-            let t = norm(&self.a[j * m + k..(j + 1) * m]);
-            if t > best.1 {
-                best = (j, t);
-            }
-        }
-        let p = best.0;
-        if p != k {
-            for i in 0..m {
-                self.a.swap(k * m + i, p * m + i);
-            }
-            self.perm.swap(k, p);
-            self.scale.swap(k, p);
+    /// Grow faer's scratch memory to what the factorisation, `Q^T b` and
+    /// `Q [I; 0]` (the leverages) need at the current size.
+    fn reserve_scratch(&mut self) {
+        let (m, n, bs) = (self.m, self.n, self.block);
+        let req = qr_in_place_scratch::<f64>(m, n, bs, Par::Seq, Default::default())
+            .or(
+                apply_block_householder_sequence_transpose_on_the_left_in_place_scratch::<f64>(
+                    m, bs, 1,
+                ),
+            )
+            .or(apply_block_householder_sequence_on_the_left_in_place_scratch::<f64>(m, bs, n));
+        if !MemStack::new(&mut self.mem).can_hold(req) {
+            self.mem = MemBuffer::new(req);
         }
     }
 
-    /// The Householder reflector that zeroes column `k` below the diagonal,
-    /// applied to the trailing columns; returns `R_kk`.
-    fn reflect(&mut self, k: usize) -> f64 {
+    /// The number of `|R_kk|` above `max(m, n) eps max_j |R_jj|`.
+    fn count_rank(&self) -> usize {
         let (m, n) = (self.m, self.n);
-        let (head, tail) = self.a.split_at_mut((k + 1) * m);
-        let col = &mut head[k * m + k..];
-        let alpha = col[0];
-        let xnorm = norm(&col[1..]);
-        if xnorm == 0.0 {
-            self.tau.push(0.0);
-            return alpha;
-        }
-        let beta = -alpha.signum() * alpha.hypot(xnorm);
-        let tau = (beta - alpha) / beta;
-        let inv = 1.0 / (alpha - beta);
-        col[1..].iter_mut().for_each(|v| *v *= inv);
-        col[0] = beta;
-        self.tau.push(tau);
-        let v = &col[1..];
-        for j in k + 1..n {
-            let c = &mut tail[(j - k - 1) * m + k..(j - k) * m];
-            let d = tau * (c[0] + dot(v, &c[1..]));
-            c[0] -= d;
-            axpy(-d, v, &mut c[1..]);
-        }
-        beta
+        let diag = |k: usize| self.a[k * m + k].abs();
+        let size = m.min(n);
+        let largest = (0..size).map(diag).fold(0.0, f64::max);
+        let tol = m.max(n) as f64 * f64::EPSILON * largest;
+        (0..size).filter(|&k| diag(k) > tol).count()
     }
 
-    /// Apply `Q^T` to `v` (length `m`) in place.
-    fn apply_qt(&self, v: &mut [f64]) {
-        let m = self.m;
-        for (k, &tau) in self.tau.iter().enumerate() {
-            if tau == 0.0 {
-                continue;
-            }
-            let refl = &self.a[k * m + k + 1..(k + 1) * m];
-            let d = tau * (v[k] + dot(refl, &v[k + 1..]));
-            v[k] -= d;
-            axpy(-d, refl, &mut v[k + 1..]);
-        }
+    /// The factored matrix (`R` above the reflectors) and faer's reflector
+    /// factors as faer's kernels take them, with the scratch memory.
+    fn factors(&mut self) -> (MatRef<'_, f64>, MatRef<'_, f64>, &mut MemStack) {
+        let size = self.m.min(self.n);
+        (
+            MatRef::from_column_major_slice(&self.a, self.m, self.n),
+            MatRef::from_column_major_slice(&self.coeff, self.block, size),
+            MemStack::new(&mut self.mem),
+        )
     }
 
     /// The least-squares solution `x` of the factored problem for `b`
@@ -190,76 +214,56 @@ impl SmallQr {
         let mut rhs = std::mem::take(&mut self.rhs);
         rhs.clear();
         rhs.extend(b.iter().zip(&self.sw).map(|(b, s)| b * s));
-        self.apply_qt(&mut rhs);
-        // Back substitution R z = (Q^T b)[..n], in place in rhs.
-        for k in (0..n).rev() {
-            let mut t = rhs[k];
-            for j in k + 1..n {
-                t -= self.a[j * m + k] * rhs[j];
-            }
-            rhs[k] = t / self.a[k * m + k];
-        }
+        let (qr, coeff, stack) = self.factors();
+        // Q^T b, then R z = (Q^T b)[..n], in place in rhs.
+        solve_lstsq_in_place_with_conj(
+            qr,
+            coeff,
+            qr,
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut rhs, m, 1),
+            Par::Seq,
+            stack,
+        );
         let ok = rhs[..n].iter().all(|v| v.is_finite());
         if ok {
             for k in 0..n {
-                x[self.perm[k]] = rhs[k] / self.scale[k];
+                x[k] = rhs[k] / self.scale[k];
             }
         }
         self.rhs = rhs;
         ok
     }
 
-    /// The leverages `h_i = ||Q_i||^2` over the first `rank` columns of `Q`
+    /// The leverages `h_i = ||Q_i||^2` over the `n` columns of the thin `Q`
     /// (the diagonal of the hat matrix of the factored matrix's column
-    /// space, as [`crate::linear::leverages`] defines them).
-    pub(crate) fn leverages(&self) -> Vec<f64> {
-        let m = self.m;
+    /// space, as [`crate::linear::leverages`] defines them); `None` when
+    /// the factored matrix is rank-deficient (those columns of an unpivoted
+    /// `Q` need not span its column space), for the caller to use
+    /// [`crate::linear::leverages`].
+    pub(crate) fn leverages(&mut self) -> Option<Vec<f64>> {
+        let (m, n) = (self.m, self.n);
+        if self.rank < n || m < n {
+            return None;
+        }
+        // The thin Q = Q [I; 0], by faer's Householder kernel.
+        let mut q = vec![0.0; m * n];
+        (0..n).for_each(|j| q[j * m + j] = 1.0);
+        let (qr, coeff, stack) = self.factors();
+        apply_block_householder_sequence_on_the_left_in_place_with_conj(
+            qr,
+            coeff,
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut q, m, n),
+            Par::Seq,
+            stack,
+        );
         let mut h = vec![0.0; m];
-        let mut e = vec![0.0; m];
-        for j in 0..self.rank {
-            // Column j of Q = H_0 ... H_{k-1} e_j.
-            e.fill(0.0);
-            e[j] = 1.0;
-            for k in (0..self.tau.len()).rev() {
-                let tau = self.tau[k];
-                if tau == 0.0 {
-                    continue;
-                }
-                let refl = &self.a[k * m + k + 1..(k + 1) * m];
-                let d = tau * (e[k] + dot(refl, &e[k + 1..]));
-                e[k] -= d;
-                axpy(-d, refl, &mut e[k + 1..]);
-            }
-            h.iter_mut().zip(&e).for_each(|(h, q)| *h += q * q);
+        for col in q.chunks_exact(m) {
+            h.iter_mut().zip(col).for_each(|(h, q)| *h += q * q);
         }
-        h
+        Some(h)
     }
-}
-
-/// `a . b` with eight partial sums: a single running sum is a chain the
-/// compiler may not reorder, so it would neither vectorise nor pipeline
-/// (the dot products are most of the factorisation's time).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    let mut acc = [0.0; 8];
-    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for k in 0..8 {
-            acc[k] += x[k] * y[k];
-        }
-    }
-    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
-    ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7])) + tail
-}
-
-fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
-    y.iter_mut().zip(x).for_each(|(y, x)| *y += alpha * x);
-}
-
-fn norm(v: &[f64]) -> f64 {
-    dot(v, v).sqrt()
 }
 
 #[cfg(test)]
@@ -313,6 +317,23 @@ mod tests {
         assert_eq!(x, [7.0; 3]);
     }
 
+    /// A rank-deficient design has no leverages from the unpivoted `Q`
+    /// (the caller takes them from the pivoted QR of `linear`).
+    #[test]
+    fn no_leverages_of_a_rank_deficient_design() {
+        let a = Mat::from_fn(4, 3, |i, j| {
+            if j == 2 {
+                2.0 * i as f64
+            } else {
+                (i * j) as f64 + 1.0
+            }
+        });
+        // Column 2 = 2 * column 1 - 2 * column 0.
+        let mut qr = SmallQr::new();
+        assert_eq!(qr.factor(a.as_ref(), None, false), 2);
+        assert!(qr.leverages().is_none());
+    }
+
     /// Leverages of a straight-line design by hand: `h_i = 1/n + (t_i -
     /// mean)^2 / sum (t - mean)^2`; for t = 0..4: 1/4 + (t - 1.5)^2 / 5.
     #[test]
@@ -320,7 +341,7 @@ mod tests {
         let a = Mat::from_fn(4, 2, |i, j| if j == 0 { 1.0 } else { i as f64 });
         let mut qr = SmallQr::new();
         qr.factor(a.as_ref(), None, false);
-        let h = qr.leverages();
+        let h = qr.leverages().expect("a full-rank design");
         for (i, h) in h.iter().enumerate() {
             let want = 0.25 + (i as f64 - 1.5).powi(2) / 5.0;
             assert!((h - want).abs() < 1e-14, "row {i}: {h} vs {want}");
