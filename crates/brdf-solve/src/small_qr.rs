@@ -325,6 +325,54 @@ mod tests {
         }
     }
 
+    /// A consistent 200 x 12 weighted problem (past faer's blocking
+    /// threshold, so its blocked kernels run): whatever the weights, the
+    /// least-squares solution is the exact one.
+    #[test]
+    fn solves_a_blocked_weighted_problem_with_known_solution() {
+        let (m, n) = (200, 12);
+        let t = |i: usize| std::f64::consts::PI * i as f64 / (m - 1) as f64;
+        let a = Mat::from_fn(m, n, |i, j| (j as f64 * t(i)).cos() * (1.0 + j as f64));
+        let exact: Vec<f64> = (0..n).map(|j| 1.0 - 0.25 * j as f64).collect();
+        let b: Vec<f64> = (0..m)
+            .map(|i| (0..n).map(|j| a[(i, j)] * exact[j]).sum::<f64>())
+            .collect();
+        let w: Vec<f64> = (0..m).map(|i| 0.5 + (i % 7) as f64).collect();
+        let mut qr = SmallQr::new();
+        assert_eq!(qr.factor(a.as_ref(), Some(&w), true), n);
+        let mut x = vec![0.0; n];
+        assert!(qr.solve(&b, &mut x));
+        for (x, e) in x.iter().zip(&exact) {
+            assert!((x - e).abs() < 1e-12, "{x} vs {e}");
+        }
+    }
+
+    /// The leverages of a blocked-size design against the normal
+    /// equations' `h_i = a_i^T (A^T A)^-1 a_i` (faer's Cholesky, another
+    /// algorithm); they sum to the rank, the trace of the projection.
+    #[test]
+    fn leverages_match_the_normal_equations() {
+        let (m, n) = (150, 10);
+        let a = Mat::from_fn(m, n, |i, j| {
+            let t = i as f64 / (m - 1) as f64;
+            (std::f64::consts::PI * j as f64 * t).cos() * (1.0 + j as f64)
+        });
+        let mut qr = SmallQr::new();
+        assert_eq!(qr.factor(a.as_ref(), None, false), n);
+        let h = qr.leverages().expect("a full-rank design");
+        let gram = a.transpose() * &a;
+        let llt = gram
+            .llt(faer::Side::Lower)
+            .expect("a positive definite Gram matrix");
+        let g_inv_at = faer::linalg::solvers::Solve::solve(&llt, a.transpose());
+        for (i, h) in h.iter().enumerate() {
+            let want: f64 = (0..n).map(|k| a[(i, k)] * g_inv_at[(k, i)]).sum();
+            assert!((h - want).abs() < 1e-12, "row {i}: {h} vs {want}");
+        }
+        let sum: f64 = h.iter().sum();
+        assert!((sum - n as f64).abs() < 1e-12, "{sum}");
+    }
+
     /// Weighted least squares of a constant: the weighted mean (by hand:
     /// weights (1, 3), values (2, 6) -> (2 + 18) / 4 = 5); a zero weight
     /// drops its row.
