@@ -5,14 +5,14 @@
 //!
 //! The rows are weighted by `sqrt(w)` and the columns scaled to a common
 //! norm (as [`crate::lstsq`] does, to a power of two here: see
-//! [`COLUMN_NORM`]), then faer's unpivoted blocked QR factors the
-//! copy in place and faer's Householder and triangular kernels apply `Q^T`
-//! and solve `R`; the matrix, the reflector factors and faer's scratch
-//! memory are kept between calls, so a call allocates nothing once the
-//! buffers have grown to the problem's size. faer's column-pivoted QR is
-//! not used: at these sizes it spent most of its time in its scaled column
-//! norms (a profile of IRLS on the CUReT polynomial designs at 189 x 15:
-//! 60% of the time in `norm_l2`).
+//! [`COLUMN_NORM`]), then faer's unpivoted QR factors the copy in place
+//! (its unblocked kernel at these sizes: see [`UNBLOCKED_MAX_ENTRIES`])
+//! and faer's Householder and triangular kernels apply `Q^T` and solve
+//! `R`; the matrix, the reflector factors and faer's scratch memory are
+//! kept between calls, so a call allocates nothing once the buffers have
+//! grown to the problem's size. faer's column-pivoted QR is not used: in
+//! a profile of IRLS on the CUReT polynomial designs (189 x 15) it spent
+//! 60% of the time in the `norm_l2` of its column norms.
 //!
 //! Without pivoting the rank check is a count: on equal-norm columns a
 //! column is dependent on the ones before it when its `|R_kk|` is at most
@@ -40,10 +40,28 @@ use faer::{Conj, MatMut, MatRef, Par};
 /// call on every column) accumulates the squares of `x sqrt(MIN_POSITIVE)`,
 /// subnormal for every `|x| < 1`, and each subnormal result costs a
 /// microcode assist; on unit-norm columns nearly every entry is below 1
-/// (on the CUReT IRLS designs that was half of the whole IRLS time). At
+/// (on the CUReT IRLS designs, with faer's blocked kernel, the reflectors'
+/// norms were then half of the whole IRLS time). At
 /// `2^64` only entries below `2^-64` of their column's norm are, and the
 /// squares (at most `2^128` a column) stay far from overflow.
 const COLUMN_NORM: f64 = 18_446_744_073_709_551_616.0;
+
+/// Largest problem (entries of `A`, 512 KiB) factored by faer's unblocked
+/// kernel (one reflector at a time, `block_size == 1`). Measured on the
+/// CUReT IRLS designs (189 x 15): faer's recommended block of 8 took 1.6
+/// times as long as the unblocked kernel, whose panel is the whole matrix
+/// and stays in cache anyway; larger problems keep faer's recommendation,
+/// where blocking saves passes over memory.
+const UNBLOCKED_MAX_ENTRIES: usize = 1 << 16;
+
+/// The Householder block size of an `m x n` factorisation.
+fn block_size(m: usize, n: usize) -> usize {
+    if m * n <= UNBLOCKED_MAX_ENTRIES {
+        1
+    } else {
+        recommended_block_size::<f64>(m, n)
+    }
+}
 
 /// Workspace of [`SmallQr::factor`]: the factored matrix and its reflectors.
 pub(crate) struct SmallQr {
@@ -128,7 +146,7 @@ impl SmallQr {
         if size == 0 {
             return 0;
         }
-        self.block = recommended_block_size::<f64>(m, n);
+        self.block = block_size(m, n);
         self.coeff.clear();
         self.coeff.resize(self.block * size, 0.0);
         self.reserve_scratch();
@@ -325,12 +343,13 @@ mod tests {
         }
     }
 
-    /// A consistent 200 x 12 weighted problem (past faer's blocking
-    /// threshold, so its blocked kernels run): whatever the weights, the
-    /// least-squares solution is the exact one.
+    /// A consistent 6000 x 12 weighted problem (past
+    /// [`UNBLOCKED_MAX_ENTRIES`], so faer's blocked kernels run): whatever
+    /// the weights, the least-squares solution is the exact one.
     #[test]
     fn solves_a_blocked_weighted_problem_with_known_solution() {
-        let (m, n) = (200, 12);
+        let (m, n) = (6000, 12);
+        assert!(block_size(m, n) > 1);
         let t = |i: usize| std::f64::consts::PI * i as f64 / (m - 1) as f64;
         let a = Mat::from_fn(m, n, |i, j| (j as f64 * t(i)).cos() * (1.0 + j as f64));
         let exact: Vec<f64> = (0..n).map(|j| 1.0 - 0.25 * j as f64).collect();
@@ -347,7 +366,7 @@ mod tests {
         }
     }
 
-    /// The leverages of a blocked-size design against the normal
+    /// The leverages of a CUReT-size design against the normal
     /// equations' `h_i = a_i^T (A^T A)^-1 a_i` (faer's Cholesky, another
     /// algorithm); they sum to the rank, the trace of the projection.
     #[test]
