@@ -362,8 +362,8 @@ impl Problem<'_> {
 
     /// The (weighted) least-squares coefficients into `b`: on tall designs
     /// by the guarded normal equations where they are accurate (one pass,
-    /// no weighted copy of the design), else by column-pivoted QR
-    /// ([`SmallQr`] on its reused buffers; a rank-deficient problem through
+    /// no weighted copy of the design), else by Householder QR
+    /// (faer's, in [`SmallQr`] on reused buffers; a rank-deficient problem through
     /// [`lstsq`], which re-solves it by SVD). Small designs always take QR:
     /// it costs little there, and its accuracy keeps coefficient tests far
     /// below MATLAB's `sqrt(eps)` reachable (the normal equations' `eps
