@@ -30,23 +30,31 @@
 //! median scale have stayed the same for two iterations (so that `G` is
 //! smooth there), the point at which `G` is next evaluated is proposed by
 //! Anderson acceleration (type II, the last [`IrlsOptions::anderson_memory`]
-//! steps, history cleared when that pattern changes; Walker & Ni 2011) and
-//! kept only if it has the same pattern and lowers the robust objective
-//! `J_s(b) = sum (1 - h_i) rho(u_i)` at the current scale at least as much
-//! as the plain step does (the plain step is a majorise-minimise step on
-//! `J_s`); otherwise
-//! the plain step is taken. A fixed point of the accelerated loop is a fixed
-//! point of `G`, and the stopping test is always applied to a plain step
-//! `G(b)` against `b`, so the returned `coef` is the weighted least-squares
-//! solution for the returned `weights`, as MATLAB's is. The stopping test
+//! steps, history cleared when that pattern changes; Walker & Ni 2011). A
+//! proposal is tried only if it has the same pattern, and kept only if the
+//! fixed-point step it leads to, `||D X (G(b') - b')||` (`D` the leverage
+//! adjustment), is no larger than the step at the point `b` it was
+//! extrapolated from; otherwise the loop continues from the plain step
+//! `G(b)` (a safeguard on the fixed-point residual, as in Zhang, O'Donoghue
+//! & Boyd 2020). An earlier safeguard, on the robust objective at the
+//! current scale, rejected almost every proposal while the scale still
+//! drifted (CUReT 7 and 22 in statsmodels' convention then hit the cap):
+//! the fixed point of the joint update of `b` and the scale is not the
+//! minimiser at the current scale. A fixed point of the accelerated loop is
+//! a fixed point of `G`, and the stopping test is always applied to a plain
+//! step `G(b)` against `b`, so the returned `coef` is the weighted
+//! least-squares solution for the returned `weights`, as MATLAB's is. The
+//! stopping test
 //! is MATLAB's on the coefficients by default, or statsmodels' on the
 //! deviance (absolute change `<= 1e-8`, [`StoppingTest`]). Starting from a
 //! Huber pass instead of least squares was tried and rejected: on 13 of the
 //! 46 CUReT designs where MATLAB's loop converges it leads the bisquare
 //! iteration to another fixed point (so does unrestricted acceleration).
-//! Some designs (CUReT 4, 7, 19, 20, 22, 50 with the 2004 scale) have no
-//! fixed point the loop reaches: it ends in a 2-cycle of the median scale,
-//! and the solution says `IterationCap`.
+//! On some designs (CUReT 4, 7, 19, 20, 22, 50 with the 2004 scale)
+//! MATLAB's plain loop reaches no fixed point: it ends in a 2-cycle of the
+//! median scale, and the solution says `IterationCap`; the accelerated loop
+//! finds one on 7 and 20 (the coefficient test holds there: `G(b) = b` to
+//! `sqrt(eps)`), and says `IterationCap` on the others.
 //!
 //! A zero scale (an exact fit of all but a few points) never divides by
 //! zero: the conventions' fallbacks apply, and if the scale is still zero
@@ -59,6 +67,7 @@ use faer::{Mat, MatRef};
 
 use crate::linear::leverages;
 use crate::robust_weights::RobustWeight;
+use crate::small_qr::SmallQr;
 use crate::{LstsqMethod, SolveError, lstsq, tall_qr};
 
 /// Rows from which the weighted steps use the guarded normal equations.
@@ -290,6 +299,35 @@ struct Problem<'a> {
     options: &'a IrlsOptions,
 }
 
+/// A point of the iteration: coefficients, their leverage-adjusted
+/// residuals, the scale of those and the pattern of the rows at it.
+struct Point {
+    b: Vec<f64>,
+    r: Vec<f64>,
+    s: f64,
+    pat: Pattern,
+}
+
+impl Point {
+    fn new(m: usize, p: usize) -> Self {
+        Self {
+            b: vec![0.0; p],
+            r: vec![0.0; m],
+            s: 0.0,
+            pat: Pattern {
+                beyond: vec![false; m],
+                scale_rows: [usize::MAX; 4],
+            },
+        }
+    }
+}
+
+/// Buffers reused by every iteration.
+struct Work {
+    pairs: Vec<(f64, usize)>,
+    qr: SmallQr,
+}
+
 impl Problem<'_> {
     /// Leverage-adjusted residuals `(y - X b) / sqrt(1 - h)`.
     fn residuals(&self, b: &[f64], r: &mut [f64]) {
@@ -305,48 +343,52 @@ impl Problem<'_> {
         }
     }
 
-    /// The scale of `r` and the pattern of the rows at it.
-    fn scale(&self, r: &[f64], buf: &mut Vec<(f64, usize)>) -> (f64, Pattern) {
-        let (s, scale_rows) = scale_with(r, self.x.ncols(), self.std_y, self.options.scale, buf);
+    /// Residuals, scale and pattern of the point at `pt.b`.
+    fn evaluate(&self, pt: &mut Point, buf: &mut Vec<(f64, usize)>) {
+        self.residuals(&pt.b, &mut pt.r);
+        let (s, scale_rows) =
+            scale_with(&pt.r, self.x.ncols(), self.std_y, self.options.scale, buf);
         let kink = if self.options.weight == RobustWeight::Andrews {
             std::f64::consts::PI
         } else {
             1.0
         };
         let c = kink * self.tune * s;
-        let beyond = r.iter().map(|v| v.abs() >= c).collect();
-        (s, Pattern { beyond, scale_rows })
+        pt.pat.beyond.clear();
+        pt.pat.beyond.extend(pt.r.iter().map(|v| v.abs() >= c));
+        pt.pat.scale_rows = scale_rows;
+        pt.s = s;
     }
 
-    /// The (weighted) least-squares coefficients: on tall designs by the
-    /// guarded normal equations where they are accurate (one pass, no
-    /// weighted copy of the design), else by column-pivoted QR with its
-    /// rank report. Small designs always take QR: it costs little there,
-    /// and its accuracy keeps coefficient tests far below MATLAB's
-    /// `sqrt(eps)` reachable (the normal equations' `eps cond^2` would not).
-    fn solve(&self, w: Option<&[f64]>) -> Result<Vec<f64>, SolveError> {
-        let gram = (self.x.nrows() >= GRAM_MIN_ROWS)
+    /// The (weighted) least-squares coefficients into `b`: on tall designs
+    /// by the guarded normal equations where they are accurate (one pass,
+    /// no weighted copy of the design), else by Householder QR
+    /// (faer's, in [`SmallQr`] on reused buffers; a rank-deficient problem through
+    /// [`lstsq`], which re-solves it by SVD). Small designs always take QR:
+    /// it costs little there, and its accuracy keeps coefficient tests far
+    /// below MATLAB's `sqrt(eps)` reachable (the normal equations' `eps
+    /// cond^2` would not).
+    fn solve(&self, w: Option<&[f64]>, work: &mut Work, b: &mut [f64]) -> Result<(), SolveError> {
+        let tall = self.x.nrows() >= GRAM_MIN_ROWS;
+        let gram = tall
             .then(|| tall_qr::gram_triangle_weighted(self.x, self.ym.as_ref(), w))
             .flatten();
         if let Some((r, mut z)) = gram {
             r.as_ref().solve_upper_triangular_in_place(z.as_mut());
-            let b: Vec<f64> = (0..self.x.ncols()).map(|k| z[(k, 0)]).collect();
-            if b.iter().all(|v| v.is_finite()) {
-                return Ok(b);
+            if (0..b.len()).all(|k| z[(k, 0)].is_finite()) {
+                b.iter_mut().enumerate().for_each(|(k, v)| *v = z[(k, 0)]);
+                return Ok(());
+            }
+        }
+        if !tall {
+            work.qr.factor(self.x, w, true);
+            if work.qr.solve(self.y, b) {
+                return Ok(());
             }
         }
         let s = lstsq(self.x, self.ym.as_ref(), w, LstsqMethod::PivotedQr)?;
-        Ok((0..self.x.ncols()).map(|k| s.x[(k, 0)]).collect())
-    }
-
-    /// `J_s = sum (1 - h_i) rho(r_adj_i / (tune s))`, which the plain step
-    /// decreases at the fixed scale `s`.
-    fn objective(&self, r: &[f64], s: f64) -> f64 {
-        let c = 1.0 / (self.tune * s);
-        r.iter()
-            .zip(&self.adj)
-            .map(|(ri, a)| self.options.weight.rho(ri * c) / (a * a))
-            .sum()
+        b.iter_mut().enumerate().for_each(|(k, v)| *v = s.x[(k, 0)]);
+        Ok(())
     }
 
     /// statsmodels' deviance as `RLM.deviance` computes it: `sum tune^2
@@ -373,6 +415,7 @@ struct Anderson {
     last: Option<(Vec<f64>, Vec<f64>)>,
     dg: VecDeque<Vec<f64>>,
     df: VecDeque<Vec<f64>>,
+    qr: SmallQr,
 }
 
 impl Anderson {
@@ -388,12 +431,13 @@ impl Anderson {
             last: None,
             dg: VecDeque::new(),
             df: VecDeque::new(),
+            qr: SmallQr::new(),
         }
     }
 
     /// Record `G(b) = g` and propose the next point
-    /// `g - dG gamma`, `gamma = argmin ||f - dF gamma||`.
-    fn propose(&mut self, b: &[f64], g: &[f64]) -> Result<Option<Vec<f64>>, SolveError> {
+    /// `g - dG gamma`, `gamma = argmin ||f - dF gamma||`, into `next`.
+    fn propose(&mut self, b: &[f64], g: &[f64], next: &mut [f64]) -> Result<bool, SolveError> {
         let f: Vec<f64> = g.iter().zip(b).map(|(g, b)| g - b).collect();
         if let Some((g0, f0)) = self.last.take() {
             self.dg
@@ -407,16 +451,24 @@ impl Anderson {
         }
         self.last = Some((g.to_vec(), f.clone()));
         if self.df.is_empty() {
-            return Ok(None);
+            return Ok(false);
         }
         let (p, k) = (f.len(), self.df.len());
         let a = Mat::from_fn(p, k, |i, j| self.df[j][i]);
-        let rhs = Mat::from_fn(p, 1, |i, _| f[i]);
-        let gamma = lstsq(a.as_ref(), rhs.as_ref(), None, LstsqMethod::PivotedQr)?.x;
-        let next: Vec<f64> = (0..p)
-            .map(|i| g[i] - (0..k).map(|j| self.dg[j][i] * gamma[(j, 0)]).sum::<f64>())
-            .collect();
-        Ok(next.iter().all(|v| v.is_finite()).then_some(next))
+        let mut gamma = vec![0.0; k];
+        self.qr.factor(a.as_ref(), None, true);
+        if p < k || !self.qr.solve(&f, &mut gamma) {
+            let rhs = Mat::from_fn(p, 1, |i, _| f[i]);
+            let s = lstsq(a.as_ref(), rhs.as_ref(), None, LstsqMethod::PivotedQr)?;
+            gamma
+                .iter_mut()
+                .enumerate()
+                .for_each(|(j, v)| *v = s.x[(j, 0)]);
+        }
+        for (i, v) in next.iter_mut().enumerate() {
+            *v = g[i] - (0..k).map(|j| self.dg[j][i] * gamma[j]).sum::<f64>();
+        }
+        Ok(next.iter().all(|v| v.is_finite()))
     }
 }
 
@@ -431,6 +483,26 @@ fn check_inputs(
             what: "rows of X vs length of y",
             left: m,
             right: y.len(),
+        });
+    }
+    // The small-design QR does not check its input (faer's path does).
+    let bad_y = y.iter().enumerate().find(|(_, v)| !v.is_finite());
+    let bad_x = || (0..p).find_map(|j| (0..m).find(|&i| !x[(i, j)].is_finite()).map(|i| (i, j)));
+    if let Some((row, &value)) = bad_y {
+        return Err(SolveError::NonFinite {
+            what: "y",
+            row,
+            col: 0,
+            value,
+        });
+    }
+    if let Some((row, col)) = bad_x() {
+        let value = x[(row, col)];
+        return Err(SolveError::NonFinite {
+            what: "X",
+            row,
+            col,
+            value,
         });
     }
     if m < p {
@@ -469,12 +541,24 @@ pub fn irls(
     options: &IrlsOptions,
 ) -> Result<IrlsSolution, SolveError> {
     let (tune, tol) = check_inputs(x, y, options)?;
-    let m = x.nrows();
+    let (m, p) = (x.nrows(), x.ncols());
+    let mut work = Work {
+        pairs: Vec::with_capacity(m),
+        qr: SmallQr::new(),
+    };
     let adj: Vec<f64> = if options.scale == ScaleConvention::Statsmodels {
         vec![1.0; m]
     } else {
-        leverages(x)?
-            .into_iter()
+        let h = if m >= GRAM_MIN_ROWS {
+            leverages(x)?
+        } else {
+            work.qr.factor(x, None, false);
+            match work.qr.leverages() {
+                Some(h) => h,
+                None => leverages(x)?,
+            }
+        };
+        h.into_iter()
             .map(|h| 1.0 / (1.0 - h.min(0.9999)).sqrt())
             .collect()
     };
@@ -488,8 +572,9 @@ pub fn irls(
         tune,
         options,
     };
-    let b = prob.solve(None)?;
-    iterate(&prob, b, tol)
+    let mut start = Point::new(m, p);
+    prob.solve(None, &mut work, &mut start.b)?;
+    iterate(&prob, start, tol, work)
 }
 
 /// Consecutive iterations with an unchanged [`Pattern`] before the
@@ -497,13 +582,74 @@ pub fn irls(
 /// reach another fixed point than MATLAB's loop on CUReT designs).
 const STABLE_ITERATIONS: usize = 2;
 
-/// The reweighting loop from the ordinary least-squares solution `b`.
-fn iterate(prob: &Problem<'_>, mut b: Vec<f64>, tol: f64) -> Result<IrlsSolution, SolveError> {
-    let (opts, m) = (prob.options, prob.y.len());
-    let mut buf = Vec::with_capacity(m);
-    let (mut r, mut rg, mut rc) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
-    prob.residuals(&b, &mut r);
-    let (mut s, mut pat) = prob.scale(&r, &mut buf);
+/// The robust weights of the point `pt` into `w`.
+fn reweight(prob: &Problem<'_>, pt: &Point, w: &mut [f64]) -> Result<(), SolveError> {
+    let c = 1.0 / (prob.tune * pt.s);
+    for (wi, ri) in w.iter_mut().zip(&pt.r) {
+        *wi = prob.options.weight.weight(ri * c);
+    }
+    if w.iter().all(|v| *v == 0.0) {
+        return Err(SolveError::InvalidOption {
+            name: "tune",
+            value: prob.tune,
+            reason: "every observation got weight zero",
+        });
+    }
+    Ok(())
+}
+
+/// The stopping test on the weighted least-squares solution `g = G(b)`
+/// (`dev`: its deviance, for the deviance test).
+fn stop_test(
+    stopping: StoppingTest,
+    tol: f64,
+    g: &[f64],
+    b: &[f64],
+    dev: f64,
+    dev_old: f64,
+) -> Option<IrlsTermination> {
+    match stopping {
+        StoppingTest::Coefficients => g
+            .iter()
+            .zip(b)
+            .all(|(n, o)| (n - o).abs() <= tol * n.abs().max(o.abs()))
+            .then_some(IrlsTermination::CoefficientTest),
+        StoppingTest::Deviance => {
+            ((dev - dev_old).abs() <= tol).then_some(IrlsTermination::DevianceTest)
+        }
+    }
+}
+
+/// `||a - b||`: for residuals at `b` and at `G(b)`, the size of the
+/// fixed-point step in the adjusted residuals, `||D X (G(b) - b)||`.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The plain step kept while an extrapolated point is on trial: the point
+/// `G(b)` the loop falls back to, its deviance, and the step size at `b`.
+struct Fallback {
+    point: Point,
+    deviance: f64,
+    step: f64,
+}
+
+/// The reweighting loop from the ordinary least-squares solution in `cur.b`.
+fn iterate(
+    prob: &Problem<'_>,
+    mut cur: Point,
+    tol: f64,
+    mut work: Work,
+) -> Result<IrlsSolution, SolveError> {
+    let (opts, m, p) = (prob.options, prob.y.len(), prob.x.ncols());
+    prob.evaluate(&mut cur, &mut work.pairs);
+    let (mut next, mut cand) = (Point::new(m, p), Point::new(m, p));
+    let mut spare: Option<Point> = None;
+    let mut trial: Option<Fallback> = None;
     let mut w = vec![1.0; m];
     let mut anderson = (opts.acceleration && opts.anderson_memory > 0)
         .then(|| Anderson::new(opts.anderson_memory));
@@ -518,95 +664,74 @@ fn iterate(prob: &Problem<'_>, mut b: Vec<f64>, tol: f64) -> Result<IrlsSolution
         scale,
         convention: opts.scale,
     };
-    let mut dev_old = prob.deviance(&r, &w);
-    let mut g = b.clone();
-    let mut s_w = s;
+    let mut dev_old = prob.deviance(&cur.r, &w);
+    let mut last_g = cur.b.clone();
+    let mut s_w = cur.s;
     for it in 1..=opts.max_iterations {
-        if !(s > prob.zero_scale) {
+        if !(cur.s > prob.zero_scale) {
             // An exact fit of the weighted points (up to rounding): nothing
             // to reweight; the weights that produced it are kept.
-            return Ok(done(
-                b,
-                w,
-                it - 1,
-                IrlsTermination::ExactFit,
-                0.0,
-                accelerated,
-            ));
+            let t = IrlsTermination::ExactFit;
+            return Ok(done(cur.b, w, it - 1, t, 0.0, accelerated));
         }
-        let c = 1.0 / (prob.tune * s);
-        for (wi, ri) in w.iter_mut().zip(&r) {
-            *wi = opts.weight.weight(ri * c);
-        }
-        if w.iter().all(|v| *v == 0.0) {
-            return Err(SolveError::InvalidOption {
-                name: "tune",
-                value: prob.tune,
-                reason: "every observation got weight zero",
-            });
-        }
-        s_w = s;
-        g = prob.solve(Some(&w))?;
-        prob.residuals(&g, &mut rg);
-        let (sg, pat_g) = prob.scale(&rg, &mut buf);
-        let stop = match opts.stopping {
-            StoppingTest::Coefficients => g
-                .iter()
-                .zip(&b)
-                .all(|(n, o)| (n - o).abs() <= tol * n.abs().max(o.abs()))
-                .then_some(IrlsTermination::CoefficientTest),
-            StoppingTest::Deviance => {
-                let dev = prob.deviance(&rg, &w);
-                let stop = (dev - dev_old).abs() <= tol;
-                dev_old = dev;
-                stop.then_some(IrlsTermination::DevianceTest)
-            }
+        reweight(prob, &cur, &mut w)?;
+        s_w = cur.s;
+        prob.solve(Some(&w), &mut work, &mut next.b)?;
+        prob.evaluate(&mut next, &mut work.pairs);
+        last_g.copy_from_slice(&next.b);
+        let dev = match opts.stopping {
+            StoppingTest::Deviance => prob.deviance(&next.r, &w),
+            StoppingTest::Coefficients => 0.0,
         };
-        if let Some(t) = stop {
-            return Ok(done(g, w, it, t, s, accelerated));
+        if let Some(t) = stop_test(opts.stopping, tol, &next.b, &cur.b, dev, dev_old) {
+            return Ok(done(next.b, w, it, t, cur.s, accelerated));
         }
-        same = if pat_g == pat { same + 1 } else { 0 };
-        let proposal = match anderson.as_mut() {
+        let step = distance(&next.r, &cur.r);
+        if let Some(fb) = trial.take() {
+            if step > fb.step {
+                // The extrapolated point moves more than the point it came
+                // from: drop it and continue from that point's plain step.
+                spare = Some(std::mem::replace(&mut cur, fb.point));
+                dev_old = fb.deviance;
+                accelerated -= 1;
+                same = 0;
+                if let Some(a) = anderson.as_mut() {
+                    a.reset();
+                }
+                continue;
+            }
+            spare = Some(fb.point);
+        }
+        dev_old = dev;
+        same = if next.pat == cur.pat { same + 1 } else { 0 };
+        let proposed = match anderson.as_mut() {
             Some(a) => {
                 if same == 0 {
                     a.reset();
                 }
-                a.propose(&b, &g)?.filter(|_| same >= STABLE_ITERATIONS)
+                a.propose(&cur.b, &next.b, &mut cand.b)? && same >= STABLE_ITERATIONS
             }
-            None => None,
+            None => false,
         };
-        // Keep the accelerated point only on the same smooth piece and if
-        // it lowers the objective at this scale at least as much as the
-        // plain (majorise-minimise) step.
-        let accept = proposal.and_then(|cand| {
-            prob.residuals(&cand, &mut rc);
-            let (sc, pat_c) = prob.scale(&rc, &mut buf);
-            (pat_c == pat && prob.objective(&rc, s) <= prob.objective(&rg, s))
-                .then_some((cand, sc, pat_c))
-        });
-        match accept {
-            Some((cand, sc, pat_c)) => {
-                b = cand;
-                std::mem::swap(&mut r, &mut rc);
-                (s, pat) = (sc, pat_c);
-                accelerated += 1;
-                if opts.stopping == StoppingTest::Deviance {
-                    dev_old = prob.deviance(&r, &w);
-                }
-            }
-            None => {
-                b.clone_from(&g);
-                std::mem::swap(&mut r, &mut rg);
-                (s, pat) = (sg, pat_g);
-            }
+        // Only a point on the same smooth piece (same pattern) is tried.
+        let accept = proposed && {
+            prob.evaluate(&mut cand, &mut work.pairs);
+            cand.pat == cur.pat
+        };
+        if accept {
+            let plain =
+                std::mem::replace(&mut next, spare.take().unwrap_or_else(|| Point::new(m, p)));
+            trial = Some(Fallback {
+                point: plain,
+                deviance: dev,
+                step,
+            });
+            std::mem::swap(&mut cur, &mut cand);
+            accelerated += 1;
+        } else {
+            std::mem::swap(&mut cur, &mut next);
         }
     }
-    Ok(done(
-        g,
-        w,
-        opts.max_iterations,
-        IrlsTermination::IterationCap,
-        s_w,
-        accelerated,
-    ))
+    let t = IrlsTermination::IterationCap;
+    Ok(done(last_g, w, opts.max_iterations, t, s_w, accelerated))
 }

@@ -45,6 +45,7 @@ pub mod problem;
 pub mod report;
 pub mod robust_weights;
 pub mod scratch;
+mod small_qr;
 pub mod strd;
 pub mod tall_qr;
 pub mod varpro;

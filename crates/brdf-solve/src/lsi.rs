@@ -41,6 +41,10 @@ pub fn lsi(
             right: m,
         });
     }
+    // faer's QR, not the crate's small one: with the workspace's default
+    // target (SSE2), removing faer's (AVX) calls here left the vector
+    // state dirty for the model code after each step, which then ran at
+    // half speed (Lafortune on CUReT; gone with target-cpu=x86-64-v3).
     let qr = e.qr();
     let fm = Mat::from_fn(m, 1, |i, _| f[i]);
     let x0m = qr.solve_lstsq(&fm);
@@ -75,4 +79,29 @@ pub fn lsi(
     let mut z = Mat::from_fn(n, 1, |k, _| -rho[k] / rho[n]);
     r.solve_upper_triangular_in_place(z.as_mut());
     Ok((0..n).map(|k| x0[k] + z[(k, 0)]).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Columns of different norms: `min (x0 - 1)^2 + 100 (x1 - 1)^2` s.t.
+    /// `x0 + x1 <= 1`. By hand (KKT: `2 (x0 - 1) = 200 (x1 - 1)` on
+    /// `x0 + x1 = 1`): `x = (1/101, 100/101)`; with the unconstrained
+    /// optimum feasible, that optimum.
+    #[test]
+    fn weighted_problem_gives_the_hand_solution() {
+        let e = Mat::from_fn(3, 2, |i, j| [[1.0, 0.0], [0.0, 10.0], [0.0, 0.0]][i][j]);
+        let g = Mat::from_fn(1, 2, |_, _| -1.0);
+        let x = lsi(e.as_ref(), &[1.0, 10.0, 0.0], g.as_ref(), &[-1.0]).unwrap();
+        let want = [1.0 / 101.0, 100.0 / 101.0];
+        for (x, w) in x.iter().zip(want) {
+            assert!((x - w).abs() < 1e-14, "{x} vs {w}");
+        }
+        let x = lsi(e.as_ref(), &[0.25, 2.5, 0.0], g.as_ref(), &[-1.0]).unwrap();
+        assert!(
+            (x[0] - 0.25).abs() < 1e-15 && (x[1] - 0.25).abs() < 1e-15,
+            "{x:?}"
+        );
+    }
 }

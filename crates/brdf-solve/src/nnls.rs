@@ -3,7 +3,8 @@
 //!
 //! The passive set `P` starts empty; the variable with the largest dual
 //! `w = A^T (b - A x)` enters `P`; the unconstrained least-squares solution on
-//! `P` (column-pivoted QR through [`crate::lstsq`], SVD on rank deficiency)
+//! `P` (column-scaled, column-pivoted QR on a workspace reused through the
+//! iterations; through [`crate::lstsq`], by SVD, on rank deficiency)
 //! is accepted when positive, otherwise the step is cut back at the first
 //! variable that would become negative and that variable leaves `P`. At the
 //! solution the KKT conditions hold: `x >= 0`, `w <= tol` on the active set,
@@ -11,6 +12,7 @@
 
 use faer::{Mat, MatRef};
 
+use crate::small_qr::SmallQr;
 use crate::{LstsqMethod, SolveError, lstsq};
 
 /// Why NNLS stopped.
@@ -85,17 +87,7 @@ pub fn nnls(a: MatRef<'_, f64>, b: &[f64], max_iter: usize) -> Result<NnlsSoluti
             .map(|j| (0..m).map(|i| a[(i, j)] * r[i]).sum())
             .collect()
     };
-    let solve_passive = |passive: &[bool]| -> Result<Vec<f64>, SolveError> {
-        let cols: Vec<usize> = (0..n).filter(|&j| passive[j]).collect();
-        let ap = Mat::from_fn(m, cols.len(), |i, k| a[(i, cols[k])]);
-        let bm = Mat::from_fn(m, 1, |i, _| b[i]);
-        let s = lstsq(ap.as_ref(), bm.as_ref(), None, LstsqMethod::PivotedQr)?;
-        let mut z = vec![0.0; n];
-        for (k, &j) in cols.iter().enumerate() {
-            z[j] = s.x[(k, 0)];
-        }
-        Ok(z)
-    };
+    let mut qr = SmallQr::new();
     let mut iterations = 0;
     let mut termination = NnlsTermination::Optimal;
     loop {
@@ -114,7 +106,7 @@ pub fn nnls(a: MatRef<'_, f64>, b: &[f64], max_iter: usize) -> Result<NnlsSoluti
         // ends within n passes; a non-finite sub-solution (overflow) or a
         // step that frees none would otherwise loop for ever.
         for _ in 0..=n {
-            let z = solve_passive(&passive)?;
+            let z = solve_passive(a, b, &passive, &mut qr)?;
             if let Some(j) = (0..n).find(|&j| passive[j] && !z[j].is_finite()) {
                 return Err(SolveError::Factorisation {
                     method: "NNLS",
@@ -156,4 +148,32 @@ pub fn nnls(a: MatRef<'_, f64>, b: &[f64], max_iter: usize) -> Result<NnlsSoluti
         residual_norm,
         termination,
     })
+}
+
+/// The unconstrained least-squares solution on the passive columns (zero
+/// elsewhere): [`SmallQr`] on its reused buffers, or [`lstsq`] (which
+/// re-solves by SVD) when those columns are numerically rank-deficient.
+fn solve_passive(
+    a: MatRef<'_, f64>,
+    b: &[f64],
+    passive: &[bool],
+    qr: &mut SmallQr,
+) -> Result<Vec<f64>, SolveError> {
+    let n = a.ncols();
+    let cols: Vec<usize> = (0..n).filter(|&j| passive[j]).collect();
+    let mut xs = vec![0.0; cols.len()];
+    qr.factor_columns(a, &cols, true);
+    if !qr.solve(b, &mut xs) {
+        let ap = Mat::from_fn(a.nrows(), cols.len(), |i, k| a[(i, cols[k])]);
+        let bm = Mat::from_fn(a.nrows(), 1, |i, _| b[i]);
+        let s = lstsq(ap.as_ref(), bm.as_ref(), None, LstsqMethod::PivotedQr)?;
+        xs.iter_mut()
+            .enumerate()
+            .for_each(|(k, v)| *v = s.x[(k, 0)]);
+    }
+    let mut z = vec![0.0; n];
+    for (k, &j) in cols.iter().enumerate() {
+        z[j] = xs[k];
+    }
+    Ok(z)
 }

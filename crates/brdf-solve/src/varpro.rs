@@ -262,7 +262,9 @@ impl<S: SeparableProblem + ?Sized> VarPro<'_, S> {
     }
 
     /// The Jacobian columns of every block from the reduced basis, the
-    /// coefficients `c` and the residuals `r` at `a`.
+    /// coefficients `c` and the residuals `r` at `a`. Called once per
+    /// Jacobian of every start: its buffers come from the pool, and the
+    /// small triangular solves are done in place (no matrix per column).
     fn golub_pereyra_columns(
         &self,
         phi: &[f64],
@@ -274,50 +276,62 @@ impl<S: SeparableProblem + ?Sized> VarPro<'_, S> {
     ) -> bool {
         let (m, l, nb) = self.dims();
         let n = self.problem.n_nonlinear();
-        for b in 0..nb {
-            let cb = &c[b * l..(b + 1) * l];
-            let rb = &r[b * m..(b + 1) * m];
-            // Free columns: all for least squares, the positive ones for NNLS.
-            let free: Vec<usize> = (0..l).filter(|j| !self.nonneg || cb[*j] > 0.0).collect();
-            let Some(rf) = free_triangle(&red.r, &free) else {
-                return false;
-            };
-            let mut u = vec![0.0; m];
-            for k in 0..n {
-                let dk = &dphi[k * m * l..(k + 1) * m * l];
-                u.fill(0.0);
-                for t in 0..l {
-                    if cb[t] != 0.0 {
-                        let col = &dk[t * m..(t + 1) * m];
-                        for i in 0..m {
-                            u[i] += col[i] * cb[t];
+        let mut free = Vec::with_capacity(l);
+        let mut z = vec![0.0; l];
+        self.pool.with(m, |u| {
+            for b in 0..nb {
+                let cb = &c[b * l..(b + 1) * l];
+                let rb = &r[b * m..(b + 1) * m];
+                // Free columns: all for least squares, the positive ones for NNLS.
+                free.clear();
+                free.extend((0..l).filter(|j| !self.nonneg || cb[*j] > 0.0));
+                let refactored;
+                let rf = if free.is_empty() {
+                    None
+                } else if free.len() == l {
+                    Some(&red.r)
+                } else {
+                    let mut sub = Mat::from_fn(l, free.len(), |i, s| red.r[(i, free[s])]);
+                    refactored = tall_qr::r_factor(sub.as_mut());
+                    Some(&refactored)
+                };
+                if rf.is_some_and(|rf| !well_conditioned(rf, free.len())) {
+                    return false;
+                }
+                for k in 0..n {
+                    let dk = &dphi[k * m * l..(k + 1) * m * l];
+                    u.fill(0.0);
+                    for t in 0..l {
+                        if cb[t] != 0.0 {
+                            let col = &dk[t * m..(t + 1) * m];
+                            for i in 0..m {
+                                u[i] += col[i] * cb[t];
+                            }
                         }
                     }
-                }
-                if let Some(rf) = &rf {
-                    // v = Phi_F^T u + dPhi_kF^T r, z = R_F^-1 R_F^-T v.
-                    let mut z = Mat::from_fn(free.len(), 1, |s, _| {
-                        let (pc, dc) = (&phi[free[s] * m..], &dk[free[s] * m..]);
-                        (0..m).map(|i| pc[i] * u[i] + dc[i] * rb[i]).sum::<f64>()
-                    });
-                    rf.as_ref()
-                        .transpose()
-                        .solve_lower_triangular_in_place(z.as_mut());
-                    rf.as_ref().solve_upper_triangular_in_place(z.as_mut());
-                    for (s, &t) in free.iter().enumerate() {
-                        let col = &phi[t * m..(t + 1) * m];
-                        let zs = z[(s, 0)];
-                        for i in 0..m {
-                            u[i] -= col[i] * zs;
+                    if let Some(rf) = rf {
+                        // v = Phi_F^T u + dPhi_kF^T r, z = R_F^-1 R_F^-T v.
+                        let z = &mut z[..free.len()];
+                        for (s, zs) in z.iter_mut().enumerate() {
+                            let (pc, dc) = (&phi[free[s] * m..], &dk[free[s] * m..]);
+                            *zs = (0..m).map(|i| pc[i] * u[i] + dc[i] * rb[i]).sum::<f64>();
+                        }
+                        solve_normal_in_place(rf, z);
+                        for (s, &t) in free.iter().enumerate() {
+                            let col = &phi[t * m..(t + 1) * m];
+                            let zs = z[s];
+                            for i in 0..m {
+                                u[i] -= col[i] * zs;
+                            }
                         }
                     }
-                }
-                for i in 0..m {
-                    jac[(b * m + i) * n + k] = u[i];
+                    for i in 0..m {
+                        jac[(b * m + i) * n + k] = u[i];
+                    }
                 }
             }
-        }
-        true
+            true
+        })
     }
 
     fn solve_from(&self, red: &Reduced) -> Result<Vec<f64>, SolveError> {
@@ -342,30 +356,36 @@ impl<S: SeparableProblem + ?Sized> VarPro<'_, S> {
     }
 }
 
-/// The triangle `R_F` of the free columns `F` of `R` (`Some(None)` when no
-/// column is free; `None` when `R_F` is numerically rank-deficient, where
-/// the projector's derivative is not given by the formula).
-fn free_triangle(r: &Mat<f64>, free: &[usize]) -> Option<Option<Mat<f64>>> {
-    if free.is_empty() {
-        return Some(None);
+/// Whether the `nf x nf` triangle `r` is numerically non-singular (every
+/// diagonal entry above `1e-12` times the largest); where it is not, the
+/// projector's derivative is not given by the formula.
+fn well_conditioned(r: &Mat<f64>, nf: usize) -> bool {
+    if r.nrows() < nf || r.ncols() < nf {
+        return false;
     }
-    let l = r.nrows();
-    let nf = free.len();
-    // Every column free: `R` itself is the triangle (no refactoring).
-    let rr = if nf == r.ncols() {
-        r.clone()
-    } else {
-        let mut rf = Mat::from_fn(l, nf, |i, s| r[(i, free[s])]);
-        tall_qr::r_factor(rf.as_mut())
-    };
-    if rr.nrows() < nf {
-        return None;
+    let rmax = (0..nf).map(|t| r[(t, t)].abs()).fold(0.0f64, f64::max);
+    (0..nf).all(|t| r[(t, t)].abs() > 1e-12 * rmax)
+}
+
+/// `z <- R^-1 R^-T z` for the upper triangle `R` (its leading `z.len()`
+/// square): the normal-equation solve of the free columns, by forward and
+/// back substitution in place.
+fn solve_normal_in_place(r: &Mat<f64>, z: &mut [f64]) {
+    let nf = z.len();
+    for i in 0..nf {
+        let mut t = z[i];
+        for j in 0..i {
+            t -= r[(j, i)] * z[j];
+        }
+        z[i] = t / r[(i, i)];
     }
-    let rmax = (0..nf).map(|t| rr[(t, t)].abs()).fold(0.0f64, f64::max);
-    if (0..nf).any(|t| !(rr[(t, t)].abs() > 1e-12 * rmax)) {
-        return None;
+    for i in (0..nf).rev() {
+        let mut t = z[i];
+        for j in i + 1..nf {
+            t -= r[(i, j)] * z[j];
+        }
+        z[i] = t / r[(i, i)];
     }
-    Some(Some(rr))
 }
 
 /// The solution of the triangular system `R x = q` when `R` is numerically
