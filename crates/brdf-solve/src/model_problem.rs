@@ -20,10 +20,11 @@
 //! coefficients, and the separable form has one block per channel sharing
 //! one basis matrix (no zero blocks, one factorisation for all channels).
 //!
-//! Large sample sets (from [`blocked::MIN_SAMPLES`] on) are also cut into
-//! cache-sized blocks once: their residuals, and the normal equations the
-//! solvers ask for in the same pass, are computed block by block in
-//! parallel without storing the Jacobian ([`blocked`]).
+//! Large sample sets (from 8192 samples on) are also cut into cache-sized
+//! blocks once: their residuals, and the normal equations the solvers ask
+//! for in the same pass
+//! ([`LeastSquaresProblem::residuals_and_gram`]), are computed block by
+//! block in parallel without storing the Jacobian.
 
 mod blocked;
 
