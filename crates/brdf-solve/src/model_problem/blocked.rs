@@ -15,8 +15,6 @@
 //! parameters (no zero blocks) and is scattered into the full one.
 
 use brdf_core::{DirPairs, PairGeometry, SharedBasis};
-use faer::linalg::matmul::matmul;
-use faer::{Accum, MatMut, MatRef, Par};
 
 use super::ModelProblem;
 
@@ -57,11 +55,39 @@ struct Work {
     jac: Vec<f64>,
 }
 
-/// `acc += A^T A` for the column-major `rows x w` matrix in `a`.
+/// `acc += A^T A` for the column-major `rows x w` matrix in `a` (`w` a
+/// handful, `rows` one block): the upper triangle as dot products of the
+/// block's columns, which stay in cache, mirrored. A general matrix
+/// product would pack and pad the few columns to its kernel's width.
 fn add_gram(acc: &mut [f64], a: &[f64], rows: usize, w: usize) {
-    let a = MatRef::from_column_major_slice(&a[..rows * w], rows, w);
-    let acc = MatMut::from_column_major_slice_mut(acc, w, w);
-    matmul(acc, Accum::Add, a.transpose(), a, 1.0, Par::Seq);
+    for i in 0..w {
+        let ci = &a[i * rows..(i + 1) * rows];
+        for j in i..w {
+            let d = dot(ci, &a[j * rows..(j + 1) * rows]);
+            acc[i * w + j] += d;
+            if j != i {
+                acc[j * w + i] += d;
+            }
+        }
+    }
+}
+
+/// `x . y` with four partial sums, so the loop vectorises.
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    let mut s = [0.0; 4];
+    let (xc, yc) = (x.chunks_exact(4), y.chunks_exact(4));
+    let tail: f64 = xc
+        .remainder()
+        .iter()
+        .zip(yc.remainder())
+        .map(|(a, b)| a * b)
+        .sum();
+    for (a, b) in xc.zip(yc) {
+        for k in 0..4 {
+            s[k] += a[k] * b[k];
+        }
+    }
+    (s[0] + s[1]) + (s[2] + s[3]) + tail
 }
 
 impl ModelProblem<'_> {
@@ -178,12 +204,17 @@ impl ModelProblem<'_> {
         for (c, r) in rows.iter_mut().enumerate() {
             let ks = &self.coefficients[c * l..(c + 1) * l];
             let y = &self.targets[c * n + blk.start..c * n + blk.start + len];
-            for j in 0..len {
-                let mut v = 0.0;
-                for (t, &k) in ks.iter().enumerate() {
-                    v += p[k] * phi[t * len + j];
+            // Column by column over the block (the same sums per row as
+            // a row loop, in the same order), so the loops vectorise.
+            r.fill(0.0);
+            for (t, &k) in ks.iter().enumerate() {
+                let x = p[k];
+                for (v, f) in r.iter_mut().zip(&phi[t * len..(t + 1) * len]) {
+                    *v += x * f;
                 }
-                r[j] = v * scale[j] - y[j];
+            }
+            for ((v, s), yj) in r.iter_mut().zip(scale).zip(y) {
+                *v = *v * s - yj;
             }
             let Some(acc) = acc.as_deref_mut() else {
                 continue;
@@ -192,8 +223,9 @@ impl ModelProblem<'_> {
             work.a.resize(w * len, 0.0);
             let (a, dphi) = (&mut work.a[..w * len], &work.dphi[..l * nq * len]);
             for t in 0..l {
-                for j in 0..len {
-                    a[t * len + j] = phi[t * len + j] * scale[j];
+                let col = &mut a[t * len..(t + 1) * len];
+                for ((v, f), s) in col.iter_mut().zip(&phi[t * len..(t + 1) * len]).zip(scale) {
+                    *v = f * s;
                 }
             }
             for u in 0..nq {
@@ -201,8 +233,8 @@ impl ModelProblem<'_> {
                 col.fill(0.0);
                 for (t, &k) in ks.iter().enumerate() {
                     let d = &dphi[(t * nq + u) * len..(t * nq + u + 1) * len];
-                    for j in 0..len {
-                        col[j] += p[k] * scale[j] * d[j];
+                    for ((v, s), dj) in col.iter_mut().zip(scale).zip(d) {
+                        *v += p[k] * s * dj;
                     }
                 }
             }
