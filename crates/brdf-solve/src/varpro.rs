@@ -142,7 +142,21 @@ impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
                 |i, j| if rows[i].0 == j { rows[i].1 } else { 0.0 },
             );
             let h: Vec<f64> = rows.iter().map(|r| r.2).collect();
-            out.extend(crate::lsi(red.r.as_ref(), &red.qty[b], g.as_ref(), &h)?);
+            let x = crate::lsi(red.r.as_ref(), &red.qty[b], g.as_ref(), &h)?;
+            // LSI's reduction to a least-distance problem meets an active
+            // bound only to rounding (1 - 1.9e-14 for an upper bound of 1):
+            // such a coefficient is set on its bound, so the report says it
+            // sits there.
+            out.extend(x.iter().enumerate().map(|(j, &v)| {
+                let (lo, hi) = (rows_bound(&rows, j, 1.0), rows_bound(&rows, j, -1.0));
+                let near =
+                    |bound: f64| (v - bound).abs() <= ACTIVE_BOUND_RTOL * bound.abs().max(1.0);
+                match (lo, hi) {
+                    (Some(lo), _) if v <= lo || near(lo) => lo,
+                    (_, Some(hi)) if v >= hi || near(hi) => hi,
+                    _ => v,
+                }
+            }));
         }
         Ok(out)
     }
@@ -386,6 +400,19 @@ fn solve_normal_in_place(r: &Mat<f64>, z: &mut [f64]) {
         }
         z[i] = t / r[(i, i)];
     }
+}
+
+/// Relative distance to a bound within which an LSI coefficient is taken
+/// to sit on it (the rounding of the least-distance reduction, far below
+/// any difference a fit could resolve).
+const ACTIVE_BOUND_RTOL: f64 = 1e-12;
+
+/// The bound of coefficient `j` among the LSI rows `(j, sign, h)` of
+/// `sign x_j >= h`: the lower bound for `sign = 1`, the upper for `-1`.
+fn rows_bound(rows: &[(usize, f64, f64)], j: usize, sign: f64) -> Option<f64> {
+    rows.iter()
+        .find(|r| r.0 == j && r.1 == sign)
+        .map(|r| r.2 * sign)
 }
 
 /// The solution of the triangular system `R x = q` when `R` is numerically
