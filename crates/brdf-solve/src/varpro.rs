@@ -121,19 +121,20 @@ impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
         })?;
         let mut out = Vec::with_capacity(l * nb);
         for b in 0..nb {
+            // The ends of coefficient j (infinite ends impose nothing).
+            let lo = |j: usize| {
+                let v = lower[b * l + j];
+                if self.nonneg { v.max(0.0) } else { v }
+            };
+            let hi = |j: usize| upper[b * l + j];
             // Rows of G x >= h: x_j >= lo_j and -x_j >= -hi_j for finite ends.
             let mut rows: Vec<(usize, f64, f64)> = Vec::new();
             for j in 0..l {
-                let lo = if self.nonneg {
-                    lower[b * l + j].max(0.0)
-                } else {
-                    lower[b * l + j]
-                };
-                if lo.is_finite() {
-                    rows.push((j, 1.0, lo));
+                if lo(j).is_finite() {
+                    rows.push((j, 1.0, lo(j)));
                 }
-                if upper[b * l + j].is_finite() {
-                    rows.push((j, -1.0, -upper[b * l + j]));
+                if hi(j).is_finite() {
+                    rows.push((j, -1.0, -hi(j)));
                 }
             }
             let g = Mat::from_fn(
@@ -148,13 +149,16 @@ impl<'a, S: SeparableProblem + ?Sized> VarPro<'a, S> {
             // such a coefficient is set on its bound, so the report says it
             // sits there.
             out.extend(x.iter().enumerate().map(|(j, &v)| {
-                let (lo, hi) = (rows_bound(&rows, j, 1.0), rows_bound(&rows, j, -1.0));
-                let near =
-                    |bound: f64| (v - bound).abs() <= ACTIVE_BOUND_RTOL * bound.abs().max(1.0);
-                match (lo, hi) {
-                    (Some(lo), _) if v <= lo || near(lo) => lo,
-                    (_, Some(hi)) if v >= hi || near(hi) => hi,
-                    _ => v,
+                let near = |bound: f64| {
+                    bound.is_finite()
+                        && (v - bound).abs() <= ACTIVE_BOUND_RTOL * bound.abs().max(1.0)
+                };
+                if v <= lo(j) || near(lo(j)) {
+                    lo(j)
+                } else if v >= hi(j) || near(hi(j)) {
+                    hi(j)
+                } else {
+                    v
                 }
             }));
         }
@@ -406,14 +410,6 @@ fn solve_normal_in_place(r: &Mat<f64>, z: &mut [f64]) {
 /// to sit on it (the rounding of the least-distance reduction, far below
 /// any difference a fit could resolve).
 const ACTIVE_BOUND_RTOL: f64 = 1e-12;
-
-/// The bound of coefficient `j` among the LSI rows `(j, sign, h)` of
-/// `sign x_j >= h`: the lower bound for `sign = 1`, the upper for `-1`.
-fn rows_bound(rows: &[(usize, f64, f64)], j: usize, sign: f64) -> Option<f64> {
-    rows.iter()
-        .find(|r| r.0 == j && r.1 == sign)
-        .map(|r| r.2 * sign)
-}
 
 /// The solution of the triangular system `R x = q` when `R` is numerically
 /// non-singular (every diagonal entry above `1e-12` times the largest) and
