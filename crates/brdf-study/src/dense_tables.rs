@@ -25,11 +25,11 @@ use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::figures::{QUANTILE, SIZE, light, sphere, tone_note};
-use crate::render::{Image, render_sphere};
+use brdf_render::{Image, render_sphere};
 use crate::renderer_fits::{fit_sets, status};
 use crate::renderer_spheres::RendererSpheres;
 use crate::report::{Cell, Table};
-use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
+use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::models::{FitHow, fit_model};
 use crate::study::{Study, progress};
 

@@ -21,6 +21,9 @@ pub enum StudyError {
     /// A model could not be exported.
     #[error(transparent)]
     Export(#[from] brdf_export::ExportError),
+    /// Rendering or writing an image or plot failed.
+    #[error(transparent)]
+    Render(#[from] brdf_render::RenderError),
     /// JSON output failed.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),

@@ -11,8 +11,8 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use crate::StudyError;
-use crate::render::{Image, render_sphere};
-use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
+use brdf_render::{Image, render_sphere};
+use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::models::{FitHow, build_model, fit_model};
 use crate::study::{Study, progress};
 

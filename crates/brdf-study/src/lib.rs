@@ -4,11 +4,6 @@
 //! rendering, and the reproduction of the Kurt (2007) and Sopp (2017) tables
 //! into `results/`. The binary (`src/main.rs`) parses the command line; the
 //! modules here do the work and are usable from tests.
-//!
-//! ## Crate features
-//!
-//! - `plots` (default, kept for compatibility): the plots and labelled
-//!   images are always built (plotters with the bundled font).
 
 pub mod bias;
 pub mod cli;
@@ -18,8 +13,6 @@ pub mod error;
 pub mod figures;
 pub mod kurt;
 pub mod nist;
-pub mod plots;
-pub mod render;
 pub mod renderer_fits;
 pub mod renderer_spheres;
 pub mod report;

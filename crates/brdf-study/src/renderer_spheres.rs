@@ -9,8 +9,8 @@ use std::path::Path;
 
 use crate::StudyError;
 use crate::figures::{QUANTILE, tone_note};
-use crate::render::Image;
-use crate::study::grid_image::{Grid, Tile, Tone, difference_scale};
+use brdf_render::Image;
+use brdf_render::grid::{Grid, Tile, Tone, difference_scale};
 
 /// The grid being filled, one material at a time.
 pub struct RendererSpheres {
@@ -76,6 +76,6 @@ impl RendererSpheres {
             tone_note(QUANTILE),
             "Fits: RGB, automatic starts, Sopp's grid within 80 deg, every 5th node (as kurt_9_3.md, whose `fit` columns say which parameters ended on a bound); measured = the RGL data rendered directly; a blank tile: the fit failed.".into(),
         ];
-        self.grid.write_png(path)
+        Ok(self.grid.write_png(path)?)
     }
 }

@@ -19,9 +19,9 @@ use crate::StudyError;
 use crate::pipeline::{FitOptions, FitSummary, Objective, fit, fit_sopp};
 use rayon::prelude::*;
 
-use crate::render::Image;
+use brdf_render::Image;
 use crate::report::{Cell, Table};
-use crate::study::grid_image::{Grid, Tile, Tone, difference_scale, exposure_for};
+use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::{Study, Written, progress};
 
 /// The metric of Sopp's fits, for the README.

@@ -8,7 +8,7 @@ use brdf_fit::FitSummary;
 
 use super::err;
 use crate::StudyError;
-use crate::plots::{Plot, Series};
+use brdf_render::plot::{Plot, Series};
 use crate::report::{Cell, Table};
 use crate::study::Study;
 
@@ -72,7 +72,7 @@ pub fn write(study: &mut Study, sets: &[SampleSet], fig: RankedFigure) -> Result
     }
     let stem = study.stem(fig.stem);
     table.write(&study.out, &stem)?;
-    crate::plots::write(&plot, &study.out, &stem)?;
+    brdf_render::plot::write(&plot, &study.out, &stem)?;
     study.wrote(
         format!("{stem}.{{csv,md,svg,png}}"),
         fig.what,

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use super::err;
 use crate::StudyError;
-use crate::plots::{Plot, Series};
+use brdf_render::plot::{Plot, Series};
 use crate::report::{Cell, Table};
 use crate::study::models::{FitHow, fit_model};
 use crate::study::{Study, progress};
@@ -181,7 +181,7 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
     );
     let stem = study.stem("kurt_9_1");
     t.write(&study.out, &stem)?;
-    crate::plots::write(&plot, &study.out, &stem)?;
+    brdf_render::plot::write(&plot, &study.out, &stem)?;
     let data = if study.synthetic() {
         "built-in synthetic"
     } else {

@@ -10,7 +10,7 @@ use brdf_fit::FitSummary;
 use super::figure_9_4::{POLY_OLS, ols_polynomial};
 use super::{converged, err, nine_index};
 use crate::StudyError;
-use crate::plots::{Plot, Series, pareto_front};
+use brdf_render::plot::{Plot, Series, pareto_front};
 use crate::renderer_fits::{fit_sets, tally};
 use crate::report::{Cell, Table};
 use crate::study::Study;
@@ -161,7 +161,7 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
     plot.pareto = Some(front);
     let stem = study.stem("error_vs_time");
     e.write(&study.out, &stem)?;
-    crate::plots::write(&plot, &study.out, &stem)?;
+    brdf_render::plot::write(&plot, &study.out, &stem)?;
     study.wrote(
         format!("{stem}.{{csv,md,svg,png}}"),
         "error against fit time per material and procedure (Kurt's models and the renderer models), Pareto front of the means, how the fits ended; plot",

@@ -5,7 +5,6 @@
 //! the tables that use them), and the list of files written, from which
 //! `results/README.md` is generated.
 
-pub mod grid_image;
 pub mod models;
 pub mod parts;
 pub mod progress;

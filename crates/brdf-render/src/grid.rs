@@ -9,11 +9,11 @@ use std::sync::Once;
 
 use plotters::prelude::*;
 
-use crate::StudyError;
-use crate::render::Image;
+use crate::RenderError;
+use crate::Image;
 
 /// The bundled font (DejaVu Sans; licence beside it in `assets/fonts`).
-pub static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+pub static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
 /// Register the bundled font as plotters' `sans-serif` (once).
 pub fn font() {
@@ -159,7 +159,7 @@ impl Grid {
     }
 
     /// Write the grid as an RGB PNG.
-    pub fn write_png(&self, path: &Path) -> Result<(), StudyError> {
+    pub fn write_png(&self, path: &Path) -> Result<(), RenderError> {
         font();
         let (cw, ch) = self.cell();
         let ncol = self.tiles.iter().map(Vec::len).max().unwrap_or(0);
@@ -244,7 +244,7 @@ impl Grid {
             }) {
                 let x = LEFT + ncol * (cw + GAP) + 15;
                 text(
-                    &format!(">= {}", crate::report::fmt_sig(max, 2)),
+                    &format!(">= {}", crate::fmt_sig(max, 2)),
                     x,
                     y - 4,
                     11,
@@ -277,8 +277,8 @@ fn wrap(s: &str, chars: usize) -> Vec<String> {
     lines
 }
 
-fn io_err(path: &Path, e: impl std::fmt::Display) -> StudyError {
-    StudyError::Io {
+fn io_err(path: &Path, e: impl std::fmt::Display) -> RenderError {
+    RenderError::Io {
         path: path.display().to_string(),
         source: std::io::Error::other(e.to_string()),
     }
@@ -290,7 +290,7 @@ pub fn write_rgb_png(
     width: usize,
     height: usize,
     rgb: &[u8],
-) -> Result<(), StudyError> {
+) -> Result<(), RenderError> {
     let file = std::fs::File::create(path).map_err(|e| io_err(path, e))?;
     let mut enc = png::Encoder::new(std::io::BufWriter::new(file), width as u32, height as u32);
     enc.set_color(png::ColorType::Rgb);

@@ -10,8 +10,8 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::StudyError;
-use crate::study::grid_image::{font, write_rgb_png};
+use crate::RenderError;
+use crate::grid::{font, write_rgb_png};
 
 /// One named series of points.
 #[derive(Clone, Debug)]
@@ -84,8 +84,8 @@ fn colour(style: usize, alpha: f64) -> RGBAColor {
     RGBColor(r, g, b).mix(alpha)
 }
 
-fn err(path: &Path, e: impl std::fmt::Display) -> StudyError {
-    StudyError::Io {
+fn err(path: &Path, e: impl std::fmt::Display) -> RenderError {
+    RenderError::Io {
         path: path.display().to_string(),
         source: std::io::Error::other(e.to_string()),
     }
@@ -120,7 +120,7 @@ fn tick(v: f64, log: bool) -> String {
             return String::new();
         }
     }
-    crate::report::fmt_sig(v, 2)
+    crate::fmt_sig(v, 2)
 }
 
 /// A marker of shape `style / 10` (circle, triangle, square, cross).
@@ -308,7 +308,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
 }
 
 /// Write `stem.svg` and `stem.png` into `dir`.
-pub fn write(plot: &Plot, dir: &Path, stem: &str) -> Result<(), StudyError> {
+pub fn write(plot: &Plot, dir: &Path, stem: &str) -> Result<(), RenderError> {
     font();
     let (w, h) = (1000u32, 600u32);
     let svg = dir.join(format!("{stem}.svg"));
