@@ -129,6 +129,53 @@ pub fn log_metric(
     })
 }
 
+/// Cube-root metric (Forés, Ferwerda & Gu 2012, "Toward a perceptually
+/// based metric for BRDF modeling"):
+/// `sqrt( sum_j w_j (cbrt(R cos_i + d) - cbrt(M cos_i + d))^2 / sum_j w_j )`,
+/// negative values clamped at 0; the offset `d >= 0` keeps the fitted
+/// objective differentiable at 0 (the fit uses `1e-6 p99(R cos_i)`).
+pub fn cube_root_metric(
+    measured: &[f64],
+    model: &[f64],
+    cos_i: &[f64],
+    weights: &[f64],
+    d: f64,
+) -> Result<MetricValue, CoreError> {
+    let n = cos_i.len();
+    let nc = check(measured, model, n, &[weights])?;
+    let cr = |x: f64| (x.max(0.0) + d).cbrt();
+    weighted_rms(nc, weights, |c, j| {
+        cr(measured[c * n + j] * cos_i[j]) - cr(model[c * n + j] * cos_i[j])
+    })
+}
+
+/// Relative metric: `sqrt( sum_j w_j (s_j (R - M))^2 / sum_j w_j )` with
+/// row scales `s_j` (`1 / (mean_c R_j + e)` times `sqrt(w_j)` in the fit, so
+/// each sample counts by its ratio to the data).
+pub fn relative_metric(
+    measured: &[f64],
+    model: &[f64],
+    scales: &[f64],
+    weights: &[f64],
+) -> Result<MetricValue, CoreError> {
+    let n = scales.len();
+    let nc = check(measured, model, n, &[weights])?;
+    let wsum: f64 = weights.iter().sum();
+    if !(wsum > 0.0) {
+        return Err(CoreError::InvalidOption {
+            name: "weights",
+            value: wsum,
+            reason: "the weights must have a positive sum",
+        });
+    }
+    // The scales already hold sqrt(w): average their squared rows with
+    // unit weights, normalised by the weights' sum.
+    let k = (n as f64 / wsum).sqrt();
+    weighted_rms(nc, &vec![1.0; n], |c, j| {
+        k * scales[j] * (measured[c * n + j] - model[c * n + j])
+    })
+}
+
 /// Sopp (2017) error: residuals `r_j = w_j cos_i_j (R_j - M_j) / sum_k w_k`,
 /// error `sqrt(sum_j r_j^2)` per channel. With `weighted = false` every
 /// `w_j = 1` (so `r_j = cos_i (R - M) / n`): Sopp reports this unweighted

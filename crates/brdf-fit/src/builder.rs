@@ -245,7 +245,7 @@ impl Fit {
         notes: &mut Vec<String>,
     ) -> Result<FitOptions, FitError> {
         let mut options = self.options.clone();
-        if options.objective != Objective::Log {
+        if !options.objective.is_transformed() {
             return Ok(options);
         }
         match options.solver {

@@ -36,6 +36,7 @@
 //! | [`builder`] | [`Fit`] (the builder) and [`FitReport`] |
 //! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
+//! | [`image_objective`] | the image objective: residuals of tone-mapped sphere pixels |
 //! | [`boxed`] | [`BoxedModel`]: a model fitted in other parameter boxes than its own |
 //! | [`scaling`] | internal scaling of extreme data and weights (scale invariance) |
 //! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
@@ -48,6 +49,7 @@ pub mod boxed;
 pub mod builder;
 pub mod error;
 pub mod fit_linear;
+pub mod image_objective;
 pub mod linear_box;
 pub mod names;
 pub mod pipeline;

@@ -27,7 +27,9 @@
 
 use std::time::Instant;
 
-use brdf_core::metrics::{lafortune_l2, log_metric, ngan_l2, sopp_error};
+use brdf_core::metrics::{
+    cube_root_metric, lafortune_l2, log_metric, ngan_l2, relative_metric, sopp_error,
+};
 use brdf_core::{MetricValue, Parametric, SampleSet};
 use brdf_solve::covariance::standard_errors;
 use brdf_solve::multistart::{StartBox, multistart};
@@ -56,6 +58,21 @@ pub enum Objective {
     Lafortune,
     /// Matusik's log: `ln(1 + M cos_i) - ln(1 + R cos_i)`.
     Log,
+    /// Forés et al.'s cube root (2012, "BRDF parameter estimation"):
+    /// `sqrt(w) (cbrt(M cos_i + d) - cbrt(R cos_i + d))`, `d = 1e-6 p99(R
+    /// cos_i)` keeping the derivative finite at 0. Like lightness, the cube
+    /// root compresses the highlight so the body colour weighs.
+    CubeRoot,
+    /// Relative error: rows `sqrt(w) (M - R) / (mean_c R + e)`, `e = 1e-2
+    /// median(mean_c R)`: every sample counts by its ratio to the data, so
+    /// the dim body weighs as much as the peak. A row scaling, so the linear
+    /// parameters are still projected out.
+    Relative,
+    /// The image objective ([`crate::image_objective`]): log residuals of
+    /// the sphere's pixels under the standard light sets of `brdf-render`,
+    /// for data that can be evaluated at any direction pair. Fitted from
+    /// the best BRDF-space fits (see [`crate::appearance`]).
+    Image,
 }
 
 impl Objective {
@@ -67,9 +84,12 @@ impl Objective {
             "sopp-unweighted" => Objective::Sopp { weighted: false },
             "lafortune" => Objective::Lafortune,
             "log" => Objective::Log,
+            "cube-root" | "cuberoot" | "cube_root" => Objective::CubeRoot,
+            "relative" => Objective::Relative,
+            "image" => Objective::Image,
             other => {
                 return Err(FitError::Usage(format!(
-                    "unknown metric `{other}`: ngan, sopp, sopp-unweighted, lafortune or log"
+                    "unknown metric `{other}`: ngan, sopp, sopp-unweighted, lafortune, log, cube-root, relative or image"
                 )));
             }
         })
@@ -83,7 +103,19 @@ impl Objective {
             Objective::Sopp { weighted: false } => "sopp-unweighted",
             Objective::Lafortune => "lafortune",
             Objective::Log => "log",
+            Objective::CubeRoot => "cube-root",
+            Objective::Relative => "relative",
+            Objective::Image => "image",
         }
+    }
+
+    /// Whether the objective transforms the residual (fitted on all
+    /// parameters) rather than scaling its rows.
+    pub fn is_transformed(self) -> bool {
+        matches!(
+            self,
+            Objective::Log | Objective::CubeRoot | Objective::Image
+        )
     }
 
     /// Row scales `s_j` (the residual is `s_j (M - R)`); the log objective
@@ -100,7 +132,17 @@ impl Objective {
                 (0..n).map(|j| w[j] * p.lz[j] / sw).collect()
             }
             Objective::Sopp { weighted: false } => (0..n).map(|j| p.lz[j] / n as f64).collect(),
-            Objective::Log => vec![1.0; n],
+            Objective::Relative => {
+                let nc = s.channels();
+                let mean: Vec<f64> = (0..n)
+                    .map(|j| (0..nc).map(|c| s.channel(c)[j]).sum::<f64>() / nc as f64)
+                    .collect();
+                let e = relative_floor(&mean);
+                (0..n)
+                    .map(|j| w[j].sqrt() / (mean[j].max(0.0) + e))
+                    .collect()
+            }
+            Objective::Log | Objective::CubeRoot | Objective::Image => vec![1.0; n],
         }
     }
 
@@ -112,7 +154,14 @@ impl Objective {
             Objective::Ngan => ngan_l2(&m, fitted, &p.lz, s.weights())?,
             Objective::Lafortune => lafortune_l2(&m, fitted, &p.lz, &p.vz, s.weights())?,
             Objective::Sopp { weighted } => sopp_error(&m, fitted, &p.lz, s.weights(), weighted)?,
-            Objective::Log => log_metric(&m, fitted, &p.lz, s.weights())?,
+            Objective::Log | Objective::Image => log_metric(&m, fitted, &p.lz, s.weights())?,
+            Objective::CubeRoot => {
+                cube_root_metric(&m, fitted, &p.lz, s.weights(), cube_root_offset(s))?
+            }
+            Objective::Relative => {
+                let scales = self.row_scales(s);
+                relative_metric(&m, fitted, &scales, s.weights())?
+            }
         })
     }
 }
@@ -290,7 +339,7 @@ pub fn fit(
     // An iterative linear fit (IRLS) says how it ended; a direct solve
     // has nothing to report.
     let mut irls_termination = None;
-    let (p, solver, rep, starts_info) = if all_linear && opts.objective != Objective::Log {
+    let (p, solver, rep, starts_info) = if all_linear && !opts.objective.is_transformed() {
         let (p, how, _) = fit_all_linear(model, data, &scales, opts.solver)?;
         irls_termination = how.split_once("; ").map(|(_, t)| t.to_string());
         (p, how, None, (1, 1, 1))
@@ -480,10 +529,10 @@ fn fit_nonlinear(
     // Projection needs linear parameters (the full Oren-Nayar model has
     // none: its kd enters squared).
     let use_varpro = opts.solver == Solver::Sqp
-        && opts.objective != Objective::Log
+        && !opts.objective.is_transformed()
         && !mp.linear_indices().is_empty();
-    let problem: &(dyn LeastSquaresProblem + Sync) = if opts.objective == Objective::Log {
-        log_problem = LogProblem::new(&mp, data)?;
+    let problem: &(dyn LeastSquaresProblem + Sync) = if opts.objective.is_transformed() {
+        log_problem = TransformedProblem::new(&mp, data, opts.objective)?;
         &log_problem
     } else {
         &mp
@@ -797,35 +846,114 @@ fn describe_termination(
     }
 }
 
-/// The log objective as a least-squares problem over all parameters:
-/// residual `ln(1 + M cos_i) - ln(1 + R cos_i)`.
-struct LogProblem<'a> {
+/// Offset `d` of the cube-root objective: `1e-6 p99(R cos_i)` (1e-300 for
+/// all-zero data), so `cbrt'` stays finite at 0.
+fn cube_root_offset(s: &SampleSet) -> f64 {
+    let n = s.len();
+    let mut v: Vec<f64> = (0..s.channels())
+        .flat_map(|c| (0..n).map(move |j| (c, j)))
+        .map(|(c, j)| (s.channel(c)[j] * s.pairs().lz[j]).abs())
+        .filter(|x| x.is_finite())
+        .collect();
+    v.sort_by(f64::total_cmp);
+    let p99 = v
+        .get((v.len().saturating_sub(1) * 99) / 100)
+        .copied()
+        .unwrap_or(0.0);
+    (1e-6 * p99).max(1e-300)
+}
+
+/// Floor `e` of the relative objective: `1e-2 median(mean_c R)` (1e-300
+/// for all-zero data).
+fn relative_floor(mean: &[f64]) -> f64 {
+    let mut v: Vec<f64> = mean
+        .iter()
+        .map(|x| x.abs())
+        .filter(|x| x.is_finite())
+        .collect();
+    v.sort_by(f64::total_cmp);
+    (1e-2 * v.get(v.len() / 2).copied().unwrap_or(0.0)).max(1e-300)
+}
+
+/// A residual transform `T`: the objective's residual is `T(M cos_i) -
+/// T(R cos_i)`.
+#[derive(Clone, Copy)]
+enum Transform {
+    /// `ln(1 + x)` (Matusik's log; arguments clamped at `-1 + 1e-12`).
+    Log,
+    /// `sqrt(w_j) cbrt(x + d)` (Forés' cube root).
+    CubeRoot(f64),
+}
+
+impl Transform {
+    fn value(self, x: f64) -> f64 {
+        match self {
+            Transform::Log => x.max(-1.0 + 1e-12).ln_1p(),
+            Transform::CubeRoot(d) => (x.max(0.0) + d).cbrt(),
+        }
+    }
+
+    fn derivative(self, x: f64) -> f64 {
+        match self {
+            Transform::Log => 1.0 / (1.0 + x).max(1e-12),
+            Transform::CubeRoot(d) => {
+                let t = (x.max(0.0) + d).cbrt();
+                1.0 / (3.0 * t * t)
+            }
+        }
+    }
+}
+
+/// A transformed objective (log, cube root) as a least-squares problem
+/// over all parameters: residual `s_j (T(M cos_i) - T(R cos_i))` with
+/// `s_j = 1` (log) or `sqrt(w_j / mean w)` (cube root).
+struct TransformedProblem<'a> {
     inner: &'a ModelProblem<'a>,
+    transform: Transform,
     cos_i: Vec<f64>,
-    log_target: Vec<f64>,
+    row: Vec<f64>,
+    target: Vec<f64>,
     values: Vec<f64>,
 }
 
-impl<'a> LogProblem<'a> {
-    fn new(inner: &'a ModelProblem<'a>, data: &SampleSet) -> Result<Self, FitError> {
+impl<'a> TransformedProblem<'a> {
+    fn new(
+        inner: &'a ModelProblem<'a>,
+        data: &SampleSet,
+        objective: Objective,
+    ) -> Result<Self, FitError> {
         let n = data.len();
         let values = data.values_channel_major();
         let cos_i: Vec<f64> = (0..values.len()).map(|i| data.pairs().lz[i % n]).collect();
-        let log_target = values
+        let (transform, row) = match objective {
+            Objective::CubeRoot => {
+                let w = data.weights();
+                let mean = w.iter().sum::<f64>() / n as f64;
+                let row = (0..values.len())
+                    .map(|i| (w[i % n] / mean).sqrt())
+                    .collect();
+                (Transform::CubeRoot(cube_root_offset(data)), row)
+            }
+            _ => (Transform::Log, vec![1.0; values.len()]),
+        };
+        let target = values
             .iter()
             .zip(&cos_i)
-            .map(|(r, c)| (r * c).max(-1.0 + 1e-12).ln_1p())
+            .zip(&row)
+            .map(|((r, c), s)| s * transform.value(r * c))
             .collect();
         Ok(Self {
             inner,
+            transform,
             cos_i,
-            log_target,
+            row,
+            target,
             values,
         })
     }
 }
 
-impl LeastSquaresProblem for LogProblem<'_> {
+impl LeastSquaresProblem for TransformedProblem<'_> {
     fn n_params(&self) -> usize {
         self.inner.n_params()
     }
@@ -837,7 +965,7 @@ impl LeastSquaresProblem for LogProblem<'_> {
         self.inner.residuals(p, out);
         for i in 0..out.len() {
             let m = out[i] + self.values[i];
-            out[i] = (m * self.cos_i[i]).max(-1.0 + 1e-12).ln_1p() - self.log_target[i];
+            out[i] = self.row[i] * self.transform.value(m * self.cos_i[i]) - self.target[i];
         }
     }
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
@@ -847,7 +975,7 @@ impl LeastSquaresProblem for LogProblem<'_> {
         self.inner.jacobian(p, jac);
         for i in 0..r.len() {
             let m = r[i] + self.values[i];
-            let d = self.cos_i[i] / (1.0 + m * self.cos_i[i]).max(1e-12);
+            let d = self.row[i] * self.cos_i[i] * self.transform.derivative(m * self.cos_i[i]);
             for v in &mut jac[i * np..(i + 1) * np] {
                 *v *= d;
             }

@@ -55,7 +55,7 @@ impl DataScale {
             .filter(|x| x.is_finite())
             .fold(0.0f64, |m, x| m.max(x.abs()));
         let largest_weight = data.weights().iter().fold(0.0f64, |m, w| m.max(*w));
-        let value = if objective != Objective::Log && is_homogeneous(model, data.pairs()) {
+        let value = if !objective.is_transformed() && is_homogeneous(model, data.pairs()) {
             extreme_or_one(largest_value)
         } else {
             1.0

@@ -25,13 +25,13 @@ use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::figures::{QUANTILE, SIZE, light, sphere, tone_note};
-use brdf_render::{Image, render_sphere};
 use crate::renderer_fits::{fit_sets, status};
 use crate::renderer_spheres::RendererSpheres;
 use crate::report::{Cell, Table};
-use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::study::models::{FitHow, fit_model};
 use crate::study::{Study, progress};
+use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
+use brdf_render::{Image, render_sphere};
 
 /// An RGL material and the samples the study fits: Sopp's grid within 80
 /// degrees, cell weights, every 5th node (about 4,000 samples).

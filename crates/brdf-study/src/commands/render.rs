@@ -10,9 +10,9 @@ use brdf_core::Brdf;
 use nalgebra::Vector3;
 
 use crate::StudyError;
-use brdf_render::{Image, render_sphere};
 use crate::report::{data_name, fmt_sig};
 use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
+use brdf_render::{Image, render_sphere};
 
 /// Arguments of `brdf render`.
 #[derive(Debug, clap::Args)]

@@ -8,9 +8,9 @@ use brdf_fit::FitSummary;
 
 use super::err;
 use crate::StudyError;
-use brdf_render::plot::{Plot, Series};
 use crate::report::{Cell, Table};
 use crate::study::Study;
+use brdf_render::plot::{Plot, Series};
 
 /// One ranked figure: what it shows and how it is labelled.
 pub struct RankedFigure<'a> {

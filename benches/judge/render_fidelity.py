@@ -1,0 +1,164 @@
+"""Judge fits by their render (issue 23): every RGL measurement in
+`$BRDF_DATA/rgl` rendered by Mitsuba 3's `measured` plugin (seed 1) and,
+for every configuration (model x objective), the fit that `brdf fit`
+returns, exported by `brdf export --to mitsuba`, rendered in the same judge
+scene (seed 2), under both light sets. Writes `results/render_fidelity.md`
+(FLIP per light, PSNR, CIEDE2000 of the mean colour, fit time) and, in
+`results/render_fidelity/`, the tone-mapped renders and `table.json`.
+
+Run from the repository root, in a venv with the pinned tools
+(`pip install -r benches/judge/requirements.txt`), after
+`cargo build --release -p brdf-cli`:
+
+    python benches/judge/render_fidelity.py [--configs principled:ngan,...]
+        [--peer results/render_fidelity/peer.json]
+
+The same functions serve the CI judge (`test_judge.py`).
+"""
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import metrics as M  # noqa: E402
+import scene as S  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+DEFAULT_CONFIGS = ["principled:default", "principled:ngan", "gltf:log", "ggx:log"]
+
+
+def brdf_bin():
+    return os.environ.get("BRDF_BIN", str(ROOT / "target" / "release" / "brdf"))
+
+
+def data_dir(only=None):
+    d = os.environ.get("BRDF_DATA")
+    if not d:
+        sys.exit("BRDF_DATA is not set: the judge needs the RGL measurements")
+    rgl = Path(d) / "rgl"
+    files = sorted(rgl.glob("*.bsdf"))
+    if only:
+        files = [f for f in files if any(o in f.stem for o in only.split(","))]
+    if not files:
+        sys.exit(f"{rgl}: no .bsdf files")
+    return files
+
+
+def fit_and_export(data, model, objective, workdir, extra=()):
+    """Fit with the `brdf` command, export to Mitsuba; returns (xml, summary)."""
+    stem = f"{data.stem}.{model}.{objective}"
+    fit_json = Path(workdir) / f"{stem}.json"
+    xml = Path(workdir) / f"{stem}.xml"
+    cmd = [brdf_bin(), "fit", "--data", str(data), "--model", model, "--channels", "rgb"]
+    if objective != "default":
+        cmd += ["--metric", objective]
+    cmd += ["--save", str(fit_json), "--json", *extra]
+    t0 = time.time()
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True)
+    wall = time.time() - t0
+    summary = json.loads(out.stdout)
+    subprocess.run(
+        [brdf_bin(), "export", "--from", str(fit_json), "--to", "mitsuba", str(xml)],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    return xml, summary, wall
+
+
+def judge(reference, test):
+    return {
+        "flip": M.flip(reference, test),
+        "psnr": M.psnr(reference, test),
+        "delta_e": M.delta_e(reference, test),
+    }
+
+
+def measured_renders(data, spp):
+    return {light: S.render(S.bsdf_of(data), light, seed=1, spp=spp) for light in S.LIGHTS}
+
+
+def row_for(data, refs, model, objective, workdir, spp, pictures=None):
+    xml, summary, wall = fit_and_export(data, model, objective, workdir)
+    row = {"material": data.stem, "model": model, "objective": objective, "seconds": wall}
+    for light in S.LIGHTS:
+        img = S.render(S.bsdf_of(xml), light, seed=2, spp=spp)
+        row[light] = judge(refs[light], img)
+        if pictures is not None:
+            M.tonemapped_png(
+                img,
+                pictures / f"{data.stem}.{model}.{objective}.{light}.png",
+                M.exposure(refs[light]),
+            )
+    return row
+
+
+def markdown(rows, spp):
+    out = [
+        "# Render fidelity: fits judged by their render in Mitsuba 3",
+        "",
+        "Written by `python benches/judge/render_fidelity.py` (issue 23). Judge scene of",
+        "`shared/spec/appearance.md`: Mitsuba 3.9.1 `scalar_rgb`, unit sphere, camera at",
+        f"(0, 0, 6), 22 deg, 128 x 128 px, {spp} samples per pixel; reference = the",
+        "`measured` plugin on the RGL file (seed 1); test = the `brdf fit` result exported",
+        "by `brdf export --to mitsuba` (seed 2). FLIP = mean HDR-FLIP (0 identical);",
+        "PSNR after exposure 1/p99(reference), clip, gamma 2.2; dE = CIEDE2000 of the mean",
+        "sphere colours. `noise` rows: the measurement against itself with another seed.",
+        "Time: wall-clock seconds of `brdf fit` (fit, image error included) on this machine.",
+        "",
+        "| material | model | objective | FLIP sky | FLIP studio | PSNR sky | PSNR studio | dE sky | dE studio | time (s) |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for r in rows:
+        t = "-" if r.get("seconds") is None else f"{r['seconds']:.1f}"
+        out.append(
+            f"| {r['material']} | {r['model']} | {r['objective']} "
+            f"| {r['sky']['flip']:.3f} | {r['studio']['flip']:.3f} "
+            f"| {r['sky']['psnr']:.1f} | {r['studio']['psnr']:.1f} "
+            f"| {r['sky']['delta_e']:.2f} | {r['studio']['delta_e']:.2f} | {t} |"
+        )
+    return "\n".join(out) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--configs", default=",".join(DEFAULT_CONFIGS))
+    ap.add_argument("--spp", type=int, default=S.SPP)
+    ap.add_argument("--out", default=str(ROOT / "results" / "render_fidelity.md"))
+    ap.add_argument("--peer", help="JSON rows written by peer_inverse.py")
+    ap.add_argument("--materials", help="comma-separated parts of file names (default: all)")
+    args = ap.parse_args()
+    S.set_variant()
+    pictures = Path(args.out).with_suffix("")
+    pictures.mkdir(parents=True, exist_ok=True)
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        for data in data_dir(args.materials):
+            refs = measured_renders(data, args.spp)
+            noise = {"material": data.stem, "model": "noise", "objective": "-", "seconds": None}
+            for light in S.LIGHTS:
+                again = S.render(S.bsdf_of(data), light, seed=2, spp=args.spp)
+                noise[light] = judge(refs[light], again)
+                M.tonemapped_png(
+                    refs[light], pictures / f"{data.stem}.measured.{light}.png",
+                    M.exposure(refs[light]),
+                )
+            rows.append(noise)
+            for cfg in args.configs.split(","):
+                model, objective = cfg.split(":")
+                print(f"{data.stem}: {model} / {objective}", file=sys.stderr)
+                rows.append(row_for(data, refs, model, objective, work, args.spp, pictures))
+    if args.peer:
+        rows += json.loads(Path(args.peer).read_text())
+    (pictures / "table.json").write_text(json.dumps(rows, indent=1))
+    Path(args.out).write_text(markdown(rows, args.spp))
+
+
+if __name__ == "__main__":
+    main()
