@@ -42,6 +42,8 @@ pub struct Fit {
     options: FitOptions,
     limit_deg: f64,
     channels: Channels,
+    /// Narrower boxes `(prefix, lower, upper)` ([`BoxedModel::narrowed`]).
+    boxes: Vec<(String, f64, f64)>,
 }
 
 /// The outcome of [`Fit::run`].
@@ -86,12 +88,31 @@ impl Fit {
             options: FitOptions::default(),
             limit_deg: 80.0,
             channels: Channels::All,
+            boxes: Vec::new(),
         }
     }
 
     /// Objective and metric (default Ngan).
     pub fn objective(mut self, objective: Objective) -> Self {
         self.options.objective = objective;
+        self
+    }
+
+    /// The image objective's target (data rendered under the light sets;
+    /// see [`crate::appearance`]); used with [`Objective::Image`].
+    pub fn image_target(
+        mut self,
+        target: std::sync::Arc<crate::image_objective::ImageTarget>,
+    ) -> Self {
+        self.options.image = Some(target);
+        self
+    }
+
+    /// Fit in a narrower box: parameters named `prefix` (or `prefix` and a
+    /// lobe number) kept within `[lower, upper]`; `[0, 0]` switches a lobe
+    /// off (a nested model).
+    pub fn narrow(mut self, prefix: &str, lower: f64, upper: f64) -> Self {
+        self.boxes.push((prefix.to_string(), lower, upper));
         self
     }
 
@@ -199,7 +220,12 @@ impl Fit {
             ));
         }
         let options = self.options_for(&config, &mut notes)?;
-        let model = self.entry.build_for(&config, data.pairs())?;
+        let mut model = self.entry.build_for(&config, data.pairs())?;
+        if !self.boxes.is_empty() {
+            let boxes: Vec<(&str, f64, f64)> =
+                self.boxes.iter().map(|(p, l, u)| (p.as_str(), *l, *u)).collect();
+            model = Box::new(BoxedModel::narrowed(model, &boxes)?);
+        }
         let (model, summary, scale) = fit_scaled(model, &data, options.objective, |m, d, s| {
             self.fit_model(m, d, &config, &options, s)
         })?;

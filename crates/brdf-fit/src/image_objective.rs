@@ -248,3 +248,68 @@ impl LeastSquaresProblem for ImageProblem<'_> {
         }
     }
 }
+
+/// What a fit in the image objective matches: the shading terms, the
+/// reference pixels (the data rendered through the same terms), their
+/// exposures, and the start (the best BRDF-space fit; the image objective
+/// refines a fit, it does not search from scratch).
+#[derive(Clone, Debug)]
+pub struct ImageTarget {
+    /// The shading terms of the images.
+    pub terms: ImageTerms,
+    /// Reference pixels, channel-major.
+    pub reference: Vec<f64>,
+    /// Exposure of every image.
+    pub exposures: Vec<f64>,
+    /// Start: every parameter of the model.
+    pub start: Vec<f64>,
+}
+
+impl ImageTarget {
+    /// The target of `reference` (anything evaluable: measured data, a
+    /// model) seen through `terms` by a fit with `channels` channels,
+    /// starting at `start`.
+    pub fn new(terms: ImageTerms, reference: &dyn Brdf, channels: usize, start: Vec<f64>) -> Self {
+        let px = terms.render(reference, channels);
+        let exposures = terms.exposures(&px, channels);
+        ImageTarget {
+            terms,
+            reference: px,
+            exposures,
+            start,
+        }
+    }
+}
+
+/// The fit in the image objective: the bounded solver on all parameters
+/// from the target's start (see [`crate::pipeline`]).
+pub(crate) fn fit_image(
+    model: &dyn Parametric,
+    opts: &crate::FitOptions,
+    full: &brdf_solve::Constraints,
+) -> Result<crate::pipeline::NonlinearFit, FitError> {
+    let target = opts.image.as_ref().ok_or_else(|| {
+        FitError::Usage(
+            "the image objective needs data that can be evaluated at any direction pair (RGL `.bsdf`, MERL `.binary`): use --metric cube-root or log for scattered data".into(),
+        )
+    })?;
+    if target.start.len() != model.param_specs().len() {
+        return Err(FitError::Usage(format!(
+            "image objective: a start of {} parameters for `{}` with {}",
+            target.start.len(),
+            model.name(),
+            model.param_specs().len()
+        )));
+    }
+    let problem = ImageProblem::new(model, &target.terms, &target.reference, &target.exposures)?;
+    let mut p0 = target.start.clone();
+    full.clamp(&mut p0);
+    let rep = brdf_solve::bounded_least_squares(&problem, &p0, full, &opts.lm)?;
+    let how = format!(
+        "bounded LM on all parameters in the image objective ({} pixels of {} images, {} shading terms), from the best BRDF-space fit",
+        target.terms.pixels(),
+        target.terms.images(),
+        target.terms.pairs.len()
+    );
+    Ok((rep.params.clone(), rep, (1, 1, 1), how))
+}

@@ -225,6 +225,8 @@ pub struct FitOptions {
     /// iterations (issue 16: stop at the data's noise level, not at 1e-15,
     /// for every start).
     pub search_tolerance: f64,
+    /// What the image objective fits to ([`Objective::Image`] only).
+    pub image: Option<std::sync::Arc<crate::image_objective::ImageTarget>>,
 }
 
 impl FitOptions {
@@ -252,6 +254,7 @@ impl Default for FitOptions {
                 ..LmOptions::default()
             },
             search_tolerance: 1e-7,
+            image: None,
         }
     }
 }
@@ -507,7 +510,7 @@ fn start_box(model: &dyn Parametric, nonlinear: &[usize]) -> StartBox {
     b
 }
 
-type NonlinearFit = (Vec<f64>, SolverReport, (usize, usize, usize), String);
+pub(crate) type NonlinearFit = (Vec<f64>, SolverReport, (usize, usize, usize), String);
 
 fn fit_nonlinear(
     model: &dyn Parametric,
@@ -517,6 +520,9 @@ fn fit_nonlinear(
     opts: &FitOptions,
 ) -> Result<NonlinearFit, FitError> {
     let full = box_constraints(model)?;
+    if opts.objective == Objective::Image {
+        return crate::image_objective::fit_image(model, opts, &full);
+    }
     let log_problem;
     let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
     let nonlinear = mp.nonlinear_indices().to_vec();
