@@ -9,8 +9,8 @@ use std::sync::Once;
 
 use plotters::prelude::*;
 
-use crate::RenderError;
 use crate::Image;
+use crate::RenderError;
 
 /// The bundled font (DejaVu Sans; licence beside it in `assets/fonts`).
 pub static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
@@ -243,12 +243,7 @@ impl Grid {
                 _ => None,
             }) {
                 let x = LEFT + ncol * (cw + GAP) + 15;
-                text(
-                    &format!(">= {}", crate::fmt_sig(max, 2)),
-                    x,
-                    y - 4,
-                    11,
-                )?;
+                text(&format!(">= {}", crate::fmt_sig(max, 2)), x, y - 4, 11)?;
                 text("0", x, y + ch - 16, 11)?;
                 text("|diff|", x, y + ch / 2 - 6, 11)?;
             }
