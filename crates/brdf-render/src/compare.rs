@@ -36,7 +36,9 @@ pub struct ImageErrors {
 }
 
 /// Render `reference` and `test` under `lights` with the judge camera at
-/// `size x size` and compute their [`ImageErrors`].
+/// `size x size`, the environment visible behind the sphere (as the judge's
+/// renders; HDR-FLIP is the mean over the whole image), and compute their
+/// [`ImageErrors`].
 pub fn compare(
     reference: &(impl Brdf + ?Sized),
     test: &(impl Brdf + ?Sized),
@@ -48,7 +50,7 @@ pub fn compare(
             "compare: size = {size}: use at least 2 pixels (reports use 128)"
         )));
     }
-    let sp = ShadingPoints::judge(lights, size);
+    let sp = ShadingPoints::judge_with_background(lights, size);
     compare_with(&sp, reference, test)
 }
 

@@ -10,6 +10,7 @@
 use nalgebra::Vector3;
 
 use crate::quadrature::fibonacci_sphere;
+use crate::sky::ClearSky;
 
 /// Number of quadrature directions over the whole sphere (about half of them
 /// light a given surface point).
@@ -26,33 +27,63 @@ pub struct Incident {
     pub weight: [f64; 3],
 }
 
-/// A distant environment as a fixed list of weighted directions.
+/// The radiance of a distant environment by direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum EnvRadiance {
+    /// the same RGB radiance from every direction
+    Constant([f64; 3]),
+    /// a clear sky dome ([`ClearSky`])
+    ClearSky(ClearSky),
+}
+
+impl EnvRadiance {
+    /// RGB radiance arriving from world direction `dir` (unit).
+    pub fn radiance(&self, dir: &Vector3<f64>) -> [f64; 3] {
+        match self {
+            EnvRadiance::Constant(rgb) => *rgb,
+            EnvRadiance::ClearSky(sky) => sky.radiance(dir),
+        }
+    }
+}
+
+/// A distant environment: its radiance and the fixed list of weighted
+/// directions that discretises it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Environment {
+    /// the radiance by direction (what a camera ray that misses sees)
+    pub radiance: EnvRadiance,
     /// the directions with non-zero radiance and their weights
     pub incident: Vec<Incident>,
 }
 
 impl Environment {
-    /// The environment of radiance `radiance(dir)` (RGB, world direction),
-    /// discretised by [`ENV_DIRECTIONS`] Fibonacci directions.
-    pub fn from_radiance(radiance: impl Fn(&Vector3<f64>) -> [f64; 3]) -> Environment {
-        let d_omega = 4.0 * std::f64::consts::PI / ENV_DIRECTIONS as f64;
-        let incident = fibonacci_sphere(ENV_DIRECTIONS)
-            .into_iter()
-            .filter_map(|dir| {
-                let l = radiance(&dir);
-                (l.iter().any(|&x| x != 0.0)).then(|| Incident {
-                    dir,
-                    weight: l.map(|x| x * d_omega),
-                })
-            })
-            .collect();
-        Environment { incident }
+    /// The environment of `radiance`, discretised by [`ENV_DIRECTIONS`]
+    /// Fibonacci directions.
+    pub fn new(radiance: EnvRadiance) -> Environment {
+        Environment {
+            radiance,
+            incident: discretise(|d| radiance.radiance(d)),
+        }
     }
 
     /// A constant environment of radiance `rgb` from every direction.
     pub fn constant(rgb: [f64; 3]) -> Environment {
-        Environment::from_radiance(|_| rgb)
+        Environment::new(EnvRadiance::Constant(rgb))
     }
+}
+
+/// The Fibonacci directions with non-zero `radiance(dir)` and their weights
+/// `radiance * 4 pi / n`.
+fn discretise(radiance: impl Fn(&Vector3<f64>) -> [f64; 3]) -> Vec<Incident> {
+    let d_omega = 4.0 * std::f64::consts::PI / ENV_DIRECTIONS as f64;
+    fibonacci_sphere(ENV_DIRECTIONS)
+        .into_iter()
+        .filter_map(|dir| {
+            let l = radiance(&dir);
+            (l.iter().any(|&x| x != 0.0)).then(|| Incident {
+                dir,
+                weight: l.map(|x| x * d_omega),
+            })
+        })
+        .collect()
 }

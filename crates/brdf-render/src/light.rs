@@ -105,6 +105,17 @@ impl LightSet {
         }
     }
 
+    /// RGB radiance a camera ray that misses the sphere sees in world
+    /// direction `dir` (the environment; the directional light, the sun and
+    /// the key light are not seen: they are out of the judge camera's view).
+    pub fn background(&self, dir: &Vector3<f64>) -> [f64; 3] {
+        match self {
+            LightSet::Directional(_) => [0.0; 3],
+            LightSet::Sky { dome, .. } => dome.radiance.radiance(dir),
+            LightSet::Studio { surround, .. } => surround.radiance.radiance(dir),
+        }
+    }
+
     /// Append the incident directions and weights at surface point `p` to
     /// `out` (the receiver's cosine is not applied).
     pub fn incident_at(&self, p: &Vector3<f64>, out: &mut Vec<Incident>) {

@@ -13,6 +13,10 @@
 //! part; computed once, a render (or an objective evaluated at every
 //! iteration of a fit) is only BRDF evaluations and multiply-adds.
 //!
+//! Optionally ([`ShadingPoints::with_background`]) the pixels that miss the
+//! sphere show the environment, as in the judge's Mitsuba renders; that
+//! radiance does not depend on the BRDF and is simply added.
+//!
 //! Rendering sums each pixel's terms in a fixed order, in parallel over image
 //! rows, so the image is identical for any number of threads.
 
@@ -23,7 +27,7 @@ use rayon::prelude::*;
 use crate::Image;
 use crate::camera::Camera;
 use crate::light::LightSet;
-use crate::scene::sphere_hits;
+use crate::scene::{intersect_unit_sphere, sphere_hits};
 
 /// One pixel that sees the sphere: its index, its local view direction and
 /// the range of its terms.
@@ -64,6 +68,10 @@ pub struct ShadingPoints {
     pub l_local: Vec<Vector3<f64>>,
     /// RGB weight (cosine included) of every term
     pub weight: Vec<[f64; 3]>,
+    /// radiance of the pixels that miss the sphere (row-major RGB,
+    /// `size * size * 3`, zero on the sphere), or empty for a black
+    /// background (see [`ShadingPoints::with_background`])
+    pub background: Vec<f64>,
 }
 
 impl ShadingPoints {
@@ -79,6 +87,7 @@ impl ShadingPoints {
             pixels: Vec::new(),
             l_local: Vec::new(),
             weight: Vec::new(),
+            background: Vec::new(),
         };
         let mut incident = Vec::new();
         for hit in sphere_hits(camera, size) {
@@ -105,6 +114,31 @@ impl ShadingPoints {
             });
         }
         sp
+    }
+
+    /// The judge camera's terms with the environment seen behind the sphere
+    /// (as in the judge's Mitsuba renders).
+    pub fn judge_with_background(lights: &LightSet, size: usize) -> ShadingPoints {
+        ShadingPoints::judge(lights, size).with_background(&Camera::judge(), lights)
+    }
+
+    /// Add the background: pixels whose ray misses the sphere show the light
+    /// set's environment ([`LightSet::background`]); renders then add it.
+    /// It does not depend on the BRDF.
+    pub fn with_background(mut self, camera: &Camera, lights: &LightSet) -> ShadingPoints {
+        let size = self.size;
+        let mut bg = vec![0.0; size * size * 3];
+        for py in 0..size {
+            for px in 0..size {
+                let dir = camera.ray(px, py, size);
+                if intersect_unit_sphere(&camera.origin, &dir).is_none() {
+                    let p = py * size + px;
+                    bg[p * 3..p * 3 + 3].copy_from_slice(&lights.background(&dir));
+                }
+            }
+        }
+        self.background = bg;
+        self
     }
 
     /// Number of terms.
@@ -151,7 +185,11 @@ impl ShadingPoints {
 
     fn render_with(&self, brdf: &(impl Brdf + ?Sized), swap: bool) -> Image {
         let size = self.size;
-        let mut data = vec![0.0; size * size * 3];
+        let mut data = if self.background.len() == size * size * 3 {
+            self.background.clone()
+        } else {
+            vec![0.0; size * size * 3]
+        };
         // Pixels are in pixel order: the first pixel of each row.
         let row_start: Vec<usize> = (0..=size)
             .map(|r| self.pixels.partition_point(|p| p.pixel < r * size))

@@ -27,7 +27,7 @@
 
 use nalgebra::Vector3;
 
-use crate::environment::{ENV_DIRECTIONS, Environment, Incident};
+use crate::environment::{ENV_DIRECTIONS, EnvRadiance, Environment, Incident};
 use crate::quadrature::fibonacci_sphere;
 
 /// The judge's sun direction (world, unnormalised as in the spec).
@@ -60,20 +60,41 @@ pub fn cie_clear_sky(d: &Vector3<f64>, sun: &Vector3<f64>) -> f64 {
     f(gamma) * phi(d.y) / (f(zs) * phi(1.0))
 }
 
+/// The tinted CIE clear sky for a sun direction, scaled so that the dome's
+/// horizontal illuminance (by the quadrature) is 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClearSky {
+    /// unit sun direction
+    pub sun: Vector3<f64>,
+    /// luminance scale of [`cie_clear_sky`]
+    pub scale: f64,
+}
+
+impl ClearSky {
+    /// The sky for the unit sun direction `sun`.
+    pub fn new(sun: Vector3<f64>) -> ClearSky {
+        let d_omega = 4.0 * std::f64::consts::PI / ENV_DIRECTIONS as f64;
+        let e_h: f64 = fibonacci_sphere(ENV_DIRECTIONS)
+            .iter()
+            .map(|d| cie_clear_sky(d, &sun) * d.y.max(0.0) * d_omega)
+            .sum();
+        ClearSky {
+            sun,
+            scale: 1.0 / e_h,
+        }
+    }
+
+    /// RGB radiance from world direction `d` (unit).
+    pub fn radiance(&self, d: &Vector3<f64>) -> [f64; 3] {
+        let l = cie_clear_sky(d, &self.sun) * self.scale;
+        unit_luminance(SKY_TINT).map(|c| c * l)
+    }
+}
+
 /// The sky set's environment (dome) and sun, as described in the module doc.
 pub fn sky_lights() -> (Environment, Incident) {
     let sun = Vector3::from(SUN_DIRECTION).normalize();
-    // Horizontal illuminance of the unscaled dome, by the same quadrature.
-    let d_omega = 4.0 * std::f64::consts::PI / ENV_DIRECTIONS as f64;
-    let e_h: f64 = fibonacci_sphere(ENV_DIRECTIONS)
-        .iter()
-        .map(|d| cie_clear_sky(d, &sun) * d.y.max(0.0) * d_omega)
-        .sum();
-    let tint = unit_luminance(SKY_TINT);
-    let dome = Environment::from_radiance(|d| {
-        let l = cie_clear_sky(d, &sun) / e_h;
-        tint.map(|c| c * l)
-    });
+    let dome = Environment::new(EnvRadiance::ClearSky(ClearSky::new(sun)));
     let e_sun = SUN_TO_SKY / sun.y;
     let sun_light = Incident {
         dir: sun,

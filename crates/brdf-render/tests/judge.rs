@@ -158,3 +158,21 @@ fn compare_a_model_with_itself_and_with_a_darker_one() -> Result<(), RenderError
     assert!(compare(&a, &a, &LightSet::sky(), 1).is_err());
     Ok(())
 }
+
+#[test]
+fn the_background_shows_the_environment() {
+    let studio =
+        ShadingPoints::judge_with_background(&LightSet::studio(), 16).render(&Lambert(vec![0.5]));
+    assert_eq!(&studio.data[0..3], &[0.05; 3]);
+    let sp = ShadingPoints::judge_with_background(&LightSet::sky(), 16);
+    let sky = sp.render(&Lambert(vec![0.5]));
+    // Top row looks above the horizon (blue sky), bottom row below it.
+    assert!(sky.data[2] > sky.data[0] && sky.data[0] > 0.0);
+    assert_eq!(&sky.data[(16 * 16 - 1) * 3..], &[0.0; 3]);
+    // Without the background the same pixels are black; sphere pixels agree.
+    let plain = ShadingPoints::judge(&LightSet::sky(), 16).render(&Lambert(vec![0.5]));
+    assert_eq!(plain.data[2], 0.0);
+    for p in &sp.pixels {
+        assert_eq!(plain.data[p.pixel * 3], sky.data[p.pixel * 3]);
+    }
+}
