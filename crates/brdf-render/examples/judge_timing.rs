@@ -60,6 +60,7 @@ fn main() {
     };
     pool.install(|| {
         let t0 = Instant::now();
+        let c0 = cpu_seconds();
         let sp = ShadingPoints::judge(&LightSet::studio(), 128);
         let t1 = Instant::now();
         let c1 = cpu_seconds();
@@ -69,8 +70,12 @@ fn main() {
         }
         let c2 = cpu_seconds();
         let t2 = Instant::now();
-        let cpu = match (c1, c2) {
-            (Some(a), Some(b)) => format!("{:.1} ms CPU", (b - a) * 1e3 / RENDERS as f64),
+        let cpu = match (c0, c1, c2) {
+            (Some(a), Some(b), Some(c)) => format!(
+                "terms {:.0} ms CPU, render {:.1} ms CPU",
+                (b - a) * 1e3,
+                (c - b) * 1e3 / RENDERS as f64
+            ),
             _ => "CPU time unknown".into(),
         };
         println!(

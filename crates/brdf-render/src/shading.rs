@@ -27,7 +27,7 @@ use rayon::prelude::*;
 use crate::Image;
 use crate::camera::Camera;
 use crate::light::LightSet;
-use crate::scene::{intersect_unit_sphere, sphere_hits};
+use crate::scene::{SphereHit, intersect_unit_sphere, sphere_hits};
 
 /// One pixel that sees the sphere: its index, its local view direction and
 /// the range of its terms.
@@ -81,7 +81,33 @@ impl ShadingPoints {
     }
 
     /// The terms of `camera` under `lights` at `size x size`.
+    /// Rows are built in parallel and joined in order: the result does not
+    /// depend on the number of threads.
     pub fn new(camera: &Camera, lights: &LightSet, size: usize) -> ShadingPoints {
+        let hits = sphere_hits(camera, size);
+        let row_start: Vec<usize> = (0..=size)
+            .map(|r| hits.partition_point(|h| h.pixel < r * size))
+            .collect();
+        let rows: Vec<ShadingPoints> = (0..size)
+            .into_par_iter()
+            .map(|r| ShadingPoints::from_hits(&hits[row_start[r]..row_start[r + 1]], lights, size))
+            .collect();
+        let mut sp = ShadingPoints::from_hits(&[], lights, size);
+        for row in rows {
+            let offset = sp.l_local.len();
+            sp.pixels.extend(row.pixels.iter().map(|p| ShadedPixel {
+                start: p.start + offset,
+                end: p.end + offset,
+                ..*p
+            }));
+            sp.l_local.extend(row.l_local);
+            sp.weight.extend(row.weight);
+        }
+        sp
+    }
+
+    /// The terms of `hits` (term ranges counted from 0).
+    fn from_hits(hits: &[SphereHit], lights: &LightSet, size: usize) -> ShadingPoints {
         let mut sp = ShadingPoints {
             size,
             pixels: Vec::new(),
@@ -90,7 +116,7 @@ impl ShadingPoints {
             background: Vec::new(),
         };
         let mut incident = Vec::new();
-        for hit in sphere_hits(camera, size) {
+        for hit in hits {
             let v_local = hit.frame.to_local(&hit.view);
             if v_local.z <= 0.0 {
                 continue;
@@ -100,17 +126,17 @@ impl ShadingPoints {
             let start = sp.l_local.len();
             for inc in &incident {
                 let l = hit.frame.to_local(&inc.dir);
-                if l.z <= 0.0 {
-                    continue;
+                if l.z > 0.0 {
+                    sp.l_local.push(l);
+                    sp.weight.push(inc.weight.map(|w| w * l.z));
                 }
-                sp.l_local.push(l);
-                sp.weight.push(inc.weight.map(|w| w * l.z));
             }
+            let end = sp.l_local.len();
             sp.pixels.push(ShadedPixel {
                 pixel: hit.pixel,
                 v_local,
                 start,
-                end: sp.l_local.len(),
+                end,
             });
         }
         sp

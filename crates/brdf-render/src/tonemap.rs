@@ -67,8 +67,13 @@ pub fn to_rgb8(image: &Image, exposure: f64) -> Vec<u8> {
         .collect()
 }
 
-/// Error unless `a` and `b` have the same width and height.
+/// Error unless `a` and `b` have the same, non-zero width and height.
 pub fn check_same_size(what: &'static str, a: &Image, b: &Image) -> Result<(), RenderError> {
+    if a.width == 0 || a.height == 0 {
+        return Err(RenderError::Invalid(format!(
+            "{what}: the reference image is empty: render at least 1 x 1 pixels"
+        )));
+    }
     if a.width == b.width && a.height == b.height {
         return Ok(());
     }
