@@ -187,3 +187,44 @@ pub fn hdr_flip_map(reference: &Image, test: &Image) -> Result<FlipMap, RenderEr
 pub fn hdr_flip(reference: &Image, test: &Image) -> Result<f64, RenderError> {
     Ok(hdr_flip_map(reference, test)?.mean())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hdr_exposures_span_max_to_median_where_aces_reaches_085() -> Result<(), RenderError> {
+        // Luminances 1 (x2) and 8 (x2): median 4.5 (mean of the middle two),
+        // max 8.
+        let data = [1.0, 1.0, 8.0, 8.0].iter().flat_map(|&v| [v; 3]).collect();
+        let img = Image {
+            width: 2,
+            height: 2,
+            channels: 3,
+            data,
+        };
+        let e = hdr_exposures(&img)?;
+        let x = 8.0 * e[0].exp2();
+        let [a, b, c, d, ee, f] = ACES;
+        assert!(((a * x * x + b * x + c) / (d * x * x + ee * x + f) - 0.85).abs() < 1e-12);
+        let span = (8.0_f64 / 4.5).log2();
+        assert!((e[e.len() - 1] - e[0] - span).abs() < 1e-12);
+        assert_eq!(e.len(), 2);
+        Ok(())
+    }
+
+    #[test]
+    fn magma_map_of_no_error_is_magma_zero() {
+        let map = FlipMap {
+            width: 2,
+            height: 1,
+            values: vec![0.0, 1.0],
+        };
+        let img = map.to_magma();
+        assert_eq!((img.width, img.height, img.channels), (2, 1, 3));
+        // Magma runs from near black to a light yellow.
+        assert!(img.data[..3].iter().all(|&v| v < 0.01));
+        assert!(img.data[3] > 0.9 && img.data[4] > 0.9);
+        assert_eq!(map.mean(), 0.5);
+    }
+}

@@ -176,3 +176,18 @@ fn the_background_shows_the_environment() {
         assert_eq!(plain.data[p.pixel * 3], sky.data[p.pixel * 3]);
     }
 }
+
+#[test]
+fn renders_do_not_depend_on_the_thread_count() -> Result<(), rayon::ThreadPoolBuildError> {
+    let brdf = Skewed;
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let three = rayon::ThreadPoolBuilder::new().num_threads(3).build()?;
+    let a = one.install(|| ShadingPoints::judge(&LightSet::studio(), 40));
+    let b = three.install(|| ShadingPoints::judge(&LightSet::studio(), 40));
+    assert_eq!(a, b);
+    assert_eq!(
+        one.install(|| a.render(&brdf)),
+        three.install(|| a.render(&brdf))
+    );
+    Ok(())
+}
