@@ -13,20 +13,52 @@
 //!   written beside them, difference tiles on a colour bar);
 //! - [`plot`]: line and scatter plots (SVG and PNG) with the bundled font.
 //!
+//! The appearance judge (`shared/spec/appearance.md`): a unit sphere seen by
+//! a perspective camera under named light sets, compared by image metrics.
+//!
+//! - [`camera`], [`scene`]: the judge camera and the pixels that see the
+//!   sphere (point, shading frame, view direction);
+//! - [`quadrature`], [`environment`], [`area_light`], [`sky`], [`light`]:
+//!   light sets (`directional`, `sky`, `studio`) as weighted incident
+//!   directions;
+//! - [`shading`]: [`ShadingPoints`], the precomputed `(pixel, l, v, weight)`
+//!   terms of a scene, and the batched render of any BRDF from them;
+//! - [`tonemap`], [`openexr`]: exposure `1 / p99`, gamma 2.2, PNG and EXR;
+//! - [`flip`], [`psnr`], [`colour`]: LDR- and HDR-FLIP (NVIDIA's FLIP through
+//!   `nv-flip`), PSNR, mean colour and CIEDE2000 (through `palette`);
+//! - [`compare`](mod@compare): all metrics of a test BRDF against a reference.
+//!
 //! ## Layering
 //!
 //! `brdf-render` depends on `brdf-core` only: it never fits and never reads
 //! data files. `brdf-fit` (image errors of a fit), `brdf-study` (figures),
 //! the `brdf` command and the Python module call it.
 
+pub mod area_light;
+pub mod camera;
+pub mod colour;
+pub mod compare;
+pub mod environment;
 pub mod error;
+pub mod flip;
 pub mod grid;
 pub mod image;
+pub mod light;
 pub mod number;
+pub mod openexr;
 pub mod plot;
+pub mod psnr;
+pub mod quadrature;
+pub mod scene;
+pub mod shading;
+pub mod sky;
 pub mod sphere;
+pub mod tonemap;
 
+pub use compare::{ImageErrors, compare};
 pub use error::RenderError;
 pub use image::Image;
+pub use light::LightSet;
 pub use number::fmt_sig;
+pub use shading::ShadingPoints;
 pub use sphere::render_sphere;

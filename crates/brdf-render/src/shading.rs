@@ -1,0 +1,270 @@
+//! Precomputed shading terms of a scene and the batched render built on
+//! them: the key to image-space fitting.
+//!
+//! For a camera, a light set and an image size, [`ShadingPoints`] holds, for
+//! every pixel that sees the sphere, the view direction in the local frame
+//! and a list of terms `(l_local, weight)` such that the pixel's radiance is
+//!
+//! `L_c = sum_terms weight[c] f_c(l_local, v_local)`
+//!
+//! (`weight` includes the light's RGB irradiance and the receiver cosine
+//! `n . l`). Terms with `n . l <= 0` and pixels with `n . v <= 0` are left
+//! out. Why: the geometry and lights are the expensive, BRDF-independent
+//! part; computed once, a render (or an objective evaluated at every
+//! iteration of a fit) is only BRDF evaluations and multiply-adds.
+//!
+//! Optionally ([`ShadingPoints::with_background`]) the pixels that miss the
+//! sphere show the environment, as in the judge's Mitsuba renders; that
+//! radiance does not depend on the BRDF and is simply added.
+//!
+//! Rendering sums each pixel's terms in a fixed order, in parallel over image
+//! rows, so the image is identical for any number of threads.
+
+use brdf_core::Brdf;
+use nalgebra::Vector3;
+use rayon::prelude::*;
+
+use crate::Image;
+use crate::camera::Camera;
+use crate::light::LightSet;
+use crate::scene::{SphereHit, intersect_unit_sphere, sphere_hits};
+
+/// One pixel that sees the sphere: its index, its local view direction and
+/// the range of its terms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadedPixel {
+    /// pixel index `py * size + px`
+    pub pixel: usize,
+    /// unit view direction in the local frame (`z` = normal)
+    pub v_local: Vector3<f64>,
+    /// first term (index into [`ShadingPoints::l_local`])
+    pub start: usize,
+    /// one past the last term
+    pub end: usize,
+}
+
+/// One term as seen by a caller: pixel, local light and view directions and
+/// the RGB weight (cosine included).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Term {
+    /// pixel index `py * size + px`
+    pub pixel: usize,
+    /// unit light direction in the local frame
+    pub l_local: Vector3<f64>,
+    /// unit view direction in the local frame
+    pub v_local: Vector3<f64>,
+    /// RGB weight including `n . l`
+    pub weight: [f64; 3],
+}
+
+/// The shading terms of a `size x size` render of the unit sphere.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShadingPoints {
+    /// image width and height
+    pub size: usize,
+    /// pixels seeing the sphere, in pixel order
+    pub pixels: Vec<ShadedPixel>,
+    /// local light direction of every term
+    pub l_local: Vec<Vector3<f64>>,
+    /// RGB weight (cosine included) of every term
+    pub weight: Vec<[f64; 3]>,
+    /// radiance of the pixels that miss the sphere (row-major RGB,
+    /// `size * size * 3`, zero on the sphere), or empty for a black
+    /// background (see [`ShadingPoints::with_background`])
+    pub background: Vec<f64>,
+}
+
+impl ShadingPoints {
+    /// The terms of the judge camera under `lights` at `size x size`.
+    pub fn judge(lights: &LightSet, size: usize) -> ShadingPoints {
+        ShadingPoints::new(&Camera::judge(), lights, size)
+    }
+
+    /// The terms of `camera` under `lights` at `size x size`.
+    /// Rows are built in parallel and joined in order: the result does not
+    /// depend on the number of threads.
+    pub fn new(camera: &Camera, lights: &LightSet, size: usize) -> ShadingPoints {
+        let hits = sphere_hits(camera, size);
+        let row_start: Vec<usize> = (0..=size)
+            .map(|r| hits.partition_point(|h| h.pixel < r * size))
+            .collect();
+        let rows: Vec<ShadingPoints> = (0..size)
+            .into_par_iter()
+            .map(|r| ShadingPoints::from_hits(&hits[row_start[r]..row_start[r + 1]], lights, size))
+            .collect();
+        let mut sp = ShadingPoints::from_hits(&[], lights, size);
+        for row in rows {
+            let offset = sp.l_local.len();
+            sp.pixels.extend(row.pixels.iter().map(|p| ShadedPixel {
+                start: p.start + offset,
+                end: p.end + offset,
+                ..*p
+            }));
+            sp.l_local.extend(row.l_local);
+            sp.weight.extend(row.weight);
+        }
+        sp
+    }
+
+    /// The terms of `hits` (term ranges counted from 0).
+    fn from_hits(hits: &[SphereHit], lights: &LightSet, size: usize) -> ShadingPoints {
+        let mut sp = ShadingPoints {
+            size,
+            pixels: Vec::new(),
+            l_local: Vec::new(),
+            weight: Vec::new(),
+            background: Vec::new(),
+        };
+        let mut incident = Vec::new();
+        for hit in hits {
+            let v_local = hit.frame.to_local(&hit.view);
+            if v_local.z <= 0.0 {
+                continue;
+            }
+            incident.clear();
+            lights.incident_at(&hit.point, &mut incident);
+            let start = sp.l_local.len();
+            for inc in &incident {
+                let l = hit.frame.to_local(&inc.dir);
+                if l.z > 0.0 {
+                    sp.l_local.push(l);
+                    sp.weight.push(inc.weight.map(|w| w * l.z));
+                }
+            }
+            let end = sp.l_local.len();
+            sp.pixels.push(ShadedPixel {
+                pixel: hit.pixel,
+                v_local,
+                start,
+                end,
+            });
+        }
+        sp
+    }
+
+    /// The judge camera's terms with the environment seen behind the sphere
+    /// (as in the judge's Mitsuba renders).
+    pub fn judge_with_background(lights: &LightSet, size: usize) -> ShadingPoints {
+        ShadingPoints::judge(lights, size).with_background(&Camera::judge(), lights)
+    }
+
+    /// Add the background: pixels whose ray misses the sphere show the light
+    /// set's environment ([`LightSet::background`]); renders then add it.
+    /// It does not depend on the BRDF.
+    pub fn with_background(mut self, camera: &Camera, lights: &LightSet) -> ShadingPoints {
+        let size = self.size;
+        let mut bg = vec![0.0; size * size * 3];
+        for py in 0..size {
+            for px in 0..size {
+                let dir = camera.ray(px, py, size);
+                if intersect_unit_sphere(&camera.origin, &dir).is_none() {
+                    let p = py * size + px;
+                    bg[p * 3..p * 3 + 3].copy_from_slice(&lights.background(&dir));
+                }
+            }
+        }
+        self.background = bg;
+        self
+    }
+
+    /// Number of terms.
+    pub fn len(&self) -> usize {
+        self.l_local.len()
+    }
+
+    /// True when no pixel sees a lit sphere point.
+    pub fn is_empty(&self) -> bool {
+        self.l_local.is_empty()
+    }
+
+    /// Every term, pixel by pixel.
+    pub fn terms(&self) -> impl Iterator<Item = Term> + '_ {
+        self.pixels.iter().flat_map(move |p| {
+            (p.start..p.end).map(move |k| Term {
+                pixel: p.pixel,
+                l_local: self.l_local[k],
+                v_local: p.v_local,
+                weight: self.weight[k],
+            })
+        })
+    }
+
+    /// `true` at the pixels that see the sphere (row-major, `size * size`).
+    pub fn mask(&self) -> Vec<bool> {
+        let mut m = vec![false; self.size * self.size];
+        for p in &self.pixels {
+            m[p.pixel] = true;
+        }
+        m
+    }
+
+    /// Render `brdf` (1 channel: grey, 3 channels: RGB) as an RGB image.
+    pub fn render(&self, brdf: &(impl Brdf + ?Sized)) -> Image {
+        self.render_with(brdf, false)
+    }
+
+    /// Render with `l` and `v` exchanged in every evaluation (reciprocity
+    /// check: a reciprocal BRDF gives the same image).
+    pub fn render_swapped(&self, brdf: &(impl Brdf + ?Sized)) -> Image {
+        self.render_with(brdf, true)
+    }
+
+    fn render_with(&self, brdf: &(impl Brdf + ?Sized), swap: bool) -> Image {
+        let size = self.size;
+        let mut data = if self.background.len() == size * size * 3 {
+            self.background.clone()
+        } else {
+            vec![0.0; size * size * 3]
+        };
+        // Pixels are in pixel order: the first pixel of each row.
+        let row_start: Vec<usize> = (0..=size)
+            .map(|r| self.pixels.partition_point(|p| p.pixel < r * size))
+            .collect();
+        data.par_chunks_mut(size * 3)
+            .enumerate()
+            .for_each(|(row, out)| {
+                let mut f = vec![0.0; brdf.channels().max(1)];
+                for p in &self.pixels[row_start[row]..row_start[row + 1]] {
+                    let rgb = self.shade_pixel(brdf, p, swap, &mut f);
+                    let x = p.pixel % size;
+                    out[x * 3..x * 3 + 3].copy_from_slice(&rgb);
+                }
+            });
+        Image {
+            width: size,
+            height: size,
+            channels: 3,
+            data,
+        }
+    }
+
+    fn shade_pixel(
+        &self,
+        brdf: &(impl Brdf + ?Sized),
+        p: &ShadedPixel,
+        swap: bool,
+        f: &mut [f64],
+    ) -> [f64; 3] {
+        let grey = brdf.channels() < 3;
+        let mut acc = [0.0; 3];
+        for k in p.start..p.end {
+            let l = &self.l_local[k];
+            if swap {
+                brdf.eval(&p.v_local, l, f);
+            } else {
+                brdf.eval(l, &p.v_local, f);
+            }
+            let w = &self.weight[k];
+            for c in 0..3 {
+                acc[c] += w[c] * if grey { f[0] } else { f[c] };
+            }
+        }
+        acc
+    }
+}
+
+/// Render `brdf` under `lights` with the judge camera at `size x size`
+/// (computes the terms; keep a [`ShadingPoints`] to render many BRDFs).
+pub fn render_judge(brdf: &(impl Brdf + ?Sized), lights: &LightSet, size: usize) -> Image {
+    ShadingPoints::judge(lights, size).render(brdf)
+}
