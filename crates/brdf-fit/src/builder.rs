@@ -222,8 +222,11 @@ impl Fit {
         let options = self.options_for(&config, &mut notes)?;
         let mut model = self.entry.build_for(&config, data.pairs())?;
         if !self.boxes.is_empty() {
-            let boxes: Vec<(&str, f64, f64)> =
-                self.boxes.iter().map(|(p, l, u)| (p.as_str(), *l, *u)).collect();
+            let boxes: Vec<(&str, f64, f64)> = self
+                .boxes
+                .iter()
+                .map(|(p, l, u)| (p.as_str(), *l, *u))
+                .collect();
             model = Box::new(BoxedModel::narrowed(model, &boxes)?);
         }
         let (model, summary, scale) = fit_scaled(model, &data, options.objective, |m, d, s| {

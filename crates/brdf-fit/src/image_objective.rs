@@ -60,9 +60,16 @@ impl ImageTerms {
         self.image_of_pixel.iter().max().map_or(0, |m| m + 1)
     }
 
-    fn weight(&self, c: usize, k: usize) -> f64 {
+    /// Weight of term `k` for channel `c` of a `channels`-channel fit (a
+    /// grey fit under coloured light takes the mean of the light's channels).
+    fn weight(&self, c: usize, k: usize, channels: usize) -> f64 {
         let n = self.pairs.len();
-        self.weights[(c % self.weight_channels) * n + k]
+        let wc = self.weight_channels;
+        if channels == 1 && wc > 1 {
+            (0..wc).map(|i| self.weights[i * n + k]).sum::<f64>() / wc as f64
+        } else {
+            self.weights[(c % wc) * n + k]
+        }
     }
 
     /// Start of each pixel's terms (`pixels + 1` offsets).
@@ -102,7 +109,7 @@ impl ImageTerms {
                 } else {
                     f.iter().sum::<f64>() / nb as f64
                 };
-                out[c * np + self.pixel[k]] += self.weight(c, k) * v;
+                out[c * np + self.pixel[k]] += self.weight(c, k, channels) * v;
             }
         }
         out
@@ -195,7 +202,7 @@ impl<'a> ImageProblem<'a> {
         for c in 0..self.channels {
             for p in 0..np {
                 px[c * np + p] = (self.offsets[p]..self.offsets[p + 1])
-                    .map(|k| self.terms.weight(c, k) * m[c * n + k])
+                    .map(|k| self.terms.weight(c, k, self.channels) * m[c * n + k])
                     .sum();
             }
         }
@@ -238,7 +245,7 @@ impl LeastSquaresProblem for ImageProblem<'_> {
                 let d = e / (LOG_FLOOR + e * px[row].max(0.0));
                 let out = &mut jac[row * npar..(row + 1) * npar];
                 for k in self.offsets[q]..self.offsets[q + 1] {
-                    let w = d * self.terms.weight(c, k);
+                    let w = d * self.terms.weight(c, k, self.channels);
                     let src = &inner_jac[(c * n + k) * npar..(c * n + k + 1) * npar];
                     for (o, s) in out.iter_mut().zip(src) {
                         *o += w * s;

@@ -33,6 +33,7 @@
 //!
 //! | module | what |
 //! | --- | --- |
+//! | [`appearance`] | image errors of a fit (FLIP, PSNR, CIEDE2000 under the standard lights) and the fit chosen by them |
 //! | [`builder`] | [`Fit`] (the builder) and [`FitReport`] |
 //! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
@@ -45,6 +46,7 @@
 //! | [`report_json`] | the JSON report of `brdf fit --json`, data names for outputs |
 //! | [`error`] | [`FitError`] |
 
+pub mod appearance;
 pub mod boxed;
 pub mod builder;
 pub mod error;
