@@ -96,6 +96,8 @@ pub use clear_coat::ClearCoat;
 pub use cook_torrance::CookTorrance;
 #[cfg(feature = "microfacet")]
 #[cfg(feature = "microfacet")]
+pub use dupuy::{TabulatedMicrofacet, TabulatedNdf};
+#[cfg(feature = "microfacet")]
 pub use fitted_lobes::FittedLobe;
 #[cfg(feature = "renderer")]
 pub use ggx::{
