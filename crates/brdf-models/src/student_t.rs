@@ -167,6 +167,12 @@ fn lambda_of_a(a: f64, gamma: f64) -> (f64, f64) {
 /// Smith's `Lambda(w)` of the STD and `(dLambda/d alpha, dLambda/d gamma)`
 /// for `w` above the horizon.
 pub fn std_lambda(w: &Vector3<f64>, alpha: f64, gamma: f64) -> (f64, f64, f64) {
+    std_lambda_with(w, alpha, gamma, true)
+}
+
+/// As [`std_lambda`]; the derivative in `gamma` (two more evaluations) only
+/// when `d_gamma` is set, 0 otherwise.
+fn std_lambda_with(w: &Vector3<f64>, alpha: f64, gamma: f64, d_gamma: bool) -> (f64, f64, f64) {
     let r = w.x.hypot(w.y);
     if !(r > 0.0) {
         return (0.0, 0.0, 0.0);
@@ -176,12 +182,12 @@ pub fn std_lambda(w: &Vector3<f64>, alpha: f64, gamma: f64) -> (f64, f64, f64) {
     // dLambda/da = -(Lambda + tail)/a and da/dalpha = -a/alpha.
     let d_alpha = (lam + tail) / alpha;
     let h = (1e-5 * gamma).min(0.5 * (gamma - 1.5));
-    let d_gamma = if h > 0.0 {
+    let d_g = if d_gamma && h > 0.0 {
         (lambda_of_a(a, gamma + h).0 - lambda_of_a(a, gamma - h).0) / (2.0 * h)
     } else {
         0.0
     };
-    (lam, d_alpha, d_gamma)
+    (lam, d_alpha, d_g)
 }
 
 /// One STD lobe `D G F / (4 N.L N.V)`, parameters `alpha`, `gamma`, `f0`.
@@ -216,8 +222,9 @@ impl Lobe for StdLobe {
         }
         let h = s / len;
         let (d, d_la, d_lg) = std_d(&h, alpha, gamma);
-        let (ll, ll_a, ll_g) = std_lambda(l, alpha, gamma);
-        let (lv, lv_a, lv_g) = std_lambda(v, alpha, gamma);
+        let grad = dq.is_some();
+        let (ll, ll_a, ll_g) = std_lambda_with(l, alpha, gamma, grad);
+        let (lv, lv_a, lv_g) = std_lambda_with(v, alpha, gamma, grad);
         let g = 1.0 / (1.0 + ll + lv);
         let vh = v.dot(&h).clamp(0.0, 1.0);
         let base = d * g / (4.0 * l.z * v.z);

@@ -352,9 +352,11 @@ fn std_approaches_beckmann_as_gamma_grows() {
             let (db, lb) = beckmann(&h, &l, alpha);
             let (ds, _, _) = std_d(&h, alpha, gamma);
             let (ls, _, _) = std_lambda(&l, alpha, gamma);
-            err = err
-                .max(rel(ds, db).min((ds - db).abs()))
-                .max((ls - lb).abs());
+            // D relative to its peak 1/(pi alpha^2); Lambda through G1,
+            // which stays in [0, 1] where Lambda grows without bound.
+            let peak = 1.0 / (PI * alpha * alpha);
+            let g1 = |x: f64| 1.0 / (1.0 + x);
+            err = err.max((ds - db).abs() / peak).max((g1(ls) - g1(lb)).abs());
         }
         // The difference is O(1/gamma): the bound shrinks with gamma.
         assert!(err <= 4.0 / gamma, "gamma {gamma}: {err}");
@@ -371,9 +373,9 @@ fn opts() -> QuadratureOptions {
     }
 }
 
-fn worst_albedo(m: &dyn Brdf) -> (f64, f64) {
+fn worst_albedo(m: &dyn Brdf, max_deg: f64) -> (f64, f64) {
     let mut w = (f64::NEG_INFINITY, 0.0);
-    for deg in [0.0f64, 45.0, 75.0, 89.0] {
+    for deg in [0.0f64, 0.5 * max_deg, 0.85 * max_deg, max_deg] {
         let l = spherical_to_cartesian(deg.to_radians(), 0.3);
         let a = directional_albedo(m, &l, AlbedoFrame::Mirror, &opts());
         for c in 0..a.value.len() {
@@ -386,12 +388,16 @@ fn worst_albedo(m: &dyn Brdf) -> (f64, f64) {
 }
 
 fn assert_within(name: &str, p: &[f64]) {
-    let (a, e) = worst_albedo(model(name, 1, p).unwrap().as_ref());
+    assert_within_to(name, p, 89.0)
+}
+
+fn assert_within_to(name: &str, p: &[f64], max_deg: f64) {
+    let (a, e) = worst_albedo(model(name, 1, p).unwrap().as_ref(), max_deg);
     assert!(a + e <= 1.0 + 1e-9, "{name} {p:?}: albedo {a} + {e}");
 }
 
 fn assert_exceeds(name: &str, p: &[f64]) {
-    let (a, e) = worst_albedo(model(name, 1, p).unwrap().as_ref());
+    let (a, e) = worst_albedo(model(name, 1, p).unwrap().as_ref(), 89.0);
     assert!(
         a - e > 1.0,
         "{name} {p:?}: albedo {a} - {e} should exceed 1"
@@ -401,7 +407,9 @@ fn assert_exceeds(name: &str, p: &[f64]) {
 /// STD: `kd + ks <= 1` for every `alpha`, `gamma`.
 #[test]
 fn std_energy_domain() {
-    for (alpha, gamma) in [(0.05, 1.6), (0.3, 2.0), (1.0, 1.6), (0.5, 40.0)] {
+    // Each evaluation of Lambda sums a continued fraction: two corners of
+    // the box (sharp and heavy-tailed, rough and near-Beckmann) suffice.
+    for (alpha, gamma) in [(0.05, 1.6), (1.0, 40.0)] {
         assert_within("std", &[0.0, 1.0, alpha, gamma, 1.0]);
         assert_within("std", &[0.4, 0.6, alpha, gamma, 0.5]);
     }
@@ -422,7 +430,7 @@ fn abc_smooth_energy_domain() {
 /// Löw's ABC model: `kd + 4 A N(B, C) / pi <= 1`, the Cook-Torrance domain.
 #[test]
 fn abc_energy_domain() {
-    for (b, c) in [(1.0, 1.0), (100.0, 1.0), (1e4, 0.8), (1e6, 2.0)] {
+    for (b, c) in [(1.0, 1.0), (100.0, 1.0), (1e4, 0.8), (1e5, 1.0)] {
         let n = abc_normalisation(b, c);
         assert_within("abc", &[0.0, 0.999 * PI / (4.0 * n), b, c, 20.0]);
         assert_within("abc", &[0.5, 0.5 * PI / (4.0 * n), b, c, 1.5]);
@@ -431,20 +439,56 @@ fn abc_energy_domain() {
     assert_exceeds("abc", &[0.0, 0.5 * PI / n, 1e4, 1.0, 20.0]);
 }
 
-/// SGD: `kd + 4 ks max F / (pi K_ap) <= 1` (here `F = 1`: `F0 = 1`,
-/// `F1 = 0`; no shadowing, `Lambda = 0`, so `G1 = 1`, the worst case).
+/// SGD: `kd + 4 ks max F / (pi K_ap) <= 1` for `alpha <= 0.1` and
+/// incidence up to 70 deg (here `F = 1`: `F0 = 1`, `F1 = 0`; and no
+/// shadowing, `Lambda = 0`, so `G1 = 1`, the worst case). It is the
+/// sharp-lobe limit: a rough lobe (`alpha = 0.5`) at the bound exceeds 1
+/// (by 10% at 70 deg), and without shadowing the `1 / (N.L)` makes a lobe's
+/// albedo exceed 1 towards grazing incidence, shown at 89 deg.
 #[test]
 fn sgd_energy_domain() {
-    for (alpha, p) in [(0.01, 0.5), (0.1, 1.0), (0.5, 0.2)] {
+    for (alpha, p) in [(0.01, 0.5), (0.1, 1.0)] {
         let k_ap = sgd_normalisation(alpha, p);
         for kd in [0.0, 0.5] {
-            let ks = (1.0 - kd) * PI * k_ap / 4.0;
-            assert_within("sgd", &[kd, ks, alpha, p, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+            // 0.999 of the bound: sharp lobes reach it (to 1e-13) at the pole.
+            let ks = 0.999 * (1.0 - kd) * PI * k_ap / 4.0;
+            let p = [kd, ks, alpha, p, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+            assert_within_to("sgd", &p, 70.0);
         }
     }
     let k_ap = sgd_normalisation(0.01, 0.5);
-    let ks = 1.3 * PI * k_ap / 4.0;
-    assert_exceeds("sgd", &[0.0, ks, 0.01, 0.5, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+    let p = [
+        0.0,
+        1.3 * PI * k_ap / 4.0,
+        0.01,
+        0.5,
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0,
+    ];
+    let (a, e) = worst_albedo(model("sgd", 1, &p).unwrap().as_ref(), 30.0);
+    assert!(a - e > 1.0, "1.3 times the bound: {a}");
+    let k_ap = sgd_normalisation(0.1, 1.0);
+    let p = [0.0, PI * k_ap / 4.0, 0.1, 1.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    assert_exceeds("sgd", &p);
+    let k_ap = sgd_normalisation(0.5, 0.2);
+    let p = [
+        0.0,
+        0.999 * PI * k_ap / 4.0,
+        0.5,
+        0.2,
+        1.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0,
+    ];
+    let (a, e) = worst_albedo(model("sgd", 1, &p).unwrap().as_ref(), 70.0);
+    assert!(a - e > 1.05, "rough lobe at the bound: {a}");
 }
 
 #[test]
