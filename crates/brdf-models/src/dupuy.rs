@@ -16,7 +16,8 @@
 //! `D -> rho cos(theta) sigma[D]`, with eigenvalue `F / 4`. Power iteration
 //! (apply, normalise `integral D cos dm = 1`, repeat) finds it; no model of
 //! `D` is assumed. The extraction is exact (to the quadrature's error) for
-//! data of that form, as the tests check on GGX and Beckmann data.
+//! data of that form, as the tests check on GGX and Beckmann data
+//! (derivation in `docs/derivations/fitted_microfacet_models.md`).
 //!
 //! [`TabulatedNdf`] holds the isotropic `D(theta)` at nodes
 //! `theta_j = theta_max (j / (n - 1))^2` (dense near the pole, where sharp
@@ -55,9 +56,10 @@
 //! let m = TabulatedMicrofacet::new(ndf, &[0.5]).unwrap();
 //! let mut f = [0.0];
 //! m.eval(&Vector3::z(), &Vector3::z(), &mut f);
-//! // Pole: D = 1/(pi alpha^2), G = 1: f = F / (4 pi alpha^2).
+//! // Pole: D = 1/(pi alpha^2), G = 1: f = F / (4 pi alpha^2), to the
+//! // table's normalisation by quadrature (O(h^2), 1e-4 at 256 nodes).
 //! let expect = 0.5 / (4.0 * std::f64::consts::PI * a2);
-//! assert!((f[0] - expect).abs() < 1e-6 * expect);
+//! assert!((f[0] - expect).abs() < 2e-4 * expect);
 //! ```
 
 use std::f64::consts::{FRAC_PI_2, PI};

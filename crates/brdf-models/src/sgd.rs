@@ -20,7 +20,9 @@
 //! (`ks = rho_s K_ap`). The published fits (BBM `fits/bagher_sgd.fit`, whose
 //! `Bagher(albedo, alpha, p, eta = [F0, F1], K, Lambda, c, k, theta0)`
 //! evaluates the same formula) map as `ks = albedo * K`, every other
-//! parameter unchanged (`eta[0] = F0`, `eta[1] = F1`). The clamps at 0 of
+//! parameter unchanged (`eta[0] = F0`, `eta[1] = F1`); the published `K`
+//! equal `1 / (alpha Gamma(1 - p, alpha))` to their printed digits
+//! (`docs/derivations/fitted_microfacet_models.md`). The clamps at 0 of
 //! `G1` and `F` are this crate's: the published formulas go negative for
 //! some parameters (`G1` near grazing, `F` for `F1 > F0`), the fits never
 //! reach there on MERL's directions.

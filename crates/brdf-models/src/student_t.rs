@@ -13,7 +13,8 @@
 //! `Lambda(a) = (gamma - 1)^(3/2) Gamma(gamma - 1/2) / (sqrt(pi) Gamma(gamma) (2 gamma - 3) a) x^(gamma - 3/2) - I_x(gamma - 1, 1/2) / 2`,
 //! `a = cot(theta) / alpha`, `x = (gamma - 1) / (gamma - 1 + a^2)`,
 //!
-//! `G = 1 / (1 + Lambda(L) + Lambda(V))`, `F = F0 + (1 - F0)(1 - V.H)^5`.
+//! `G = 1 / (1 + Lambda(L) + Lambda(V))`, `F = F0 + (1 - F0)(1 - V.H)^5`
+//! (derivation of `Lambda` in `docs/derivations/fitted_microfacet_models.md`).
 //!
 //! `Lambda` is the exact Smith integral `(1/a) integral_a^inf (q - a) P2(q) dq`
 //! of the distribution's one-dimensional marginal, a Student's t of `2 gamma
