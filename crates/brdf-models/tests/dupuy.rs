@@ -177,7 +177,7 @@ fn tabulated_model_reproduces_the_generating_brdf() {
     let ex = TabulatedMicrofacet::from_brdf(&data, &ExtractOptions::default()).unwrap();
     for (ti, pi_, to, po) in [
         (0.0, 0.0, 0.0, 0.0),
-        (0.4, 0.0, 0.4, 3.14),
+        (0.4, 0.0, 0.4, 3.0),
         (1.0, 0.5, 0.3, 2.0),
         (1.3, 0.0, 1.2, 3.0),
     ] {
