@@ -13,12 +13,18 @@
 //! Layout of the parameter vector: `kd` per channel, the scale per channel,
 //! then the lobe's parameters: shared, `q_0, q_1, ...`; per channel, each
 //! parameter for every channel in turn (`alpha_r, alpha_g, alpha_b, p_r, ...`).
+//!
+//! With shared lobe parameters the model offers the channel-shared basis
+//! `[1/pi, S]` to the solvers (variable projection over `kd`, `s`); with
+//! per-channel ones it offers none, each channel being its own problem.
 
 use std::f64::consts::FRAC_1_PI;
 
 use brdf_core::params::{channel_param_name, per_channel_specs};
-use brdf_core::{Brdf, ParamError, ParamSpec, Parametric};
+use brdf_core::{Brdf, DirPairs, PairGeometry, ParamError, ParamSpec, Parametric, SharedBasis};
 use nalgebra::Vector3;
+
+use crate::combinators::per_pair;
 
 /// Most non-linear parameters a [`FittedShape`] may have.
 pub const MAX_SHAPE_PARAMS: usize = 8;
@@ -187,6 +193,45 @@ impl<S: FittedShape> Parametric for FittedLobe<S> {
             row[nc + c] = s;
             for k in 0..nq {
                 row[self.q_index(k, c)] = scale * dq[k];
+            }
+        }
+    }
+    fn shared_basis(&self) -> Option<&dyn SharedBasis> {
+        // Per-channel lobe parameters give each channel its own basis.
+        if S::PER_CHANNEL { None } else { Some(self) }
+    }
+}
+
+/// Basis `[1/pi, S]` when the lobe parameters are shared:
+/// `x_{c,0} = kd_c`, `x_{c,1} = s_c`.
+impl<S: FittedShape> SharedBasis for FittedLobe<S> {
+    fn basis_len(&self) -> usize {
+        2
+    }
+    fn coefficient_index(&self, channel: usize, t: usize) -> usize {
+        t * self.channels + channel
+    }
+    fn basis_batch(
+        &self,
+        p: &[f64],
+        pairs: &DirPairs,
+        geom: &PairGeometry,
+        phi: &mut [f64],
+        dphi: Option<&mut [f64]>,
+    ) {
+        let n = pairs.len();
+        let q = &p[2 * self.channels..];
+        let (d, s) = phi[..2 * n].split_at_mut(n);
+        for j in 0..n {
+            d[j] = if geom.valid[j] { FRAC_1_PI } else { 0.0 };
+        }
+        match dphi {
+            None => per_pair(q, pairs, geom, s, None, S::shape),
+            Some(dphi) => {
+                let nq = q.len();
+                let (dd, ds) = dphi[..2 * nq * n].split_at_mut(nq * n);
+                dd.fill(0.0);
+                per_pair(q, pairs, geom, s, Some(ds), S::shape);
             }
         }
     }

@@ -11,8 +11,13 @@
 //! `f_c = kd_c/pi + A_c S(|Lp + Vp|) F(cos theta_d; eta)`,
 //! `S(f) = 1 / (1 + B f^2)^C`, `cos theta_d = sqrt(1 - |Lp - Vp|^2 / 4)`,
 //! and the geometry factor `G = 1` (the paper's choice for this model).
-//! `|Lp + Vp|` is the projected length of `L + V` (`2 |H_p| cos theta_d`,
-//! zero in the mirror direction), `cos theta_d = V.H`.
+//! `f = |Lp + Vp| = |beta - beta0|` is the paper's argument, the distance in
+//! the projected plane between the viewing direction and the mirror
+//! direction of `L` (`2 cos(theta_d) sin(theta_h)`, zero in the mirror
+//! direction). The Fresnel cosine is the paper's projected form (eq. 14),
+//! equal to `V.H` only when `N.L = N.V` (`|L - V|^2 = 4 sin^2 theta_d`, of
+//! which the projection drops `(N.L - N.V)^2`); BBM's `lowsmooth` and the
+//! published fits use it so.
 //!
 //! **Microfacet with the ABC distribution** (`abc`, eq. 15):
 //!

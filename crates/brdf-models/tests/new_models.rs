@@ -516,3 +516,42 @@ fn construction_errors_name_the_parameter_and_box() {
         "{e}"
     );
 }
+
+/// Parameter counts and names: SGD has ten per channel, every one per
+/// channel; Löw's models `kd`, `A` per channel and `B`, `C`, `eta`
+/// shared (so a shared basis for the solvers); STD `kd`, `ks` per channel
+/// and `alpha`, `gamma`, `f0`.
+#[test]
+fn parameter_layouts() {
+    let names = |name: &str, channels| {
+        let config = ModelConfig {
+            channels,
+            ..ModelConfig::default()
+        };
+        let m = build(name, &config).unwrap();
+        let has_basis = m.shared_basis().is_some();
+        let n: Vec<String> = m.param_specs().iter().map(|s| s.name.clone()).collect();
+        (n, has_basis)
+    };
+    let (sgd, basis) = names("sgd", 3);
+    assert_eq!(sgd.len(), 30);
+    assert!(!basis);
+    assert_eq!(
+        &sgd[..9],
+        [
+            "kd_r", "kd_g", "kd_b", "ks_r", "ks_g", "ks_b", "alpha_r", "alpha_g", "alpha_b"
+        ]
+    );
+    assert_eq!(&sgd[27..], ["theta0_r", "theta0_g", "theta0_b"]);
+    for low in ["abc", "abc-smooth"] {
+        let (n, basis) = names(low, 3);
+        assert_eq!(
+            n,
+            ["kd_r", "kd_g", "kd_b", "A_r", "A_g", "A_b", "B", "C", "eta"]
+        );
+        assert!(basis);
+    }
+    let (std, basis) = names("std", 1);
+    assert_eq!(std, ["kd", "ks", "alpha", "gamma", "f0"]);
+    assert!(basis);
+}
