@@ -3,7 +3,7 @@
 //! Microfacet Based BSDFs", Computer Graphics Forum 36(2)), an isotropic
 //! microfacet lobe between GGX (`gamma = 2`) and Beckmann (`gamma -> inf`),
 //! with height-correlated Smith masking-shadowing and Schlick's Fresnel
-//! term, as the crate's [`Ggx`](crate::Ggx):
+//! term, as the crate's `Ggx` (`ggx` family):
 //!
 //! `f = kd/pi + ks D(H) G(L, V) F(V.H) / (4 (N.L)(N.V))`,
 //!
