@@ -24,8 +24,9 @@
 //! equal `1 / (alpha Gamma(1 - p, alpha))` to their printed digits
 //! (`docs/derivations/fitted_microfacet_models.md`). The clamps at 0 of
 //! `G1` and `F` are this crate's: the published formulas go negative for
-//! some parameters (`G1` near grazing, `F` for `F1 > F0`), the fits never
-//! reach there on MERL's directions.
+//! some parameters (`G1` near grazing, `F` for `F1 > F0` near `V.H = 1`);
+//! the fixture's four published materials stay positive at the reference
+//! pairs (other materials and directions were not checked).
 //!
 //! | parameter (per channel) | meaning | default box | linear |
 //! | --- | --- | --- | --- |
