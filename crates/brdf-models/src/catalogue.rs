@@ -178,6 +178,12 @@ pub fn catalogue() -> Vec<ModelEntry> {
             "kd/pi + ks D G F / (N.L N.V), Gaussian D = exp(-(delta/m)^2)/(pi m^2)",
             "Torrance & Sparrow 1967, JOSA; normalisation of Ramamoorthi & Hanrahan 2001"
         );
+        lobe_model!(
+            crate::Std,
+            "microfacet",
+            "kd/pi + ks D G F / (4 N.L N.V): Student's t slopes (GGX at gamma 2, Beckmann as gamma grows), exact Smith, Schlick F",
+            "Ribardière, Bringier, Meneveaux & Simonot 2017, Computer Graphics Forum 36(2)"
+        );
         v.push(ModelEntry {
             name: <crate::cook_torrance::CtLobe as crate::combinators::Lobe>::NAME,
             family: "microfacet",
@@ -185,6 +191,33 @@ pub fn catalogue() -> Vec<ModelEntry> {
             paper: "Cook & Torrance 1982, ACM TOG",
             has_lobes: true,
             build: |c| Ok(Box::new(crate::CookTorrance::new(c.lobes, c.channels)?)),
+            build_for_data: None,
+        });
+        v.push(ModelEntry {
+            name: <crate::sgd::SgdShape as crate::fitted_lobes::FittedShape>::NAME,
+            family: "microfacet",
+            summary: "kd/pi + ks D G1 G1 F / (pi N.L N.V): shifted gamma D, fitted shadowing, F0/F1 Fresnel; every parameter per channel",
+            paper: "Bagher, Soler & Holzschuch 2012, Computer Graphics Forum 31(4)",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::Sgd::with_channels(c.channels)?)),
+            build_for_data: None,
+        });
+        v.push(ModelEntry {
+            name: <crate::low::LowAbcShape as crate::fitted_lobes::FittedShape>::NAME,
+            family: "microfacet",
+            summary: "kd/pi + A D G F(eta) / (pi N.L N.V), D = (1 + B (1 - N.H))^-C, V-groove G",
+            paper: "Löw, Kronander, Ynnerman & Unger 2012, ACM TOG 31(1)",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::LowAbc::with_channels(c.channels)?)),
+            build_for_data: None,
+        });
+        v.push(ModelEntry {
+            name: <crate::low::LowSmoothShape as crate::fitted_lobes::FittedShape>::NAME,
+            family: "microfacet",
+            summary: "kd/pi + A F(eta) / (1 + B |Lp + Vp|^2)^C, smooth-surface model",
+            paper: "Löw, Kronander, Ynnerman & Unger 2012, ACM TOG 31(1)",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::LowSmooth::with_channels(c.channels)?)),
             build_for_data: None,
         });
     }

@@ -14,6 +14,7 @@
 //! | `ward` | [`Ward`], [`WardAniso`], [`WardDuer`], [`WardDuerAniso`] |
 //! | `lafortune` | [`Lafortune`] (isotropic and anisotropic, K lobes) |
 //! | `microfacet` | [`AshikhminShirley`] (+ anisotropic, coupled diffuse), [`TorranceSparrow`], [`CookTorrance`] (K lobes) |
+//! | `microfacet` (fitted-data models) | [`Sgd`] (Bagher 2012), [`LowSmooth`] and [`LowAbc`] (Löw 2012), [`Std`] (Ribardière 2017), [`TabulatedMicrofacet`] (Dupuy 2015, extracted from data) |
 //! | `oren-nayar` | [`OrenNayar`] (qualitative), [`OrenNayarFull`] (with interreflection) |
 //! | `sopp` | [`PhongFresnel`], [`AsPaint`] / [`PaintShader`] (with the `Rs` conversion), [`ClearCoat`] over any base |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
@@ -42,6 +43,10 @@ pub mod cook_torrance;
 pub mod dual;
 #[cfg(feature = "renderer")]
 pub mod dual_model;
+#[cfg(feature = "microfacet")]
+pub mod dupuy;
+#[cfg(feature = "microfacet")]
+pub mod fitted_lobes;
 #[cfg(feature = "renderer")]
 pub mod ggx;
 #[cfg(feature = "renderer")]
@@ -53,6 +58,8 @@ pub mod kurt_polynomial;
 #[cfg(feature = "lafortune")]
 pub mod lafortune;
 pub mod lambert;
+#[cfg(feature = "microfacet")]
+pub mod low;
 #[cfg(feature = "microfacet")]
 pub mod microfacet;
 #[cfg(feature = "oren-nayar")]
@@ -67,6 +74,10 @@ pub mod phong_fresnel;
 pub mod principled;
 #[cfg(feature = "serde")]
 pub mod saved_model;
+#[cfg(feature = "microfacet")]
+pub mod sgd;
+#[cfg(feature = "microfacet")]
+pub mod student_t;
 #[cfg(feature = "microfacet")]
 pub mod torrance_sparrow;
 #[cfg(feature = "ward")]
@@ -83,6 +94,11 @@ pub use catalogue::{ModelConfig, ModelEntry, build, build_for, catalogue, entry}
 pub use clear_coat::ClearCoat;
 #[cfg(feature = "microfacet")]
 pub use cook_torrance::CookTorrance;
+#[cfg(feature = "microfacet")]
+#[cfg(feature = "microfacet")]
+pub use dupuy::{TabulatedMicrofacet, TabulatedNdf};
+#[cfg(feature = "microfacet")]
+pub use fitted_lobes::FittedLobe;
 #[cfg(feature = "renderer")]
 pub use ggx::{
     Ggx, GgxAniso, GgxAnisoSeparable, GgxConductor, GgxConductorAniso, GgxConductorAnisoSeparable,
@@ -98,6 +114,8 @@ pub use kurt_polynomial::{KurtPolynomial, Pca, PolyVariant};
 #[cfg(feature = "lafortune")]
 pub use lafortune::Lafortune;
 pub use lambert::Lambert;
+#[cfg(feature = "microfacet")]
+pub use low::{LowAbc, LowSmooth};
 #[cfg(feature = "oren-nayar")]
 pub use oren_nayar::{OrenNayar, OrenNayarFull};
 #[cfg(feature = "sopp")]
@@ -108,6 +126,10 @@ pub use phong::Phong;
 pub use phong_fresnel::PhongFresnel;
 #[cfg(feature = "renderer")]
 pub use principled::Principled;
+#[cfg(feature = "microfacet")]
+pub use sgd::Sgd;
+#[cfg(feature = "microfacet")]
+pub use student_t::Std;
 #[cfg(feature = "microfacet")]
 pub use torrance_sparrow::TorranceSparrow;
 #[cfg(feature = "ward")]
