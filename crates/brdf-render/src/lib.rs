@@ -24,6 +24,7 @@ pub mod grid;
 pub mod image;
 pub mod number;
 pub mod plot;
+pub mod side_by_side;
 pub mod sphere;
 
 pub use error::RenderError;

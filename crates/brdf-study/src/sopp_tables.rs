@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use brdf_render::Image;
 use crate::report::{Cell, Table};
 use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
-use crate::study::{Study, Written, progress};
+use crate::context::{Study, Written, progress};
 
 /// The metric of Sopp's fits, for the README.
 const SOPP_METRIC: &str = "Sopp's error (fitted weighted and unweighted; reported unweighted)";

@@ -6,11 +6,11 @@
 use brdf_core::SampleSet;
 use brdf_fit::FitSummary;
 
-use super::err;
+use super::common::err;
 use crate::StudyError;
 use brdf_render::plot::{Plot, Series};
 use crate::report::{Cell, Table};
-use crate::study::Study;
+use crate::context::Study;
 
 /// One ranked figure: what it shows and how it is labelled.
 pub struct RankedFigure<'a> {

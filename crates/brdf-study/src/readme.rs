@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::process::Command;
 
-use super::Study;
+use crate::context::Study;
 use crate::StudyError;
 
 /// The commit of the work tree holding `dir`, with a mark when the code

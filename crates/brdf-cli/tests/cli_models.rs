@@ -100,3 +100,51 @@ fn closed_stdout_is_not_a_panic() {
     assert!(out.status.success(), "{:?}: {err}", out.status);
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// `brdf eval --model NAME` at normal incidence, as (success, stdout, stderr).
+fn eval_named(name: &str) -> (bool, String, String) {
+    brdf(&[
+        "eval", "--model", name, "--wi", "0,0", "--wo", "0,0", "--json",
+    ])
+}
+
+#[test]
+fn eval_takes_the_display_name() {
+    let (ok, out, err) = eval_named("Blinn-Phong");
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["model"], "blinn-phong");
+}
+
+#[test]
+fn eval_takes_underscores_for_hyphens() {
+    let (ok, out, err) = eval_named("blinn_phong");
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["model"], "blinn-phong");
+}
+
+#[test]
+fn eval_suggests_the_nearest_name_for_a_typo() {
+    let (ok, _, err) = eval_named("blin-phong");
+    assert!(!ok);
+    assert!(err.contains("did you mean `blinn-phong`"), "{err}");
+    assert!(err.lines().count() == 1, "one line, not the catalogue: {err}");
+}
+
+#[test]
+fn batch_resolves_names_with_the_same_suggestion() {
+    let out = std::env::temp_dir().join(format!("brdf-batch-names-{}", std::process::id()));
+    let (ok, _, err) = brdf(&[
+        "batch",
+        "--data",
+        "nowhere",
+        "--models",
+        "blin-phong",
+        "--out",
+        &out.display().to_string(),
+    ]);
+    let _ = std::fs::remove_dir_all(&out);
+    assert!(!ok);
+    assert!(err.contains("did you mean `blinn-phong`"), "{err}");
+}
