@@ -44,7 +44,11 @@ pub fn parse_assignments(s: &str) -> Result<Vec<(String, f64)>, CliError> {
                 CliError::Usage(format!("parameter `{t}` is not of the form name=value"))
             })?;
             let x: f64 = v.trim().parse().map_err(|_| {
-                CliError::Usage(format!("parameter `{}`: `{}` is not a number", k.trim(), v.trim()))
+                CliError::Usage(format!(
+                    "parameter `{}`: `{}` is not a number",
+                    k.trim(),
+                    v.trim()
+                ))
             })?;
             Ok((k.trim().to_string(), x))
         })

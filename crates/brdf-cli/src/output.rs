@@ -10,7 +10,13 @@ use crate::error::CliError;
 pub fn write_stdout(args: std::fmt::Arguments, newline: bool) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
     out.write_fmt(args)
-        .and_then(|()| if newline { out.write_all(b"\n") } else { Ok(()) })
+        .and_then(|()| {
+            if newline {
+                out.write_all(b"\n")
+            } else {
+                Ok(())
+            }
+        })
         .and_then(|()| out.flush())
         .map_err(|source| CliError::Io {
             path: "standard output".into(),

@@ -129,7 +129,10 @@ fn eval_suggests_the_nearest_name_for_a_typo() {
     let (ok, _, err) = eval_named("blin-phong");
     assert!(!ok);
     assert!(err.contains("did you mean `blinn-phong`"), "{err}");
-    assert!(err.lines().count() == 1, "one line, not the catalogue: {err}");
+    assert!(
+        err.lines().count() == 1,
+        "one line, not the catalogue: {err}"
+    );
 }
 
 #[test]

@@ -110,7 +110,10 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(), FitError> {
 
 /// The (material, model) items of this share that are not yet fitted, and
 /// the size of the share.
-fn plan(opts: &BatchOptions, models: &[&'static str]) -> Result<(Vec<(String, &'static str)>, usize), FitError> {
+fn plan(
+    opts: &BatchOptions,
+    models: &[&'static str],
+) -> Result<(Vec<(String, &'static str)>, usize), FitError> {
     let mut materials = Vec::new();
     for d in &opts.data {
         materials.extend(brdf_io::materials(d)?);

@@ -14,7 +14,13 @@ pub fn text(rep: &FitReport) -> String {
     let _ = writeln!(
         s,
         "model {} on {} ({} of {} samples used; dropped {} invalid, {} beyond {} deg)",
-        r.model, r.data, r.samples, rep.samples_present, rep.dropped_invalid, rep.dropped_angle, rep.limit_deg
+        r.model,
+        r.data,
+        r.samples,
+        rep.samples_present,
+        rep.dropped_invalid,
+        rep.dropped_angle,
+        rep.limit_deg
     );
     let _ = writeln!(s, "solver: {}", r.solver);
     let _ = writeln!(
@@ -24,16 +30,30 @@ pub fn text(rep: &FitReport) -> String {
     );
     let off_lobe = undetermined(r);
     for p in &r.parameters {
-        let se = p.std_error.map(|s| format!("+- {s:.3e}")).unwrap_or_default();
-        let b = p.at_bound.as_ref().map(|b| format!(" [at {b} bound]")).unwrap_or_default();
+        let se = p
+            .std_error
+            .map(|s| format!("+- {s:.3e}"))
+            .unwrap_or_default();
+        let b = p
+            .at_bound
+            .as_ref()
+            .map(|b| format!(" [at {b} bound]"))
+            .unwrap_or_default();
         let pr = if p.projected { " (projected)" } else { "" };
-        let off = if off_lobe.contains(&p.name) { " [undetermined: lobe off, ks = 0]" } else { "" };
+        let off = if off_lobe.contains(&p.name) {
+            " [undetermined: lobe off, ks = 0]"
+        } else {
+            ""
+        };
         let _ = writeln!(s, "  {:<8} {:>14.6e} {se}{b}{pr}{off}", p.name, p.value);
     }
     let _ = writeln!(
         s,
         "{} error: {:.6e}  Ngan L2: {:.6e}  time: {:.3} ms",
-        r.objective, r.error, r.ngan_l2, r.seconds * 1e3
+        r.objective,
+        r.error,
+        r.ngan_l2,
+        r.seconds * 1e3
     );
     for note in &rep.notes {
         let _ = writeln!(s, "note: {note}");
@@ -95,4 +115,3 @@ fn lobe_number(name: &str) -> String {
         .collect();
     digits.chars().rev().collect()
 }
-

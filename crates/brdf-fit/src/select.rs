@@ -197,7 +197,15 @@ pub fn table(name: &str, rows: &[SelectRow], choice: usize, tolerance: f64) -> c
     use crate::table::{Cell, Table};
     let mut t = Table::new(
         &format!("Candidates for {name}"),
-        &["candidate", "stored numbers", "Ngan L2", "AIC", "BIC", "time (s)", "termination"],
+        &[
+            "candidate",
+            "stored numbers",
+            "Ngan L2",
+            "AIC",
+            "BIC",
+            "time (s)",
+            "termination",
+        ],
     );
     let mut order: Vec<usize> = (0..rows.len()).collect();
     order.sort_by(|a, b| {
@@ -208,7 +216,11 @@ pub fn table(name: &str, rows: &[SelectRow], choice: usize, tolerance: f64) -> c
     });
     for i in order {
         let r = &rows[i];
-        let label = if i == choice { format!("**{}** (chosen)", r.label) } else { r.label.clone() };
+        let label = if i == choice {
+            format!("**{}** (chosen)", r.label)
+        } else {
+            r.label.clone()
+        };
         t.rows.push(vec![
             Cell::Text(label),
             Cell::Text(r.stored_numbers.to_string()),

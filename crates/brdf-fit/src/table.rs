@@ -38,7 +38,6 @@ impl Cell {
     }
 }
 
-
 /// A titled table with a note.
 #[derive(Clone, Debug, Default)]
 pub struct Table {

@@ -92,12 +92,25 @@ impl std::fmt::Display for Description {
     /// The readable description, several lines.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (name, format, samples) = (&self.name, self.format, self.samples);
-        writeln!(f, "{name} ({format:?}): {samples} samples, channels {}", self.channels.join(","))?;
-        writeln!(f, "  negative values {}, non-finite {}", self.negative, self.non_finite)?;
+        writeln!(
+            f,
+            "{name} ({format:?}): {samples} samples, channels {}",
+            self.channels.join(",")
+        )?;
+        writeln!(
+            f,
+            "  negative values {}, non-finite {}",
+            self.negative, self.non_finite
+        )?;
         if let Some((a, b)) = self.value_range {
             writeln!(f, "  values [{a:.6e}, {b:.6e}] 1/sr")?;
         }
-        let (ti, to, pi, po) = (self.theta_i_deg, self.theta_o_deg, self.phi_i_deg, self.phi_o_deg);
+        let (ti, to, pi, po) = (
+            self.theta_i_deg,
+            self.theta_o_deg,
+            self.phi_i_deg,
+            self.phi_o_deg,
+        );
         writeln!(
             f,
             "  theta_i [{:.2}, {:.2}] deg, theta_o [{:.2}, {:.2}] deg, phi_i [{:.2}, {:.2}], phi_o [{:.2}, {:.2}]",
@@ -110,7 +123,10 @@ impl std::fmt::Display for Description {
             )?;
         }
         if self.first_of_many {
-            writeln!(f, "  (CUReT holds 61 samples; shown: sample 1; name one as PATH#N)")?;
+            writeln!(
+                f,
+                "  (CUReT holds 61 samples; shown: sample 1; name one as PATH#N)"
+            )?;
         }
         Ok(())
     }

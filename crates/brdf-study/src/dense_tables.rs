@@ -13,7 +13,6 @@
 //! in columns after the nine, with how each fit ended, and their own grid
 //! of measured against fitted spheres ([`crate::renderer_spheres`]).
 
-
 use brdf_core::SampleSet;
 use brdf_core::metrics::psnr;
 use brdf_fit::FitSummary;
@@ -22,14 +21,14 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use crate::StudyError;
+use crate::context::models::{FitHow, fit_model};
+use crate::context::{Study, progress, rgl_material};
 use crate::figures::{QUANTILE, SIZE, light, sphere, tone_note};
-use brdf_render::{Image, render_sphere};
 use crate::renderer_fits::{fit_sets, status};
 use crate::renderer_spheres::RendererSpheres;
 use crate::report::{Cell, Table};
 use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
-use crate::context::models::{FitHow, fit_model};
-use crate::context::{Study, progress, rgl_material};
+use brdf_render::{Image, render_sphere};
 
 type Fitted = (Box<dyn brdf_core::Parametric>, FitSummary);
 

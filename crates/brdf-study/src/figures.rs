@@ -11,10 +11,10 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use crate::StudyError;
-use brdf_render::{Image, render_sphere};
-use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::context::models::{FitHow, build_model, fit_model};
 use crate::context::{Study, progress};
+use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
+use brdf_render::{Image, render_sphere};
 
 /// Sphere size in pixels.
 pub const SIZE: usize = 96;

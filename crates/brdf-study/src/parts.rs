@@ -4,8 +4,8 @@
 //! it writes, whether it is repeated for every metric and angle limit of
 //! the spec, and the function that runs it on the shared [`Study`].
 
-use crate::context::Study;
 use crate::StudyError;
+use crate::context::Study;
 
 /// A part of the study.
 pub struct Part {

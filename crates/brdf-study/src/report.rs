@@ -20,5 +20,4 @@ mod tests {
         assert_eq!(fmt_sig(1234.6, 3), "1235");
         assert_eq!(fmt_sig(1.5e-7, 2), "1.5e-7");
     }
-
 }

@@ -19,10 +19,10 @@ use crate::StudyError;
 use crate::pipeline::{FitOptions, FitSummary, Objective, fit, fit_sopp};
 use rayon::prelude::*;
 
-use brdf_render::Image;
-use crate::report::{Cell, Table};
-use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 use crate::context::{Study, Written, progress};
+use crate::report::{Cell, Table};
+use brdf_render::Image;
+use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 
 /// The metric of Sopp's fits, for the README.
 const SOPP_METRIC: &str = "Sopp's error (fitted weighted and unweighted; reported unweighted)";

@@ -52,7 +52,9 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         "rgb" => Channels::All,
         "grey" => Channels::Grey,
         other => {
-            return Err(CliError::Usage(format!("--channels {other}: expected grey or rgb")));
+            return Err(CliError::Usage(format!(
+                "--channels {other}: expected grey or rgb"
+            )));
         }
     };
     let opts = BatchOptions {

@@ -60,11 +60,7 @@ pub fn run(args: &EvalArgs) -> Result<(), CliError> {
             // suggestion for a misspelt one: the same resolver as `fit`.
             let name = brdf_fit::resolve(&args.model)?.name;
             let mut m = brdf_models::build(name, &args.model_opts.config())?;
-            let v = assign_by_name(
-                name,
-                m.param_specs(),
-                &parse_assignments(&args.params)?,
-            )?;
+            let v = assign_by_name(name, m.param_specs(), &parse_assignments(&args.params)?)?;
             m.set_params(&v)?;
             (m, v)
         }

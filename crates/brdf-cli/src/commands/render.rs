@@ -53,7 +53,9 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         )));
     }
     if args.data.is_none() && args.model.is_none() {
-        return Err(CliError::Usage("give --model FILE, --data PATH or both".into()));
+        return Err(CliError::Usage(
+            "give --model FILE, --data PATH or both".into(),
+        ));
     }
     let light = light(&args.light)?;
     let dense = match &args.data {

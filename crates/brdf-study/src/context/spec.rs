@@ -164,8 +164,18 @@ mod tests {
     /// The part names as `crate::parts::names()` gives them (not imported:
     /// the selection does not know the part list).
     const PARTS: &[&str] = &[
-        "kurt_9_1", "kurt_9_2", "kurt_9_4", "kurt_9_4_times", "kurt_9_5", "lafortune_box",
-        "fig_9_1", "fig_9_2", "kurt_9_3", "sopp", "nist", "stability",
+        "kurt_9_1",
+        "kurt_9_2",
+        "kurt_9_4",
+        "kurt_9_4_times",
+        "kurt_9_5",
+        "lafortune_box",
+        "fig_9_1",
+        "fig_9_2",
+        "kurt_9_3",
+        "sopp",
+        "nist",
+        "stability",
     ];
 
     #[test]

@@ -6,8 +6,8 @@
 use brdf_fit::FitSummary;
 use brdf_models::ModelConfig;
 
-use super::ranked_figure::{self, RankedFigure};
 use super::common::{err, lafortune_note};
+use super::ranked_figure::{self, RankedFigure};
 use crate::StudyError;
 use crate::context::Study;
 use crate::context::models::FitHow;

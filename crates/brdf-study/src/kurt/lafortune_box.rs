@@ -8,10 +8,10 @@ use brdf_fit::FitSummary;
 
 use super::common::err;
 use crate::StudyError;
-use crate::report::{Cell, Table};
 use crate::context::Study;
 use crate::context::models::FitHow;
 use crate::context::spec::LafortuneBox;
+use crate::report::{Cell, Table};
 
 fn value(r: &FitSummary, name: &str) -> f64 {
     r.parameters

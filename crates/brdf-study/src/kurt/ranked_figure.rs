@@ -8,9 +8,9 @@ use brdf_fit::FitSummary;
 
 use super::common::err;
 use crate::StudyError;
-use brdf_render::plot::{Plot, Series};
-use crate::report::{Cell, Table};
 use crate::context::Study;
+use crate::report::{Cell, Table};
+use brdf_render::plot::{Plot, Series};
 
 /// One ranked figure: what it shows and how it is labelled.
 pub struct RankedFigure<'a> {

@@ -9,10 +9,10 @@ use rayon::prelude::*;
 
 use super::common::err;
 use crate::StudyError;
-use brdf_render::plot::{Plot, Series};
-use crate::report::{Cell, Table};
 use crate::context::models::{FitHow, fit_model};
 use crate::context::{Study, progress};
+use crate::report::{Cell, Table};
+use brdf_render::plot::{Plot, Series};
 
 /// Kurt's Table 9.1 (RGB, degrees 1..6): cayman, quarry tile.
 const KURT: [[f64; 6]; 2] = [

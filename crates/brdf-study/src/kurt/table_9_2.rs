@@ -7,9 +7,9 @@ use brdf_fit::FitSummary;
 
 use super::common::{KURT_9_2, TABLE_9_2_MATERIALS, err, lafortune_note, nine_index};
 use crate::StudyError;
-use crate::report::{Cell, Table};
 use crate::context::Study;
 use crate::context::models::undetermined;
+use crate::report::{Cell, Table};
 
 /// Kurt's fitted parameters (RGB; spec/study.md), per model label, in the
 /// material order of [`TABLE_9_2_MATERIALS`].
