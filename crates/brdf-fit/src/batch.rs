@@ -108,19 +108,19 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(), FitError> {
     write_summary(out, &all)
 }
 
-/// The (material, model) items of this share that are not yet fitted, and
-/// the size of the share.
-fn plan(
-    opts: &BatchOptions,
-    models: &[&'static str],
-) -> Result<(Vec<(String, &'static str)>, usize), FitError> {
+/// One fit to run: (material, model).
+type Item = (String, &'static str);
+
+/// The items of this share that are not yet fitted, and the size of the
+/// share.
+fn plan(opts: &BatchOptions, models: &[&'static str]) -> Result<(Vec<Item>, usize), FitError> {
     let mut materials = Vec::new();
     for d in &opts.data {
         materials.extend(brdf_io::materials(d)?);
     }
     materials.sort();
     materials.dedup();
-    let items: Vec<(String, &'static str)> = materials
+    let items: Vec<Item> = materials
         .iter()
         .flat_map(|m| models.iter().map(move |x| (m.clone(), *x)))
         .enumerate()
