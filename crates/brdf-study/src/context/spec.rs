@@ -25,7 +25,8 @@ pub use super::models::LafortuneBox;
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct StudySpec {
-    /// Parts to run (names of [`super::parts::PARTS`]); empty = all.
+    /// Parts to run (names of `crate::parts::PARTS`, checked against the
+    /// names passed to [`StudySpec::check`]); empty = all.
     pub tables: Vec<String>,
     /// Materials: CUReT sample numbers or case-insensitive parts of a
     /// material's name; empty = all.
