@@ -1,6 +1,12 @@
 //! Benchmark crate: shared fixed-seed inputs for the criterion benches in
 //! `benches/`, the IRLS designs ([`irls_designs`]) and the peer comparison
 //! ([`peers`]). Nothing here is published.
+//!
+//! ## Layering
+//!
+//! The benchmarks sit on top of the workspace, beside the `brdf` command:
+//! they call the libraries (`brdf-fit`, `brdf-solve`, `brdf-study` for the
+//! `fits` bench) and nothing depends on them.
 
 use brdf_core::{DirPairs, spherical_to_cartesian};
 

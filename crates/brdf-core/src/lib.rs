@@ -34,6 +34,13 @@
 //!
 //! - `serde`: serialize sample sets, parameter specs and angles.
 //! - `proptest-support`: proptest strategies for directions (module `proptest`).
+//!
+//! ## Layering
+//!
+//! `brdf-core` is the bottom of the workspace: it depends on no other
+//! crate of it. `brdf-models`, `brdf-solve`, `brdf-io` and `brdf-render`
+//! build on it; everything above (`brdf-fit`, `brdf-export`, `brdf-study`,
+//! the `brdf` command in `brdf-cli`, `brdf-py`) reaches it through them.
 
 pub mod brdf;
 pub mod direction;

@@ -112,7 +112,21 @@ pub fn convert(
     target: Target,
     opts: &ConvertOptions,
 ) -> Result<Conversion, ExportError> {
-    let via = opts.via.as_deref().unwrap_or(default_via(target));
+    // Forgiving names (`--via GGX_Dielectric`), resolved as wherever a
+    // model is named, so the pbrt lobe test below sees the canonical name.
+    let via = match opts.via.as_deref() {
+        Some(v) => {
+            brdf_fit::resolve(v)
+                .map_err(|e| ExportError::Conversion {
+                    model: source.name().to_string(),
+                    target,
+                    via: v.to_string(),
+                    reason: e.to_string(),
+                })?
+                .name
+        }
+        None => default_via(target),
+    };
     let fail = |reason: String| ExportError::Conversion {
         model: source.name().to_string(),
         target,

@@ -29,11 +29,21 @@
 //! assert!(export(g.as_ref(), Target::Mitsuba).is_err());
 //! ```
 //!
+//! [`file::run`] is the whole `brdf export` job: read a saved model, write
+//! the material file, optionally save the converted model.
+//!
+//! ## Layering
+//!
+//! `brdf-export` sits on `brdf-models` (the models it writes) and
+//! `brdf-fit` (conversion by fitting); `brdf-study` and the `brdf` command
+//! (`brdf-cli`) call it. It never renders.
+//!
 //! ## Crate features
 //!
 //! None.
 
 pub mod convert;
+pub mod file;
 pub mod fitted;
 pub mod gltf;
 pub mod materialx;

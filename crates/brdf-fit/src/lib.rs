@@ -44,9 +44,22 @@
 //! | [`linear_box`] | linear least squares within `[0, upper]` when NNLS exceeds an upper bound |
 //! | [`names`] | forgiving model names with suggestions |
 //! | [`report_json`] | the JSON report of `brdf fit --json`, data names for outputs |
+//! | [`report_text`] | the readable report of `brdf fit`, parameters a fit leaves undetermined |
+//! | [`table`] | report tables written as CSV and Markdown |
+//! | [`batch`] | the resumable, shardable batch runner of `brdf batch` (`fits.jsonl`, summaries, merge) |
+//! | [`resample`] | data or a saved model written as MERL, Sopp's grid or CSV samples |
 //! | [`error`] | [`FitError`] |
+//!
+//! ## Layering
+//!
+//! `brdf-fit` sits on `brdf-core`, `brdf-models`, `brdf-solve` and
+//! `brdf-io` (and on `brdf-render` only for the number format of its report
+//! tables). `brdf-export` (conversion by fitting), `brdf-study` (the
+//! reproduction), the `brdf` command (`brdf-cli`) and the Python module
+//! (`brdf-py`) build on it.
 
 pub mod appearance;
+pub mod batch;
 pub mod boxed;
 pub mod builder;
 pub mod error;
@@ -56,8 +69,11 @@ pub mod linear_box;
 pub mod names;
 pub mod pipeline;
 pub mod report_json;
+pub mod report_text;
+pub mod resample;
 pub mod scaling;
 pub mod select;
+pub mod table;
 
 pub use boxed::BoxedModel;
 pub use builder::{Channels, Fit, FitReport};

@@ -177,3 +177,65 @@ pub fn select(
         })?;
     Ok((rows, choice))
 }
+
+/// The measured data `brdf select` fits: invalid samples and those beyond
+/// `limit_deg` dropped, the mean of the channels when `grey`.
+pub fn prepare(data: &SampleSet, limit_deg: f64, grey: bool) -> Result<SampleSet, FitError> {
+    if !(limit_deg > 0.0 && limit_deg <= 90.0) {
+        return Err(FitError::Usage(format!(
+            "--limit {limit_deg} must be in (0, 90] degrees"
+        )));
+    }
+    let (data, _) = data.filter_invalid(false);
+    let (data, _) = data.filter_angle_limit(limit_deg.to_radians());
+    Ok(if grey { data.mean_channel() } else { data })
+}
+
+/// The candidates as a table, smallest first, the chosen one marked, with
+/// a note saying why it was chosen.
+pub fn table(name: &str, rows: &[SelectRow], choice: usize, tolerance: f64) -> crate::table::Table {
+    use crate::table::{Cell, Table};
+    let mut t = Table::new(
+        &format!("Candidates for {name}"),
+        &[
+            "candidate",
+            "stored numbers",
+            "Ngan L2",
+            "AIC",
+            "BIC",
+            "time (s)",
+            "termination",
+        ],
+    );
+    let mut order: Vec<usize> = (0..rows.len()).collect();
+    order.sort_by(|a, b| {
+        rows[*a]
+            .stored_numbers
+            .cmp(&rows[*b].stored_numbers)
+            .then(rows[*a].error.total_cmp(&rows[*b].error))
+    });
+    for i in order {
+        let r = &rows[i];
+        let label = if i == choice {
+            format!("**{}** (chosen)", r.label)
+        } else {
+            r.label.clone()
+        };
+        t.rows.push(vec![
+            Cell::Text(label),
+            Cell::Text(r.stored_numbers.to_string()),
+            Cell::Num(r.error, 4),
+            Cell::Num(r.aic, 5),
+            Cell::Num(r.bic, 5),
+            Cell::Num(r.seconds, 3),
+            Cell::Text(r.termination.clone()),
+        ]);
+    }
+    if let Some(c) = rows.get(choice) {
+        t.note = format!(
+            "Chosen: {} ({} stored numbers, error {:.4e}): the fewest stored numbers within {} of the best error.",
+            c.label, c.stored_numbers, c.error, tolerance
+        );
+    }
+    t
+}

@@ -19,7 +19,14 @@
 //! [`load`](fn@load) detects the format by name (`PATH` or `PATH#SAMPLE`, see
 //! [`load::Format`]) and returns the sample set; [`load_dense`] gives an
 //! evaluable BRDF for the dense formats (MERL, RGL); [`materials`](fn@materials)
-//! lists the data sets a folder or a CUReT file stands for.
+//! lists the data sets a folder or a CUReT file stands for; [`describe`](mod@describe)
+//! says what a data file holds (`brdf info`).
+//!
+//! ## Layering
+//!
+//! `brdf-io` depends on `brdf-core` only: it reads and writes data and
+//! knows no model. `brdf-fit` (which loads what it fits), `brdf-study`,
+//! the `brdf` command (`brdf-cli`) and the Python module build on it.
 //!
 //! ```no_run
 //! let samples = brdf_io::load("curet/abrdf.dat#25")?;
@@ -31,6 +38,7 @@ pub mod colour;
 pub mod cornell;
 pub mod csv_samples;
 pub mod curet;
+pub mod describe;
 pub mod error;
 pub mod load;
 pub mod materials;

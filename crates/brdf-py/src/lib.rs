@@ -24,6 +24,13 @@
 //! Build and install: `pip install maturin && maturin build --release -m
 //! crates/brdf-py/Cargo.toml`, then `pip install` the wheel it names (or
 //! `maturin develop --release` inside a virtual environment).
+//!
+//! ## Layering
+//!
+//! A top crate beside the `brdf` command (`brdf-cli`): it calls
+//! `brdf-fit`, `brdf-io`, `brdf-models` and `brdf-export` as the command
+//! does, with the same model-name resolver ([`brdf_fit::names::resolve`]),
+//! and nothing depends on it.
 
 pub mod catalogue;
 pub mod directions;

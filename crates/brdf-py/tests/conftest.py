@@ -29,7 +29,7 @@ def brdf_cli():
     """The `brdf` binary: $BRDF_BIN, else built with cargo (debug)."""
     exe = os.environ.get("BRDF_BIN")
     if not exe:
-        subprocess.run(["cargo", "build", "-q", "-p", "brdf-study"], cwd=REPO, check=True)
+        subprocess.run(["cargo", "build", "-q", "-p", "brdf-cli"], cwd=REPO, check=True)
         target = os.environ.get("CARGO_TARGET_DIR", str(REPO / "target"))
         exe = str(Path(target) / "debug" / "brdf")
     assert shutil.which(exe), f"the brdf binary {exe} is missing"

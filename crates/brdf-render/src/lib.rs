@@ -51,6 +51,7 @@ pub mod psnr;
 pub mod quadrature;
 pub mod scene;
 pub mod shading;
+pub mod side_by_side;
 pub mod sky;
 pub mod sphere;
 pub mod tonemap;

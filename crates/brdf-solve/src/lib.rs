@@ -29,6 +29,12 @@
 //!
 //! - `rayon` (default): parallel multi-start.
 //! - `serde`: serialize reports.
+//!
+//! ## Layering
+//!
+//! `brdf-solve` depends on `brdf-core` only (the `ModelProblem` adaptor
+//! uses its `Parametric` trait); it knows no data format and no model
+//! catalogue. `brdf-fit` drives it; `brdf-study` certifies it on NIST StRD.
 
 pub mod bounded;
 pub mod constraints;

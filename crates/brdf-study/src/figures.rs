@@ -11,8 +11,8 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use crate::StudyError;
-use crate::study::models::{FitHow, build_model, fit_model};
-use crate::study::{Study, progress};
+use crate::context::models::{FitHow, build_model, fit_model};
+use crate::context::{Study, progress};
 use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 use brdf_render::{Image, render_sphere};
 
@@ -85,7 +85,7 @@ pub fn figure_9_1(study: &mut Study) -> Result<(), StudyError> {
         .collect();
     let bar = progress::bar(names.len() * degrees.len(), "Fig. 9.1");
     for name in &names {
-        let (measured, set) = crate::dense_tables::rgl_material(&rgl, name)?;
+        let (measured, set) = crate::context::rgl_material(&rgl, name)?;
         let reference = sphere(&measured);
         let exposure = exposure_for(&reference, QUANTILE);
         let fits: Vec<Result<Image, StudyError>> = degrees
@@ -170,7 +170,7 @@ pub fn figure_9_2(study: &mut Study) -> Result<(), StudyError> {
         let exposure = exposure_for(&joined, QUANTILE);
         grid.rows.push(format!(
             "{}\nexposure x{}",
-            crate::kurt::TABLE_9_2_MATERIALS[*k].1,
+            crate::kurt::common::TABLE_9_2_MATERIALS[*k].1,
             crate::report::fmt_sig(exposure, 3)
         ));
         grid.tiles.push(
@@ -187,7 +187,7 @@ pub fn figure_9_2(study: &mut Study) -> Result<(), StudyError> {
     }
     grid.footer = vec![
         tone_note(QUANTILE).replace("the first sphere's", "all the row's spheres'"),
-        crate::kurt::lafortune_note(how.lbox).into(),
+        crate::kurt::common::lafortune_note(how.lbox).into(),
     ];
     let file = format!("{}.png", study.stem("kurt_fig_9_2"));
     grid.write_png(&study.path(&file))?;

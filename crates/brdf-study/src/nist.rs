@@ -219,9 +219,29 @@ pub fn table(runs: &[NistRun], dir: &Path) -> Table {
     t
 }
 
+/// `brdf nist`: every problem of `dir` under `strategies`, as runs and as
+/// the table, which is also written as `nist.{csv,md}` into `out` when
+/// given.
+pub fn certify(
+    dir: &Path,
+    strategies: &[(&'static str, LmOptions)],
+    out: Option<&Path>,
+) -> Result<(Vec<NistRun>, Table), StudyError> {
+    let runs = run_dir(dir, strategies)?;
+    let table = table(&runs, dir);
+    if let Some(out) = out {
+        std::fs::create_dir_all(out).map_err(|e| StudyError::Io {
+            path: out.display().to_string(),
+            source: e,
+        })?;
+        table.write(out, "nist")?;
+    }
+    Ok((runs, table))
+}
+
 /// The study's part: every problem of `$BRDF_DATA/nist_strd` from both
 /// starts, into `nist.{csv,md}`.
-pub fn part(study: &mut crate::study::Study) -> Result<(), StudyError> {
+pub fn part(study: &mut crate::context::Study) -> Result<(), StudyError> {
     let Some(dir) = study.data_dir("nist_strd") else {
         study
             .skipped
@@ -230,7 +250,7 @@ pub fn part(study: &mut crate::study::Study) -> Result<(), StudyError> {
     };
     let runs = run_dir(&dir, &strategies())?;
     table(&runs, Path::new("$BRDF_DATA/nist_strd")).write(&study.out, "nist")?;
-    study.wrote_with(crate::study::Written {
+    study.wrote_with(crate::context::Written {
         file: "nist.{csv,md}".into(),
         what:
             "NIST StRD non-linear regression: log relative errors of every problem from both starts"

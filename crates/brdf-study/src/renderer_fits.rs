@@ -12,9 +12,9 @@ use brdf_models::ModelConfig;
 use rayon::prelude::*;
 
 use crate::StudyError;
-use crate::kurt::converged;
-use crate::study::models::{FitHow, fit_model, undetermined};
-use crate::study::progress;
+use crate::context::models::{FitHow, fit_model, undetermined};
+use crate::context::progress;
+use crate::kurt::common::converged;
 
 /// A fitted model and its summary.
 pub type Fitted = (Box<dyn Parametric>, FitSummary);

@@ -19,8 +19,8 @@ use crate::StudyError;
 use crate::pipeline::{FitOptions, FitSummary, Objective, fit, fit_sopp};
 use rayon::prelude::*;
 
+use crate::context::{Study, Written, progress};
 use crate::report::{Cell, Table};
-use crate::study::{Study, Written, progress};
 use brdf_render::Image;
 use brdf_render::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
 

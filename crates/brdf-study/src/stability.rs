@@ -594,9 +594,9 @@ fn nist_dir() -> Option<std::path::PathBuf> {
 
 /// The `stability` part of `brdf reproduce`: [`write_stability_report`]
 /// into the study's output folder, listed in its README.
-pub fn part(study: &mut crate::study::Study) -> Result<(), StudyError> {
+pub fn part(study: &mut crate::context::Study) -> Result<(), StudyError> {
     write_stability_report(&study.out)?;
-    study.wrote_with(crate::study::Written {
+    study.wrote_with(crate::context::Written {
         file: "stability.{csv,md}".into(),
         what: "Stability: every extreme and bad input case (fits of generated data, malformed files) with what happened".into(),
         data: "generated in the run (deterministic)".into(),
@@ -604,7 +604,7 @@ pub fn part(study: &mut crate::study::Study) -> Result<(), StudyError> {
         limit: "80 deg (75 deg for the grazing cases)".into(),
     });
     if nist_dir().is_some() {
-        study.wrote_with(crate::study::Written {
+        study.wrote_with(crate::context::Written {
             file: "stability_nist.{csv,md}".into(),
             what: "Stability: NIST StRD from both certified starts".into(),
             data: "`nist_strd/*.dat`".into(),

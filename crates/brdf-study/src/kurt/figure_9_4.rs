@@ -6,11 +6,11 @@
 use brdf_fit::FitSummary;
 use brdf_models::ModelConfig;
 
+use super::common::{err, lafortune_note};
 use super::ranked_figure::{self, RankedFigure};
-use super::{err, lafortune_note};
 use crate::StudyError;
-use crate::study::Study;
-use crate::study::models::FitHow;
+use crate::context::Study;
+use crate::context::models::FitHow;
 
 /// Label of the OLS polynomial column.
 pub const POLY_OLS: &str = "Polynomial (p = 7, OLS)";

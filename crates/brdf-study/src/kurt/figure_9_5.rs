@@ -6,8 +6,8 @@ use brdf_models::ModelConfig;
 
 use super::ranked_figure::{self, RankedFigure};
 use crate::StudyError;
-use crate::study::Study;
-use crate::study::models::FitHow;
+use crate::context::Study;
+use crate::context::models::FitHow;
 
 /// Run the part.
 pub fn run(study: &mut Study) -> Result<(), StudyError> {

@@ -6,12 +6,12 @@
 
 use brdf_fit::FitSummary;
 
-use super::err;
+use super::common::err;
 use crate::StudyError;
+use crate::context::Study;
+use crate::context::models::FitHow;
+use crate::context::spec::LafortuneBox;
 use crate::report::{Cell, Table};
-use crate::study::Study;
-use crate::study::models::FitHow;
-use crate::study::spec::LafortuneBox;
 
 fn value(r: &FitSummary, name: &str) -> f64 {
     r.parameters

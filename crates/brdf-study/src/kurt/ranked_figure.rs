@@ -6,10 +6,10 @@
 use brdf_core::SampleSet;
 use brdf_fit::FitSummary;
 
-use super::err;
+use super::common::err;
 use crate::StudyError;
+use crate::context::Study;
 use crate::report::{Cell, Table};
-use crate::study::Study;
 use brdf_render::plot::{Plot, Series};
 
 /// One ranked figure: what it shows and how it is labelled.

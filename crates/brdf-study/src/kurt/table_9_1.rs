@@ -7,11 +7,11 @@ use brdf_fit::FitSummary;
 use brdf_models::ModelConfig;
 use rayon::prelude::*;
 
-use super::err;
+use super::common::err;
 use crate::StudyError;
+use crate::context::models::{FitHow, fit_model};
+use crate::context::{Study, progress};
 use crate::report::{Cell, Table};
-use crate::study::models::{FitHow, fit_model};
-use crate::study::{Study, progress};
 use brdf_render::plot::{Plot, Series};
 
 /// Kurt's Table 9.1 (RGB, degrees 1..6): cayman, quarry tile.
@@ -44,7 +44,7 @@ fn materials(study: &mut Study) -> Result<Vec<(usize, SampleSet)>, StudyError> {
     if let Some(q) = study
         .curet()?
         .into_iter()
-        .find(|s| crate::study::sample_number(s) == Some(25) || s.name.starts_with("quarry tile"))
+        .find(|s| crate::context::sample_number(s) == Some(25) || s.name.starts_with("quarry tile"))
     {
         out.push((1, q));
     }

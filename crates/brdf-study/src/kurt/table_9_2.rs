@@ -5,11 +5,11 @@
 use brdf_core::SampleSet;
 use brdf_fit::FitSummary;
 
-use super::{KURT_9_2, TABLE_9_2_MATERIALS, err, lafortune_note, nine_index};
+use super::common::{KURT_9_2, TABLE_9_2_MATERIALS, err, lafortune_note, nine_index};
 use crate::StudyError;
+use crate::context::Study;
+use crate::context::models::undetermined;
 use crate::report::{Cell, Table};
-use crate::study::Study;
-use crate::study::models::undetermined;
 
 /// Kurt's fitted parameters (RGB; spec/study.md), per model label, in the
 /// material order of [`TABLE_9_2_MATERIALS`].
@@ -67,7 +67,7 @@ pub fn columns(sets: &[SampleSet]) -> Vec<(usize, SampleSet)> {
         .filter_map(|(k, (n, name))| {
             sets.iter()
                 .find(|s| {
-                    crate::study::sample_number(s) == Some(*n)
+                    crate::context::sample_number(s) == Some(*n)
                         || s.name.starts_with(&format!("{name} (synthetic)"))
                 })
                 .map(|s| (k, s.clone()))

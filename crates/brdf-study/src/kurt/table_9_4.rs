@@ -7,12 +7,12 @@
 
 use brdf_fit::FitSummary;
 
+use super::common::{converged, err, nine_index};
 use super::figure_9_4::{POLY_OLS, ols_polynomial};
-use super::{converged, err, nine_index};
 use crate::StudyError;
+use crate::context::Study;
 use crate::renderer_fits::{fit_sets, tally};
 use crate::report::{Cell, Table};
-use crate::study::Study;
 use brdf_render::plot::{Plot, Series, pareto_front};
 
 /// Kurt's Table 9.4 mean fit times (s, MATLAB, Pentium D 2.66 GHz), in the

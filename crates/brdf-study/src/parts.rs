@@ -4,8 +4,8 @@
 //! it writes, whether it is repeated for every metric and angle limit of
 //! the spec, and the function that runs it on the shared [`Study`].
 
-use super::Study;
 use crate::StudyError;
+use crate::context::Study;
 
 /// A part of the study.
 pub struct Part {
@@ -75,7 +75,7 @@ pub fn run_all(study: &mut Study) -> Result<(), StudyError> {
             vec![("ngan".into(), 80.0)]
         };
         for (metric, limit) in variants {
-            study.variant = super::Variant { metric, limit };
+            study.variant = crate::context::Variant { metric, limit };
             eprintln!("brdf reproduce: {} ({})", part.name, part.about);
             (part.run)(study)?;
         }

@@ -4,9 +4,9 @@
 
 use std::path::PathBuf;
 
-use brdf_fit::{Channels, Fit, FitReport, Objective, Solver};
+use brdf_fit::{Channels, Fit, Objective, Solver};
 
-use crate::StudyError;
+use crate::error::CliError;
 
 /// Arguments of `brdf fit`.
 #[derive(Debug, clap::Args)]
@@ -54,7 +54,7 @@ pub struct FitArgs {
 }
 
 /// Run `brdf fit`: a thin layer over [`brdf_fit::Fit`].
-pub fn run(args: &FitArgs) -> Result<(), StudyError> {
+pub fn run(args: &FitArgs) -> Result<(), CliError> {
     let data = brdf_io::load(&args.data)?;
     let sets = match args.channels.as_str() {
         "rgb" => vec![(data.clone(), Channels::All)],
@@ -63,13 +63,13 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
             .map(|c| (data.single_channel(c), Channels::All))
             .collect(),
         other => {
-            return Err(StudyError::Usage(format!(
+            return Err(CliError::Usage(format!(
                 "--channels {other}: expected grey, rgb or per-channel"
             )));
         }
     };
     if args.save.is_some() && sets.len() > 1 {
-        return Err(StudyError::Usage(
+        return Err(CliError::Usage(
             "--save needs one model: use --channels rgb or grey".into(),
         ));
     }
@@ -87,7 +87,7 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
         let report = fit.run(set)?;
         if let Some(path) = &args.save {
             report
-                .saved_model(&crate::report::data_name(&args.data))?
+                .saved_model(&brdf_fit::data_name(&args.data))?
                 .save(path)?;
         }
         reports.push(report);
@@ -98,60 +98,7 @@ pub fn run(args: &FitArgs) -> Result<(), StudyError> {
         return Ok(());
     }
     for rep in &reports {
-        print_report(rep)?;
-    }
-    Ok(())
-}
-
-fn print_report(rep: &FitReport) -> Result<(), StudyError> {
-    let r = &rep.summary;
-    say!(
-        "model {} on {} ({} of {} samples used; dropped {} invalid, {} beyond {} deg)",
-        r.model,
-        r.data,
-        r.samples,
-        rep.samples_present,
-        rep.dropped_invalid,
-        rep.dropped_angle,
-        rep.limit_deg
-    )?;
-    say!("solver: {}", r.solver)?;
-    say!(
-        "iterations {}, {}; starts {} ({} converged, {} at the best cost)",
-        r.iterations,
-        r.termination,
-        r.starts.0,
-        r.starts.1,
-        r.starts.2
-    )?;
-    let undetermined = crate::study::models::undetermined(r);
-    for p in &r.parameters {
-        let se = p
-            .std_error
-            .map(|s| format!("+- {s:.3e}"))
-            .unwrap_or_default();
-        let b = p
-            .at_bound
-            .as_ref()
-            .map(|b| format!(" [at {b} bound]"))
-            .unwrap_or_default();
-        let pr = if p.projected { " (projected)" } else { "" };
-        let off = if undetermined.contains(&p.name) {
-            " [undetermined: lobe off, ks = 0]"
-        } else {
-            ""
-        };
-        say!("  {:<8} {:>14.6e} {se}{b}{pr}{off}", p.name, p.value)?;
-    }
-    say!(
-        "{} error: {:.6e}  Ngan L2: {:.6e}  time: {:.3} ms",
-        r.objective,
-        r.error,
-        r.ngan_l2,
-        r.seconds * 1e3
-    )?;
-    for note in &rep.notes {
-        say!("note: {note}")?;
+        say_raw!("{}", brdf_fit::report_text::text(rep))?;
     }
     Ok(())
 }

@@ -19,21 +19,14 @@ use serde::Deserialize;
 
 use crate::StudyError;
 
-/// Lafortune's box for the thesis tables.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum LafortuneBox {
-    /// Kurt's: `Cxy` in `[-1, 0]`, `Cz` in `[0, 1]`.
-    Kurt,
-    /// The catalogue's: both in `[-1, 1]` (back-scattering lobes allowed).
-    Wide,
-}
+pub use super::models::LafortuneBox;
 
 /// The selection of a study run.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct StudySpec {
-    /// Parts to run (names of [`super::parts::PARTS`]); empty = all.
+    /// Parts to run (names of `crate::parts::PARTS`, checked against the
+    /// names passed to [`StudySpec::check`]); empty = all.
     pub tables: Vec<String>,
     /// Materials: CUReT sample numbers or case-insensitive parts of a
     /// material's name; empty = all.
@@ -69,29 +62,33 @@ impl Default for StudySpec {
 }
 
 impl StudySpec {
-    /// Read a spec file; every error names the file.
-    pub fn read(path: &Path) -> Result<Self, StudyError> {
+    /// Read a spec file; every error names the file. `parts`: the names of
+    /// the study's parts (`crate::parts::names()`), which `tables` may name.
+    pub fn read(path: &Path, parts: &[&str]) -> Result<Self, StudyError> {
         let text = std::fs::read_to_string(path).map_err(|e| StudyError::Io {
             path: path.display().to_string(),
             source: e,
         })?;
-        Self::parse(&text).map_err(|e| StudyError::Usage(format!("{}: {e}", path.display())))
+        Self::parse(&text, parts).map_err(|e| StudyError::Usage(format!("{}: {e}", path.display())))
     }
 
-    /// Parse and check spec text.
-    pub fn parse(text: &str) -> Result<Self, String> {
+    /// Parse and check spec text (`parts` as for [`StudySpec::read`]).
+    pub fn parse(text: &str, parts: &[&str]) -> Result<Self, String> {
         let spec: StudySpec = toml::from_str(text).map_err(|e| e.message().to_string())?;
-        spec.check()?;
+        spec.check(parts)?;
         Ok(spec)
     }
 
     /// Reject impossible selections with a message naming the field.
-    pub fn check(&self) -> Result<(), String> {
+    /// `parts`: the names of the study's parts. They are passed in, not
+    /// looked up, so the selection does not know the part list (the list
+    /// knows the parts, and the parts know this selection).
+    pub fn check(&self, parts: &[&str]) -> Result<(), String> {
         for t in &self.tables {
-            if super::parts::find(t).is_none() {
+            if !parts.contains(&t.as_str()) {
                 return Err(format!(
                     "tables: unknown part `{t}` (known: {})",
-                    super::parts::names().join(", ")
+                    parts.join(", ")
                 ));
             }
         }
@@ -165,10 +162,28 @@ impl StudySpec {
 mod tests {
     use super::*;
 
+    /// The part names as `crate::parts::names()` gives them (not imported:
+    /// the selection does not know the part list).
+    const PARTS: &[&str] = &[
+        "kurt_9_1",
+        "kurt_9_2",
+        "kurt_9_4",
+        "kurt_9_4_times",
+        "kurt_9_5",
+        "lafortune_box",
+        "fig_9_1",
+        "fig_9_2",
+        "kurt_9_3",
+        "sopp",
+        "nist",
+        "stability",
+    ];
+
     #[test]
     fn parses_a_reduced_spec_and_selects() {
         let s = StudySpec::parse(
             "tables = [\"kurt_9_1\"]\nmaterials = [\"25\", \"felt\"]\nmodels = [\"ward\"]\ndegrees = [1, 2]\n",
+            PARTS,
         )
         .unwrap();
         assert!(s.runs("kurt_9_1") && !s.runs("kurt_9_2"));
@@ -186,10 +201,10 @@ mod tests {
 
     #[test]
     fn renderer_models_are_selected_by_name_or_label() {
-        let s = StudySpec::parse("models = [\"ggx\", \"Principled\"]\n").unwrap();
+        let s = StudySpec::parse("models = [\"ggx\", \"Principled\"]\n", PARTS).unwrap();
         assert!(s.has_model("GGX", "ggx") && s.has_model("Principled", "principled"));
         assert!(!s.has_model("glTF", "gltf") && !s.has_model("Ward", "ward"));
-        assert!(StudySpec::parse("models = [\"gltf-ext\"]\n").is_ok());
+        assert!(StudySpec::parse("models = [\"gltf-ext\"]\n", PARTS).is_ok());
     }
 
     #[test]
@@ -204,7 +219,7 @@ mod tests {
             ("colour = 1", "colour"),
             ("lafortune_box = \"narrow\"", "narrow"),
         ] {
-            let e = StudySpec::parse(text).unwrap_err();
+            let e = StudySpec::parse(text, PARTS).unwrap_err();
             assert!(e.contains(word), "{text}: {e}");
         }
     }

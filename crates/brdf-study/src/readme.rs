@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::process::Command;
 
-use super::Study;
 use crate::StudyError;
+use crate::context::Study;
 
 /// The commit of the work tree holding `dir`, with a mark when the code
 /// (outside the output folder) has uncommitted changes; "unknown" outside

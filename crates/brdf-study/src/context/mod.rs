@@ -1,14 +1,14 @@
-//! The study run by `brdf reproduce`: a registry of named parts
-//! ([`parts::PARTS`]), the selection ([`spec::StudySpec`]), and the
-//! [`Study`] context they share: the data (loaded only when a selected part
+//! The shared context of the study's parts: the selection
+//! ([`spec::StudySpec`]) and the [`Study`] every part runs on: the data (loaded only when a selected part
 //! asks for it), the fits on CUReT (fitted in parallel, once, and shared by
 //! the tables that use them), and the list of files written, from which
 //! `results/README.md` is generated.
+//!
+//! This module imports no part: the part list ([`crate::parts`]) knows
+//! the parts, and the parts know only this context.
 
 pub mod models;
-pub mod parts;
 pub mod progress;
-pub mod readme;
 pub mod spec;
 
 use std::collections::HashMap;
@@ -22,6 +22,16 @@ use rayon::prelude::*;
 use crate::StudyError;
 use models::{FitHow, fit_model};
 use spec::StudySpec;
+
+/// An RGL material and the samples the study fits: Sopp's grid within 80
+/// degrees, cell weights, every 5th node (about 4,000 samples). Shared by
+/// the dense tables and the figures.
+pub fn rgl_material(dir: &Path, name: &str) -> Result<(brdf_io::rgl::Rgl, SampleSet), StudyError> {
+    let rgl = brdf_io::rgl::Rgl::read(&dir.join(format!("{name}.bsdf")))?;
+    let full = brdf_io::sopp_grid::SoppGrid::resample(&rgl).to_samples(name, 80.0, true);
+    let keep: Vec<bool> = (0..full.len()).map(|j| j % 5 == 0).collect();
+    Ok((rgl, full.select(&keep)))
+}
 
 /// One file the study wrote, for `results/README.md`.
 #[derive(Clone, Debug)]

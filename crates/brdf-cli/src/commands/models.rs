@@ -2,8 +2,8 @@
 
 use serde::Serialize;
 
-use crate::StudyError;
-use crate::cli::ModelOpts;
+use crate::error::CliError;
+use crate::opts::ModelOpts;
 
 /// Arguments of `brdf models`.
 #[derive(Debug, clap::Args)]
@@ -38,7 +38,7 @@ struct ModelOut {
 }
 
 /// Run `brdf models`.
-pub fn run(args: &ModelsArgs) -> Result<(), StudyError> {
+pub fn run(args: &ModelsArgs) -> Result<(), CliError> {
     let config = args.model.config();
     let mut out = Vec::new();
     for e in brdf_models::catalogue() {

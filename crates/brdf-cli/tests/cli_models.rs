@@ -70,7 +70,8 @@ fn eval_rejects_bad_input_with_a_message() {
     assert!(err.contains("`kd` = 2 is outside its box [0, 1]"), "{err}");
     let (ok, _, err) = brdf(&["eval", "--model", "nope", "--wi", "0,0", "--wo", "0,0"]);
     assert!(!ok);
-    assert!(err.contains("no such model"), "{err}");
+    // The resolver's answer (no near name to suggest here).
+    assert!(err.contains("no model `nope`"), "{err}");
     let (ok, _, err) = brdf(&["eval", "--model", "lambert", "--wi", "x,0", "--wo", "0,0"]);
     assert!(!ok);
     assert!(err.contains("not a number"), "{err}");
@@ -99,4 +100,55 @@ fn closed_stdout_is_not_a_panic() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{:?}: {err}", out.status);
     assert!(!err.contains("panicked"), "{err}");
+}
+
+/// `brdf eval --model NAME` at normal incidence, as (success, stdout, stderr).
+fn eval_named(name: &str) -> (bool, String, String) {
+    brdf(&[
+        "eval", "--model", name, "--wi", "0,0", "--wo", "0,0", "--json",
+    ])
+}
+
+#[test]
+fn eval_takes_the_display_name() {
+    let (ok, out, err) = eval_named("Blinn-Phong");
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["model"], "blinn-phong");
+}
+
+#[test]
+fn eval_takes_underscores_for_hyphens() {
+    let (ok, out, err) = eval_named("blinn_phong");
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["model"], "blinn-phong");
+}
+
+#[test]
+fn eval_suggests_the_nearest_name_for_a_typo() {
+    let (ok, _, err) = eval_named("blin-phong");
+    assert!(!ok);
+    assert!(err.contains("did you mean `blinn-phong`"), "{err}");
+    assert!(
+        err.lines().count() == 1,
+        "one line, not the catalogue: {err}"
+    );
+}
+
+#[test]
+fn batch_resolves_names_with_the_same_suggestion() {
+    let out = std::env::temp_dir().join(format!("brdf-batch-names-{}", std::process::id()));
+    let (ok, _, err) = brdf(&[
+        "batch",
+        "--data",
+        "nowhere",
+        "--models",
+        "blin-phong",
+        "--out",
+        &out.display().to_string(),
+    ]);
+    let _ = std::fs::remove_dir_all(&out);
+    assert!(!ok);
+    assert!(err.contains("did you mean `blinn-phong`"), "{err}");
 }

@@ -1,10 +1,10 @@
 //! `brdf eval`: a model's value per channel at one direction pair.
 
-use brdf_core::{Direction, params::assign_by_name};
+use brdf_core::params::assign_by_name;
 use serde::Serialize;
 
-use crate::StudyError;
-use crate::cli::ModelOpts;
+use crate::error::CliError;
+use crate::opts::{ModelOpts, parse_assignments, parse_direction};
 
 /// Arguments of `brdf eval`.
 #[derive(Debug, clap::Args)]
@@ -35,45 +35,6 @@ pub struct EvalArgs {
     pub model_opts: ModelOpts,
 }
 
-/// Parse `name=value,name=value`.
-pub fn parse_assignments(s: &str) -> Result<Vec<(String, f64)>, StudyError> {
-    s.split(',')
-        .map(str::trim)
-        .filter(|t| !t.is_empty())
-        .map(|t| {
-            let (k, v) = t.split_once('=').ok_or_else(|| {
-                StudyError::Usage(format!("parameter `{t}` is not of the form name=value"))
-            })?;
-            let x: f64 = v.trim().parse().map_err(|_| {
-                StudyError::Usage(format!(
-                    "parameter `{}`: `{}` is not a number",
-                    k.trim(),
-                    v.trim()
-                ))
-            })?;
-            Ok((k.trim().to_string(), x))
-        })
-        .collect()
-}
-
-/// Parse `THETA,PHI` into a direction.
-pub fn parse_direction(s: &str, degrees: bool, what: &str) -> Result<Direction, StudyError> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    if parts.len() != 2 {
-        return Err(StudyError::Usage(format!("{what} `{s}` must be THETA,PHI")));
-    }
-    let mut a = [0.0f64; 2];
-    for (i, p) in parts.iter().enumerate() {
-        a[i] = p
-            .parse()
-            .map_err(|_| StudyError::Usage(format!("{what}: `{p}` is not a number")))?;
-    }
-    if degrees {
-        a = [a[0].to_radians(), a[1].to_radians()];
-    }
-    Ok(Direction::from_spherical(a[0], a[1])?)
-}
-
 #[derive(Serialize)]
 struct EvalOut {
     model: String,
@@ -84,23 +45,22 @@ struct EvalOut {
 }
 
 /// Run `brdf eval`.
-pub fn run(args: &EvalArgs) -> Result<(), StudyError> {
+pub fn run(args: &EvalArgs) -> Result<(), CliError> {
     let (model, values) = match &args.load {
         Some(path) => {
-            let m = crate::saved_model::SavedModel::load(path)?.build()?;
+            let m = brdf_models::saved_model::SavedModel::load(path)?.build()?;
             let v = m.params().to_vec();
             (m, v)
         }
         None => {
             if args.model.is_empty() {
-                return Err(StudyError::Usage("give --model NAME or --load FILE".into()));
+                return Err(CliError::Usage("give --model NAME or --load FILE".into()));
             }
-            let mut m = brdf_models::build(&args.model, &args.model_opts.config())?;
-            let v = assign_by_name(
-                &args.model,
-                m.param_specs(),
-                &parse_assignments(&args.params)?,
-            )?;
+            // Forgiving names ("Blinn-Phong", "blinn_phong"), with a
+            // suggestion for a misspelt one: the same resolver as `fit`.
+            let name = brdf_fit::resolve(&args.model)?.name;
+            let mut m = brdf_models::build(name, &args.model_opts.config())?;
+            let v = assign_by_name(name, m.param_specs(), &parse_assignments(&args.params)?)?;
             m.set_params(&v)?;
             (m, v)
         }

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use brdf_solve::{Damping, LmOptions, Scaling};
 
-use crate::StudyError;
+use crate::error::CliError;
 
 /// Arguments of `brdf nist`.
 #[derive(Debug, clap::Args)]
@@ -45,18 +45,18 @@ pub struct NistArgs {
 }
 
 /// Run `brdf nist`.
-pub fn run(args: &NistArgs) -> Result<(), StudyError> {
+pub fn run(args: &NistArgs) -> Result<(), CliError> {
     let dir = match &args.dir {
         Some(d) => d.clone(),
         None => std::env::var_os("BRDF_DATA")
             .map(|d| PathBuf::from(d).join("nist_strd"))
-            .ok_or_else(|| StudyError::Usage("give --dir DIR or set BRDF_DATA".into()))?,
+            .ok_or_else(|| CliError::Usage("give --dir DIR or set BRDF_DATA".into()))?,
     };
     let damping = match args.damping.as_str() {
         "nielsen" => Damping::Nielsen,
         "sopp" => Damping::Sopp,
         other => {
-            return Err(StudyError::Usage(format!(
+            return Err(CliError::Usage(format!(
                 "--damping {other}: expected nielsen or sopp"
             )));
         }
@@ -65,7 +65,7 @@ pub fn run(args: &NistArgs) -> Result<(), StudyError> {
         "marquardt" => Scaling::Marquardt,
         "identity" => Scaling::Identity,
         other => {
-            return Err(StudyError::Usage(format!(
+            return Err(CliError::Usage(format!(
                 "--scaling {other}: expected marquardt or identity"
             )));
         }
@@ -83,21 +83,12 @@ pub fn run(args: &NistArgs) -> Result<(), StudyError> {
     let strategies = if args.single {
         vec![("LM (as configured)", options)]
     } else {
-        crate::nist::strategies()
+        brdf_study::nist::strategies()
     };
-    let runs = crate::nist::run_dir(&dir, &strategies)?;
-    let table = crate::nist::table(&runs, &dir);
-    if let Some(out) = &args.out {
-        std::fs::create_dir_all(out).map_err(|e| StudyError::Io {
-            path: out.display().to_string(),
-            source: e,
-        })?;
-        table.write(out, "nist")?;
-    }
+    let (runs, table) = brdf_study::nist::certify(&dir, &strategies, args.out.as_deref())?;
     if args.json {
-        say!("{}", serde_json::to_string_pretty(&runs)?)?;
+        say!("{}", serde_json::to_string_pretty(&runs)?)
     } else {
-        say_raw!("{}", table.markdown())?;
+        say_raw!("{}", table.markdown())
     }
-    Ok(())
 }

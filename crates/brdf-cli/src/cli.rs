@@ -1,5 +1,5 @@
-//! Command-line definition (clap derive). One subcommand per file in
-//! `commands/`.
+//! Command-line definition (clap derive): the subcommands, one per file
+//! in `commands/`. This module knows the commands; no command imports it.
 
 use clap::{Parser, Subcommand};
 
@@ -38,33 +38,4 @@ pub enum Command {
     Render(crate::commands::render::RenderArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
-}
-
-/// Structural options shared by every command that builds a model.
-#[derive(Debug, Clone, clap::Args)]
-pub struct ModelOpts {
-    /// Colour channels of the model (1 grey, 3 RGB).
-    #[arg(long, default_value_t = 1)]
-    pub channels: usize,
-    /// Specular lobes (Lafortune, Cook-Torrance).
-    #[arg(long, default_value_t = 1)]
-    pub lobes: usize,
-    /// Koenderink expansion order.
-    #[arg(long, default_value_t = 8)]
-    pub order: usize,
-    /// Polynomial degree (Kurt's model).
-    #[arg(long, default_value_t = 7)]
-    pub degree: usize,
-}
-
-impl ModelOpts {
-    /// As a model configuration.
-    pub fn config(&self) -> brdf_models::ModelConfig {
-        brdf_models::ModelConfig {
-            channels: self.channels,
-            lobes: self.lobes,
-            order: self.order,
-            degree: self.degree,
-        }
-    }
 }

@@ -1,13 +1,34 @@
-//! The `brdf` command. `brdf --help` lists the subcommands; every subcommand
-//! that reports numbers takes `--json`.
+//! # brdf-cli
+//!
+//! The `brdf` command. `brdf --help` lists the subcommands; every
+//! subcommand that reports numbers takes `--json`.
+//!
+//! ## Layering
+//!
+//! The top of the workspace: clap argument types ([`cli`], [`opts`]) and
+//! one thin function per subcommand ([`commands`]) that calls the library
+//! crates — `brdf-fit` (fitting, selection, batches, resampling),
+//! `brdf-io` (reading and describing data), `brdf-export` (materials),
+//! `brdf-render` (spheres) and `brdf-study` (the reproduction, NIST). No
+//! fitting, rendering, table or file-format logic lives here. `main`
+//! and [`cli`] know the commands; the commands know only [`opts`],
+//! [`output`] and [`error`].
 
 use std::process::ExitCode;
 
-use brdf_study::cli::{Cli, Command};
-use brdf_study::{StudyError, commands};
 use clap::Parser;
 
-fn run() -> Result<(), StudyError> {
+#[macro_use]
+mod output;
+mod cli;
+mod commands;
+mod error;
+mod opts;
+
+use cli::{Cli, Command};
+use error::CliError;
+
+fn run() -> Result<(), CliError> {
     let cli = Cli::parse();
     match cli.command {
         Command::Models(a) => commands::models::run(&a),
@@ -28,9 +49,7 @@ fn main() -> ExitCode {
     match run() {
         Ok(()) => ExitCode::SUCCESS,
         // The reader of our output went away (`brdf info x | head`): done.
-        Err(StudyError::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => {
-            ExitCode::SUCCESS
-        }
+        Err(e) if e.is_broken_pipe() => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

@@ -5,12 +5,12 @@
 //! it), with the conversion error printed and written into the file;
 //! `--exact` refuses conversions.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use brdf_export::{ConvertOptions, Exported, Target, export, export_or_convert};
-use brdf_models::saved_model::{Provenance, SavedModel};
+use brdf_export::file::ExportJob;
+use brdf_export::{ConvertOptions, Exported, Target};
 
-use crate::StudyError;
+use crate::error::CliError;
 
 /// Arguments of `brdf export`.
 #[derive(Debug, clap::Args)]
@@ -48,41 +48,22 @@ pub struct ExportArgs {
 }
 
 /// Run `brdf export`.
-pub fn run(args: &ExportArgs) -> Result<(), StudyError> {
-    let target: Target = args.to.parse()?;
-    let saved = SavedModel::load(&args.from)?;
-    let model = saved
-        .build()
-        .map_err(|e| StudyError::Usage(format!("{}: {e}", args.from.display())))?;
-    let exported = if args.exact {
-        Exported {
-            text: export(model.as_ref(), target)?,
-            conversion: None,
-        }
-    } else {
-        let opts = ConvertOptions {
+pub fn run(args: &ExportArgs) -> Result<(), CliError> {
+    let job = ExportJob {
+        from: args.from.clone(),
+        target: args.to.parse()?,
+        out: args.out.clone(),
+        exact: args.exact,
+        convert: ConvertOptions {
             via: args.via.clone(),
             pairs: args.pairs,
             limit_deg: args.limit,
             starts: args.starts,
-        };
-        export_or_convert(model.as_ref(), target, &opts)?
+        },
+        save_converted: args.save_converted.clone(),
     };
-    match (&exported.conversion, &args.save_converted) {
-        (Some(c), Some(path)) => save_converted(c, &saved, path)?,
-        (None, Some(_)) => {
-            return Err(StudyError::Usage(format!(
-                "--save-converted: `{}` is written to {target} exactly, nothing was converted",
-                saved.model
-            )));
-        }
-        _ => {}
-    }
-    std::fs::write(&args.out, &exported.text).map_err(|source| StudyError::Io {
-        path: args.out.display().to_string(),
-        source,
-    })?;
-    report(args, &saved.model, target, &exported)
+    let done = brdf_export::file::run(&job)?;
+    report(args, &done.model, job.target, &done.exported)
 }
 
 fn report(
@@ -90,7 +71,7 @@ fn report(
     model: &str,
     target: Target,
     exported: &Exported,
-) -> Result<(), StudyError> {
+) -> Result<(), CliError> {
     let out = args.out.display();
     if args.json {
         let conversion = exported.conversion.as_ref().map(|c| {
@@ -112,35 +93,4 @@ fn report(
         None => say!("wrote {out}: `{model}` exactly as {target}"),
         Some(c) => say!("wrote {out}: {}", c.note()),
     }
-}
-
-fn save_converted(
-    c: &brdf_export::Conversion,
-    source: &SavedModel,
-    path: &Path,
-) -> Result<(), StudyError> {
-    let channel_names: Vec<String> = match c.model.channels() {
-        1 => vec!["grey".into()],
-        _ => vec!["r".into(), "g".into(), "b".into()],
-    };
-    let provenance = Provenance {
-        data: source.provenance.data.clone(),
-        samples_used: c.error.samples,
-        samples_present: c.error.samples,
-        objective: "ngan".into(),
-        limit_deg: c.error.limit_deg,
-        error: c.error.ngan_l2,
-        solver: format!("conversion by fitting from `{}`", c.source),
-        software: format!("brdf-export {}", env!("CARGO_PKG_VERSION")),
-    };
-    SavedModel::capture(
-        c.model.as_ref(),
-        &c.config,
-        &c.pairs,
-        None,
-        &channel_names,
-        provenance,
-    )?
-    .save(path)?;
-    Ok(())
 }

@@ -8,9 +8,19 @@
 use brdf_core::{Parametric, SampleSet};
 use brdf_fit::{BoxedModel, FitOptions, FitSummary, Objective, Solver};
 use brdf_models::{ModelConfig, build_for};
+use serde::Deserialize;
 
-use super::spec::LafortuneBox;
 use crate::StudyError;
+
+/// Lafortune's box for the thesis tables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LafortuneBox {
+    /// Kurt's: `Cxy` in `[-1, 0]`, `Cz` in `[0, 1]`.
+    Kurt,
+    /// The catalogue's: both in `[-1, 1]` (back-scattering lobes allowed).
+    Wide,
+}
 
 /// The nine models of Table 9.2: `(label, catalogue name, config)`, with
 /// `lobes` lobes for Lafortune and Cook-Torrance.
@@ -116,60 +126,9 @@ pub fn fit_model(
     Ok((model, summary))
 }
 
-/// Names of the non-linear parameters a fit leaves undetermined: the
-/// shape parameters of a specular lobe whose strengths (`ks`, `ks1`,
-/// `ks_r`, ...) are all zero — the model does not depend on them then.
-pub fn undetermined(summary: &FitSummary) -> Vec<String> {
-    fn strength(n: &str) -> Option<&str> {
-        let n = n.split('_').next().unwrap_or(n);
-        n.strip_prefix("ks")
-            .filter(|r| r.chars().all(|c| c.is_ascii_digit()))
-    }
-    let mut lobes: Vec<(String, bool)> = Vec::new();
-    for p in summary.parameters.iter() {
-        if let Some(k) = strength(&p.name) {
-            let off = p.value.abs() <= 0.0;
-            match lobes.iter_mut().find(|(l, _)| l == k) {
-                Some(e) => e.1 &= off,
-                None => lobes.push((k.to_string(), off)),
-            }
-        }
-    }
-    summary
-        .parameters
-        .iter()
-        .filter(|p| !p.projected && strength(&p.name).is_none())
-        // The coupled Ashikhmin-Shirley diffuse term depends on F0 too.
-        .filter(|p| !(summary.model.contains("coupled") && p.name.starts_with("f0")))
-        .filter(|p| {
-            let lobe = lobe_number(&p.name);
-            lobes
-                .iter()
-                .any(|(l, off)| *off && (l.is_empty() || *l == lobe))
-        })
-        .map(|p| p.name.clone())
-        .collect()
-}
-
-/// Trailing lobe number of a shape parameter (`m1`, `f0_1`, `cxy2`): the
-/// digits after the last letter or underscore, "" when the name has none
-/// besides a built-in digit (`f0`).
-fn lobe_number(name: &str) -> String {
-    if let Some((_, k)) = name.rsplit_once('_') {
-        if k.chars().all(|c| c.is_ascii_digit()) {
-            return k.to_string();
-        }
-    }
-    if name == "f0" {
-        return String::new();
-    }
-    let digits: String = name
-        .chars()
-        .rev()
-        .take_while(char::is_ascii_digit)
-        .collect();
-    digits.chars().rev().collect()
-}
+// Moved to brdf-fit (the CLI's fit report names them too); the tables
+// of the study use them from here.
+pub use brdf_fit::report_text::undetermined;
 
 #[cfg(test)]
 mod tests {

@@ -1,0 +1,94 @@
+//! `brdf batch`: fit every material x model of a database, resumable
+//! and shardable; the runner is [`brdf_fit::batch`] (see there for
+//! `fits.jsonl`, shards and merging).
+
+use std::path::PathBuf;
+
+use brdf_fit::Channels;
+use brdf_fit::batch::{BatchOptions, Shard};
+
+use crate::error::CliError;
+
+/// Arguments of `brdf batch`.
+#[derive(Debug, clap::Args)]
+pub struct BatchArgs {
+    /// Data: folders, files, or a CUReT `abrdf.dat` (every sample).
+    #[arg(long, num_args = 1..)]
+    pub data: Vec<String>,
+    /// Models, comma-separated (catalogue names, forgiving).
+    #[arg(long, value_delimiter = ',')]
+    pub models: Vec<String>,
+    /// Output folder (fits.jsonl, summary.csv, summary.md).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// The `I`-th of `N` shares (`1/4` ... `4/4`).
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Join the `fits.jsonl` of these folders into `--out` instead of fitting.
+    #[arg(long, num_args = 1..)]
+    pub merge: Vec<PathBuf>,
+    /// grey (mean of the channels) or rgb.
+    #[arg(long, default_value = "rgb")]
+    pub channels: String,
+    /// Angle limit (degrees).
+    #[arg(long, default_value_t = 80.0)]
+    pub limit: f64,
+    /// Multi-start count.
+    #[arg(long, default_value_t = 12)]
+    pub starts: usize,
+}
+
+/// Run `brdf batch`.
+pub fn run(args: &BatchArgs) -> Result<(), CliError> {
+    if !args.merge.is_empty() {
+        return Ok(brdf_fit::batch::merge(&args.merge, &args.out)?);
+    }
+    if args.models.is_empty() || args.data.is_empty() {
+        return Err(CliError::Usage(
+            "brdf batch needs --data PATH... and --models A,B,... (or --merge DIR...)".into(),
+        ));
+    }
+    let channels = match args.channels.as_str() {
+        "rgb" => Channels::All,
+        "grey" => Channels::Grey,
+        other => {
+            return Err(CliError::Usage(format!(
+                "--channels {other}: expected grey or rgb"
+            )));
+        }
+    };
+    let opts = BatchOptions {
+        data: args.data.clone(),
+        models: args.models.clone(),
+        out: args.out.clone(),
+        shard: args.shard.as_deref().map_or(Ok(Shard::ALL), Shard::parse)?,
+        channels,
+        limit_deg: args.limit,
+        starts: args.starts,
+    };
+    let fits = opts.out.join(brdf_fit::batch::FITS);
+    let bar = indicatif::ProgressBar::hidden();
+    let started = |todo: usize, in_share: usize| {
+        eprintln!(
+            "brdf batch: {in_share} fits in this share, {} already in {}, {todo} to run",
+            in_share - todo,
+            fits.display()
+        );
+        bar.set_length(todo as u64);
+        bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+    };
+    let done = brdf_fit::batch::run(&opts, started, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    for f in &done.failures {
+        eprintln!("brdf batch: {f}");
+    }
+    if done.failures.is_empty() {
+        return Ok(());
+    }
+    Err(CliError::Usage(format!(
+        "{} of {} fits failed (listed above); the others are in {}",
+        done.failures.len(),
+        done.in_share - done.already_done,
+        done.fits_path.display()
+    )))
+}

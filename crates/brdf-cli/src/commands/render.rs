@@ -1,0 +1,94 @@
+//! `brdf render`: a labelled sphere of a saved model (`--model FILE`) or of
+//! dense measured data (`--data PATH`, MERL or RGL), or both side by side
+//! with their difference when both are given. Lit by one directional light
+//! (`--light THETA,PHI` in degrees), seen from `+z`, tone mapped with the
+//! exposure stated in the image.
+
+use std::path::PathBuf;
+
+use brdf_core::nalgebra::Vector3;
+use brdf_fit::data_name;
+use brdf_models::saved_model::SavedModel;
+use brdf_render::side_by_side::{Side, SideBySide};
+
+use crate::error::CliError;
+use crate::opts::parse_direction;
+
+/// Arguments of `brdf render`.
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    /// A model saved by `brdf fit --save FILE`.
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+    /// Dense measured data (MERL `.binary`, RGL `.bsdf`).
+    #[arg(long)]
+    pub data: Option<String>,
+    /// Light direction `THETA,PHI` in degrees (polar angle from the view axis).
+    #[arg(long, default_value = "45,45", allow_hyphen_values = true)]
+    pub light: String,
+    /// Sphere size in pixels (16 to 2048).
+    #[arg(long, default_value_t = 256)]
+    pub size: usize,
+    /// Output PNG.
+    pub out: PathBuf,
+}
+
+fn light(s: &str) -> Result<Vector3<f64>, CliError> {
+    let d = parse_direction(s, true, "--light")?;
+    if d.vector().z <= 0.0 {
+        return Err(CliError::Usage(format!(
+            "--light {s}: the light must be above the horizon (THETA < 90)"
+        )));
+    }
+    Ok(*d.vector())
+}
+
+/// Run `brdf render`: load what was named, let
+/// [`brdf_render::side_by_side`] render and lay it out.
+pub fn run(args: &RenderArgs) -> Result<(), CliError> {
+    if !(16..=2048).contains(&args.size) {
+        return Err(CliError::Usage(format!(
+            "--size {}: must be 16 to 2048 pixels",
+            args.size
+        )));
+    }
+    if args.data.is_none() && args.model.is_none() {
+        return Err(CliError::Usage(
+            "give --model FILE, --data PATH or both".into(),
+        ));
+    }
+    let light = light(&args.light)?;
+    let dense = match &args.data {
+        Some(spec) => match brdf_io::load_dense(spec)? {
+            Some(d) => Some((data_name(spec), d)),
+            None => {
+                return Err(CliError::Usage(format!(
+                    "--data {}: scattered samples cannot be rendered without interpolating them; give a dense file (MERL .binary, RGL .bsdf)",
+                    data_name(spec)
+                )));
+            }
+        },
+        None => None,
+    };
+    let model = match &args.model {
+        Some(path) => Some((path, SavedModel::load(path)?.build()?)),
+        None => None,
+    };
+    let picture = SideBySide {
+        measured: dense.as_ref().map(|(name, d)| Side {
+            brdf: d.as_ref(),
+            column: format!("measured: {name}"),
+            title: name.clone(),
+        }),
+        model: model.as_ref().map(|(path, m)| Side {
+            brdf: m.as_ref(),
+            column: format!("model: {}", m.name()),
+            title: format!("{} ({})", m.name(), data_name(&path.display().to_string())),
+        }),
+        light,
+        light_label: args.light.clone(),
+        size: args.size,
+    };
+    picture.write_png(&args.out)?;
+    say!("wrote {}", args.out.display())
+}

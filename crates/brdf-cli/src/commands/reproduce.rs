@@ -1,0 +1,65 @@
+//! `brdf reproduce`: the study. Runs the parts of [`brdf_study::parts`]
+//! (all by default; `--only NAMES` or a `--spec FILE` selects), writes
+//! their tables, plots and renderings into the output folder, and
+//! generates its `README.md`. Nothing outside the selection is loaded or
+//! fitted.
+//!
+//! Data: `--data DIR` or `BRDF_DATA`; without measured data it runs on the
+//! built-in synthetic materials into `OUT/synthetic/` (never over measured
+//! results) and says so in every table.
+
+use std::path::PathBuf;
+
+use crate::error::CliError;
+use brdf_study::reproduce::Reproduce;
+
+/// Arguments of `brdf reproduce`.
+#[derive(Debug, clap::Args)]
+pub struct ReproduceArgs {
+    /// Folder with the measured data (defaults to `$BRDF_DATA`).
+    #[arg(long)]
+    pub data: Option<PathBuf>,
+    /// Output folder.
+    #[arg(long, default_value = "results")]
+    pub out: PathBuf,
+    /// Run only these parts (comma-separated; `brdf reproduce --list` names them).
+    #[arg(long, value_delimiter = ',')]
+    pub only: Vec<String>,
+    /// A TOML file selecting tables, materials, models, degrees, lobes,
+    /// metrics, limits and Lafortune's box (see the module docs of `brdf_study::context::spec`).
+    #[arg(long)]
+    pub spec: Option<PathBuf>,
+    /// Fit Lafortune in the wide box (Cxy, Cz in [-1, 1]) instead of Kurt's.
+    #[arg(long)]
+    pub lafortune_wide: bool,
+    /// Worker threads for the fits (default: all cores). Results are the
+    /// same for any count.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// List the parts and exit.
+    #[arg(long)]
+    pub list: bool,
+}
+
+/// Run `brdf reproduce`.
+pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
+    if args.list {
+        for (name, about) in brdf_study::reproduce::list() {
+            say!("{name:16} {about}")?;
+        }
+        return Ok(());
+    }
+    let done = brdf_study::reproduce::run(&Reproduce {
+        data: args.data.clone(),
+        out: args.out.clone(),
+        only: args.only.clone(),
+        spec: args.spec.clone(),
+        lafortune_wide: args.lafortune_wide,
+        threads: args.threads,
+    })?;
+    say!(
+        "wrote {} entries into {} (listed in its README.md)",
+        done.written,
+        done.out.display()
+    )
+}

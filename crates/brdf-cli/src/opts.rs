@@ -1,0 +1,75 @@
+//! Options and argument parsers shared by several commands. Imports no
+//! command, so every command may use it.
+
+use brdf_core::Direction;
+
+use crate::error::CliError;
+
+/// Structural options shared by every command that builds a model.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ModelOpts {
+    /// Colour channels of the model (1 grey, 3 RGB).
+    #[arg(long, default_value_t = 1)]
+    pub channels: usize,
+    /// Specular lobes (Lafortune, Cook-Torrance).
+    #[arg(long, default_value_t = 1)]
+    pub lobes: usize,
+    /// Koenderink expansion order.
+    #[arg(long, default_value_t = 8)]
+    pub order: usize,
+    /// Polynomial degree (Kurt's model).
+    #[arg(long, default_value_t = 7)]
+    pub degree: usize,
+}
+
+impl ModelOpts {
+    /// As a model configuration.
+    pub fn config(&self) -> brdf_models::ModelConfig {
+        brdf_models::ModelConfig {
+            channels: self.channels,
+            lobes: self.lobes,
+            order: self.order,
+            degree: self.degree,
+        }
+    }
+}
+
+/// Parse `name=value,name=value`.
+pub fn parse_assignments(s: &str) -> Result<Vec<(String, f64)>, CliError> {
+    s.split(',')
+        .map(str::trim)
+        .filter(|t| !t.is_empty())
+        .map(|t| {
+            let (k, v) = t.split_once('=').ok_or_else(|| {
+                CliError::Usage(format!("parameter `{t}` is not of the form name=value"))
+            })?;
+            let x: f64 = v.trim().parse().map_err(|_| {
+                CliError::Usage(format!(
+                    "parameter `{}`: `{}` is not a number",
+                    k.trim(),
+                    v.trim()
+                ))
+            })?;
+            Ok((k.trim().to_string(), x))
+        })
+        .collect()
+}
+
+/// Parse `THETA,PHI` (radians, or degrees when `degrees`) into a direction;
+/// `what` names the argument in errors.
+pub fn parse_direction(s: &str, degrees: bool, what: &str) -> Result<Direction, CliError> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 2 {
+        return Err(CliError::Usage(format!("{what} `{s}` must be THETA,PHI")));
+    }
+    let mut a = [0.0f64; 2];
+    for (i, p) in parts.iter().enumerate() {
+        a[i] = p
+            .parse()
+            .map_err(|_| CliError::Usage(format!("{what}: `{p}` is not a number")))?;
+    }
+    if degrees {
+        a = [a[0].to_radians(), a[1].to_radians()];
+    }
+    Ok(Direction::from_spherical(a[0], a[1])?)
+}
