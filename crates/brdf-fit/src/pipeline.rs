@@ -500,11 +500,26 @@ fn fit_nonlinear(
         Ok(p)
     };
     let search = opts.search_lm();
+    // Models without linear parameters are searched on all parameters
+    // coarse-to-fine like the projected ones (starts on the subsample are
+    // already full parameter vectors); the log objective keeps the full
+    // search (its problem wraps the full-data one).
+    let coarse_full = !use_varpro
+        && mp.linear_indices().is_empty()
+        && opts.objective != Objective::Log
+        && data.len() > COARSE_ABOVE;
     let ms = if use_varpro {
-        let coarse = coarse_starts(model, data, scales, &starts, &nl_box, opts)?;
+        let coarse = coarse_starts(model, data, scales, &starts, |sub, s| {
+            bounded_least_squares(&VarPro::new(sub, true), s, &nl_box, &search)
+        })?;
         multistart(&coarse, |s| {
             bounded_least_squares(&VarPro::new(&mp, true), s, &nl_box, &search)
         })?
+    } else if coarse_full {
+        let coarse = coarse_starts(model, data, scales, &starts, |sub, s| {
+            bounded_least_squares(sub, s, &full, &search)
+        })?;
+        multistart(&coarse, |s| bounded_least_squares(problem, s, &full, &search))?
     } else {
         multistart(&starts, |s| {
             let p0 = project(s)?;
@@ -522,16 +537,7 @@ fn fit_nonlinear(
             evaluations: ms.best.evaluations + polish.evaluations,
             ..polish
         };
-        let stages = if data.len() > COARSE_ABOVE {
-            format!(
-                "{} Halton starts on a {}-sample stratified subsample, the best {} refined on all samples",
-                starts.len(),
-                data.len().div_ceil(data.len().div_ceil(COARSE_SAMPLES)),
-                POLISHED_STARTS.min(starts.len())
-            )
-        } else {
-            format!("{} Halton starts", starts.len())
-        };
+        let stages = search_stages(data.len(), starts.len());
         (
             rep.params.clone(),
             rep,
@@ -550,13 +556,33 @@ fn fit_nonlinear(
         (
             rep.params.clone(),
             rep,
-            format!(
-                "bounded LM on all parameters, {} Halton starts",
-                starts.len()
-            ),
+            if coarse_full {
+                format!(
+                    "bounded LM on all parameters, {}",
+                    search_stages(data.len(), starts.len())
+                )
+            } else {
+                format!(
+                    "bounded LM on all parameters, {} Halton starts",
+                    starts.len()
+                )
+            },
         )
     };
     Ok((p, rep, info, how))
+}
+
+/// The multi-start stages in words.
+fn search_stages(samples: usize, starts: usize) -> String {
+    if samples > COARSE_ABOVE {
+        format!(
+            "{starts} Halton starts on a {}-sample stratified subsample, the best {} refined on all samples",
+            samples.div_ceil(samples.div_ceil(COARSE_SAMPLES)),
+            POLISHED_STARTS.min(starts)
+        )
+    } else {
+        format!("{starts} Halton starts")
+    }
 }
 
 /// Sample sets larger than this are searched coarse-to-fine.
@@ -572,14 +598,19 @@ const POLISHED_STARTS: usize = 3;
 /// own order, which for gridded data covers the grid evenly), and the
 /// distinct best few of those optima become the starts on all samples: the
 /// coarse search finds the basin, the full data only refines it.
-fn coarse_starts(
+///
+/// `solve` solves one start on the subsample's problem (on the non-linear
+/// parameters by projection, or on all of them).
+fn coarse_starts<S>(
     model: &dyn Parametric,
     data: &SampleSet,
     scales: &[f64],
     starts: &[Vec<f64>],
-    nl_box: &Constraints,
-    opts: &FitOptions,
-) -> Result<Vec<Vec<f64>>, FitError> {
+    solve: S,
+) -> Result<Vec<Vec<f64>>, FitError>
+where
+    S: Fn(&ModelProblem<'_>, &[f64]) -> Result<SolverReport, brdf_solve::SolveError> + Sync,
+{
     if data.len() <= COARSE_ABOVE {
         return Ok(starts.to_vec());
     }
@@ -592,9 +623,7 @@ fn coarse_starts(
     use rayon::prelude::*;
     let mut found: Vec<SolverReport> = starts
         .par_iter()
-        .filter_map(|s| {
-            bounded_least_squares(&VarPro::new(&mp, true), s, nl_box, &opts.search_lm()).ok()
-        })
+        .filter_map(|s| solve(&mp, s).ok())
         .filter(|r| r.ssr.is_finite())
         .collect();
     found.sort_by(|a, b| a.ssr.total_cmp(&b.ssr));
