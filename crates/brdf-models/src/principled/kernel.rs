@@ -26,9 +26,8 @@ use brdf_core::DirPairs;
 use brdf_core::fresnel::fresnel_dielectric_d_eta;
 use nalgebra::Vector3;
 
-use super::{schlick_weight, separable_g1};
+use super::schlick_weight;
 use crate::dual_model::MAX_CHANNELS;
-use crate::ggx::{Masking, ggx_specular};
 
 /// Number of scalar parameters after the per-channel base colour.
 const NS: usize = 9;
@@ -61,11 +60,19 @@ struct Hoisted {
     day_dr: f64,
     dax_da: f64,
     day_da: f64,
-    /// Clear-coat GTR1: `a_c^2`, `a_c^2 - 1`, `1/(pi ln a_c^2)`, and
-    /// `d a_c^2 / d clearcoat_gloss`.
-    a2: f64,
+    /// Width factors of the GGX lobe: `ax^2`, `ay^2`, `1/ax`, `1/ay`,
+    /// `1/(pi ax ay)`.
+    ax2: f64,
+    ay2: f64,
+    inv_ax: f64,
+    inv_ay: f64,
+    inv_pi_axay: f64,
+    /// Clear-coat GTR1 = `(a_c^2 - 1) / (pi ln a_c^2 q)`,
+    /// `q = 1 + (a_c^2 - 1) (N.H)^2`: `a_c^2 - 1`, `(a_c^2 - 1)/(pi ln a_c^2)`,
+    /// `d ln GTR1 / d a_c^2 + (N.H)^2 / q` and `d a_c^2 / d clearcoat_gloss`.
     a2m1: f64,
-    inv_pi_ln: f64,
+    gtr1_num: f64,
+    dln_gtr1: f64,
     da2_dgloss: f64,
 }
 
@@ -133,9 +140,14 @@ impl Hoisted {
             day_dr: ky * 2.0 * rough * aspect,
             dax_da: -kx * r2 * dasp / (aspect * aspect),
             day_da: ky * r2 * dasp,
-            a2,
+            ax2: ax.max(0.001) * ax.max(0.001),
+            ay2: ay.max(0.001) * ay.max(0.001),
+            inv_ax: 1.0 / ax.max(0.001),
+            inv_ay: 1.0 / ay.max(0.001),
+            inv_pi_axay: 1.0 / (PI * ax.max(0.001) * ay.max(0.001)),
             a2m1: a2 - 1.0,
-            inv_pi_ln: 1.0 / (PI * a2.ln()),
+            gtr1_num: (a2 - 1.0) / (PI * a2.ln()),
+            dln_gtr1: 1.0 / (a2 - 1.0) - 1.0 / (a2 * a2.ln()),
             da2_dgloss: 2.0 * a_c * (0.001 - 0.1),
         }
     }
@@ -167,13 +179,60 @@ struct Terms {
     dk: f64,
 }
 
+/// The separable-Smith GGX lobe `D G / (4 N.L N.V)` at the hoisted widths,
+/// its width derivatives, the half vector, and the clear coat's
+/// `G1(L) G1(V)` at `alpha = 0.25` (as [`crate::ggx::ggx_specular`] and
+/// `separable_g1`, with the divisions shared: `1 + Lambda = (1 + r)/2`,
+/// `r = sqrt(1 + t)`, so `G1 = 2 / (1 + r)`, and one reciprocal of
+/// `N.L N.V` gives both `1/(N.W)^2` and the lobe's `1/(4 N.L N.V)`).
+struct Lobe {
+    h: [f64; 3],
+    value: f64,
+    d_ax: f64,
+    d_ay: f64,
+    g_cc: f64,
+}
+
+#[inline]
+fn lobe(k: &Hoisted, l: &Vector3<f64>, v: &Vector3<f64>) -> Lobe {
+    let s = l + v;
+    let inv_len = 1.0 / s.norm();
+    let h = [s.x * inv_len, s.y * inv_len, s.z * inv_len];
+    let x2 = h[0] * h[0] / k.ax2;
+    let y2 = h[1] * h[1] / k.ay2;
+    let inv_s = 1.0 / (x2 + y2 + h[2] * h[2]);
+    let d = k.inv_pi_axay * inv_s * inv_s;
+    let dlx = -k.inv_ax + 4.0 * x2 * k.inv_ax * inv_s;
+    let dly = -k.inv_ay + 4.0 * y2 * k.inv_ay * inv_s;
+    let q = 1.0 / (l.z * v.z);
+    let (il2, iv2) = (q * q * v.z * v.z, q * q * l.z * l.z);
+    let (lx2, ly2, vx2, vy2) = (l.x * l.x, l.y * l.y, v.x * v.x, v.y * v.y);
+    let rl = (1.0 + (k.ax2 * lx2 + k.ay2 * ly2) * il2).sqrt();
+    let rv = (1.0 + (k.ax2 * vx2 + k.ay2 * vy2) * iv2).sqrt();
+    // G1 dLambda/dt = 2/(1 + r) * 1/(4 r); dt/dax = 2 ax wx^2 / wz^2.
+    let (cl, cv) = (0.5 / (rl * (1.0 + rl)), 0.5 / (rv * (1.0 + rv)));
+    let g = 4.0 / ((1.0 + rl) * (1.0 + rv));
+    let gx = 2.0 * k.ax * (cl * lx2 * il2 + cv * vx2 * iv2);
+    let gy = 2.0 * k.ay * (cl * ly2 * il2 + cv * vy2 * iv2);
+    let value = d * g * 0.25 * q;
+    let rcl = (1.0 + 0.0625 * (lx2 + ly2) * il2).sqrt();
+    let rcv = (1.0 + 0.0625 * (vx2 + vy2) * iv2).sqrt();
+    Lobe {
+        h,
+        value,
+        d_ax: value * (dlx - gx),
+        d_ay: value * (dly - gy),
+        g_cc: 4.0 / ((1.0 + rcl) * (1.0 + rcv)),
+    }
+}
+
 impl Terms {
     #[inline]
-    fn new(h: &Hoisted, l: &Vector3<f64>, v: &Vector3<f64>) -> Option<Self> {
-        let g = ggx_specular(l, v, h.ax, h.ay, Masking::Separable)?;
-        let cos_d = v.dot(&g.h).clamp(0.0, 1.0);
+    fn new(k: &Hoisted, l: &Vector3<f64>, v: &Vector3<f64>) -> Self {
+        let g = lobe(k, l, v);
+        let cos_d = (v.x * g.h[0] + v.y * g.h[1] + v.z * g.h[2]).clamp(0.0, 1.0);
         let w = schlick_weight(cos_d);
-        let (fdl, dfdl) = fresnel_dielectric_d_eta(cos_d, h.eta);
+        let (fdl, dfdl) = fresnel_dielectric_d_eta(cos_d, k.eta);
         let (s, ds_ax, ds_ay) = if fdl > 0.0 {
             (g.value, g.d_ax, g.d_ay)
         } else {
@@ -182,16 +241,15 @@ impl Terms {
         let (wl, wv) = (schlick_weight(l.z), schlick_weight(v.z));
         let f_diff = (1.0 - 0.5 * wl) * (1.0 - 0.5 * wv);
         let c2 = 2.0 * cos_d * cos_d;
-        let rr = h.rough * c2;
+        let rr = k.rough * c2;
         let dg = FRAC_1_PI * (f_diff + rr * (wl + wv + wl * wv * (rr - 1.0)));
         let ddg = FRAC_1_PI * c2 * (wl + wv + wl * wv * (2.0 * rr - 1.0));
-        // GTR1 = (a2 - 1) / (pi ln a2 q), q = 1 + (a2 - 1) nh^2.
-        let nh2 = g.h.z * g.h.z;
-        let q = 1.0 + h.a2m1 * nh2;
-        let gtr1 = h.a2m1 * h.inv_pi_ln / q;
-        let dgtr1 = gtr1 * (1.0 / h.a2m1 - 1.0 / (h.a2 * h.a2.ln()) - nh2 / q);
-        let coat = 0.25 * (0.04 + 0.96 * w) * separable_g1(l, 0.25) * separable_g1(v, 0.25);
-        Some(Terms {
+        let nh2 = g.h[2] * g.h[2];
+        let iq = 1.0 / (1.0 + k.a2m1 * nh2);
+        let gtr1 = k.gtr1_num * iq;
+        let dgtr1 = gtr1 * (k.dln_gtr1 - nh2 * iq);
+        let coat = 0.25 * (0.04 + 0.96 * w) * g.g_cc;
+        Terms {
             w,
             s,
             ds_ax,
@@ -201,8 +259,8 @@ impl Terms {
             dg,
             ddg,
             k: coat * gtr1,
-            dk: coat * dgtr1 * h.da2_dgloss,
-        })
+            dk: coat * dgtr1 * k.da2_dgloss,
+        }
     }
 }
 
@@ -254,11 +312,7 @@ pub(crate) fn batch(
     let mut jac = jac;
     for j in 0..n {
         let (l, v) = (pairs.l(j), pairs.v(j));
-        let terms = if l.z > 0.0 && v.z > 0.0 {
-            Terms::new(&h, &l, &v)
-        } else {
-            None
-        };
+        let terms = (l.z > 0.0 && v.z > 0.0).then(|| Terms::new(&h, &l, &v));
         for c in 0..nc {
             let i = c * n + j;
             let row = jac.as_deref_mut().map(|g| &mut g[i * np..(i + 1) * np]);
