@@ -340,7 +340,7 @@ pub(crate) mod tests {
     pub(crate) fn pairs() -> DirPairs {
         let mut pairs = DirPairs::with_capacity(400);
         let dir = |t: f64, p: f64| Vector3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
-        let thetas = [0.0, 0.3, 0.8, 1.2, 1.5, 1.570_796];
+        let thetas = [0.0, 0.3, 0.8, 1.2, 1.5, std::f64::consts::FRAC_PI_2 - 1e-6];
         for &ti in &thetas {
             for &to in &thetas {
                 for k in 0..6 {
