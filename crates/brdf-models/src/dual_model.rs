@@ -4,7 +4,7 @@
 //! parameter derivatives. The Disney principled and glTF models are built
 //! this way.
 
-use brdf_core::{Brdf, ParamError, ParamSpec, Parametric};
+use brdf_core::{Brdf, DirPairs, ParamError, ParamSpec, Parametric};
 use nalgebra::Vector3;
 
 use crate::dual::{Dual, MAX_DERIV, seed};
@@ -29,6 +29,21 @@ pub trait DualFormula: Clone + Send + Sync + 'static {
     /// Whether `f(L, V) = f(V, L)`.
     fn reciprocal() -> bool {
         true
+    }
+    /// A batch kernel with hand-written derivatives, for the fits: values
+    /// `out[c * n + j]` and, with `jac`, `jac[(c * n + j) * n_params + k]`
+    /// on every pair (0 below the horizon), as [`Parametric::eval_batch_at`]
+    /// and [`Parametric::eval_grad_batch_at`]. Returns `false` (the
+    /// default) when the formula has none; the duals are then evaluated
+    /// pair by pair.
+    fn batch(
+        _p: &[f64],
+        _channels: usize,
+        _pairs: &DirPairs,
+        _out: &mut [f64],
+        _jac: Option<&mut [f64]>,
+    ) -> bool {
+        false
     }
 }
 
@@ -156,6 +171,35 @@ impl<F: DualFormula> Parametric for DualModel<F> {
             return;
         }
         self.value_and_gradient(p, l, v, out, grad);
+    }
+    fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
+        if F::batch(p, self.channels, pairs, out, None) {
+            return;
+        }
+        let (n, nc) = (pairs.len(), self.channels);
+        let mut buf = [0.0; MAX_CHANNELS];
+        for j in 0..n {
+            self.eval_at(p, &pairs.l(j), &pairs.v(j), &mut buf);
+            for c in 0..nc {
+                out[c * n + j] = buf[c];
+            }
+        }
+    }
+    fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
+        if F::batch(p, self.channels, pairs, out, Some(jac)) {
+            return;
+        }
+        let (n, nc, np) = (pairs.len(), self.channels, p.len());
+        let mut val = [0.0; MAX_CHANNELS];
+        let mut grad = vec![0.0; nc * np];
+        for j in 0..n {
+            self.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut val, &mut grad);
+            for c in 0..nc {
+                out[c * n + j] = val[c];
+                jac[(c * n + j) * np..(c * n + j + 1) * np]
+                    .copy_from_slice(&grad[c * np..(c + 1) * np]);
+            }
+        }
     }
     fn is_reciprocal(&self) -> bool {
         F::reciprocal()

@@ -56,10 +56,12 @@
 //! assert!((f[0] - expect).abs() < 1e-12 * expect);
 //! ```
 
+mod kernel;
+
 use std::f64::consts::FRAC_1_PI;
 
-use brdf_core::ParamSpec;
 use brdf_core::params::per_channel_specs;
+use brdf_core::{DirPairs, ParamSpec};
 use nalgebra::Vector3;
 
 use crate::dual::Dual;
@@ -159,6 +161,16 @@ impl DualFormula for GltfFormula {
         out: &mut [Dual<N>],
     ) {
         gltf_eval(p, nc, l, v, false, out)
+    }
+    fn batch(
+        p: &[f64],
+        nc: usize,
+        pairs: &DirPairs,
+        out: &mut [f64],
+        jac: Option<&mut [f64]>,
+    ) -> bool {
+        kernel::batch(p, nc, pairs, out, jac);
+        true
     }
 }
 

@@ -47,8 +47,10 @@
 //!
 //! No parameter is flagged linear: the colour enters through `C / lum` and
 //! `sheen`, `clearcoat` are added to a non-zero base. Derivatives are exact
-//! (forward-mode duals, [`crate::dual`]); they are 0 where `max(0.001, .)`
-//! clamps the widths (`roughness < 0.032`).
+//! (forward-mode duals, [`crate::dual`], at single points; the batch kernel
+//! the fits call has the same derivatives written out, with the
+//! parameter-only factors computed once per batch); they are 0 where
+//! `max(0.001, .)` clamps the widths (`roughness < 0.032`).
 //!
 //! Properties: reciprocal; non-negative; finite above the horizon. Not
 //! energy conserving on the whole box: the retro-reflective diffuse term
@@ -69,11 +71,13 @@
 //! assert!((f[0] - expect).abs() < 1e-10 * expect);
 //! ```
 
+pub(crate) mod kernel;
+
 use std::f64::consts::{FRAC_1_PI, PI};
 
-use brdf_core::ParamSpec;
 use brdf_core::fresnel::fresnel_dielectric_d_eta;
 use brdf_core::params::per_channel_specs;
+use brdf_core::{DirPairs, ParamSpec};
 use nalgebra::Vector3;
 
 use crate::dual::Dual;
@@ -227,6 +231,17 @@ impl DualFormula for PrincipledFormula {
             let c_sheen = 1.0 + sheen_tint * (ct - 1.0);
             out[c] = f * spec + diffuse * base[c] + sheen_w * c_sheen + coat;
         }
+    }
+
+    fn batch(
+        p: &[f64],
+        nc: usize,
+        pairs: &DirPairs,
+        out: &mut [f64],
+        jac: Option<&mut [f64]>,
+    ) -> bool {
+        kernel::batch(p, nc, pairs, out, jac);
+        true
     }
 }
 

@@ -1,0 +1,410 @@
+//! The batch kernel of [`super::Principled`] with hand-written derivatives.
+//!
+//! The dual-number formula ([`super::PrincipledFormula`]) stays the
+//! reference for single points; in a fit the same formula is evaluated
+//! millions of times, and forward-mode duals carry every one of the
+//! `nc + 9` derivatives through every operation, most of which touch only
+//! one or two parameters. Here:
+//!
+//! - the parameter-only factors (luminance, tints, `eta(specular)`,
+//!   `R0`, the GGX widths and their derivatives, the clear coat's GTR1
+//!   width) are computed once per call ([`Hoisted`]), not per sample;
+//! - per sample only the direction-dependent terms are evaluated (the GGX
+//!   lobe and its two width derivatives, the dielectric Fresnel and its
+//!   `eta` derivative, the diffuse, sheen and clear-coat factors);
+//! - the value is linear in most parameters given those terms, so each
+//!   derivative is a short closed form (see `channel_row`).
+//!
+//! The formulas are the ones of the dual formula, with the same clamps
+//! (`max(1e-12, specular)`, `max(0.001, width)`, the `F_dielectric > 0`
+//! mask, tint 1 where the luminance is 0) and derivative 0 on the clamped
+//! side, so values and derivatives agree with it to rounding (tested).
+
+use std::f64::consts::{FRAC_1_PI, PI};
+
+use brdf_core::DirPairs;
+use brdf_core::fresnel::fresnel_dielectric_d_eta;
+use nalgebra::Vector3;
+
+use super::schlick_weight;
+use crate::dual_model::MAX_CHANNELS;
+
+/// Number of scalar parameters after the per-channel base colour.
+const NS: usize = 9;
+
+/// Factors of the parameters alone, computed once per batch.
+struct Hoisted {
+    nc: usize,
+    base: [f64; MAX_CHANNELS],
+    /// `C_c / lum` (1 where `lum = 0`).
+    tint: [f64; MAX_CHANNELS],
+    /// `d lum / d C_k` and `1 / lum` (0 where `lum = 0`: the tint is then
+    /// the constant 1).
+    dlum: [f64; MAX_CHANNELS],
+    inv_lum: f64,
+    metallic: f64,
+    spec_tint: f64,
+    rough: f64,
+    sheen: f64,
+    sheen_tint: f64,
+    cc: f64,
+    /// `eta(specular)`, `d eta / d specular`, `R0`, `d R0 / d specular`.
+    eta: f64,
+    deta: f64,
+    r0: f64,
+    dr0: f64,
+    /// GGX widths and their derivatives in roughness and anisotropy.
+    ax: f64,
+    ay: f64,
+    dax_dr: f64,
+    day_dr: f64,
+    dax_da: f64,
+    day_da: f64,
+    /// Width factors of the GGX lobe: `ax^2`, `ay^2`, `1/ax`, `1/ay`,
+    /// `1/(pi ax ay)`.
+    ax2: f64,
+    ay2: f64,
+    inv_ax: f64,
+    inv_ay: f64,
+    inv_pi_axay: f64,
+    /// Clear-coat GTR1 = `(a_c^2 - 1) / (pi ln a_c^2 q)`,
+    /// `q = 1 + (a_c^2 - 1) (N.H)^2`: `a_c^2 - 1`, `(a_c^2 - 1)/(pi ln a_c^2)`,
+    /// `d ln GTR1 / d a_c^2 + (N.H)^2 / q` and `d a_c^2 / d clearcoat_gloss`.
+    a2m1: f64,
+    gtr1_num: f64,
+    dln_gtr1: f64,
+    da2_dgloss: f64,
+}
+
+impl Hoisted {
+    fn new(p: &[f64], nc: usize) -> Self {
+        let s = &p[nc..nc + NS];
+        let mut base = [0.0; MAX_CHANNELS];
+        base[..nc].copy_from_slice(&p[..nc]);
+        let mut dlum = [0.0; MAX_CHANNELS];
+        let lum = match nc {
+            1 => base[0],
+            3 => base[0] * 0.212671 + base[1] * 0.715160 + base[2] * 0.072169,
+            _ => base[..nc].iter().sum::<f64>() / nc as f64,
+        };
+        match nc {
+            1 => dlum[0] = 1.0,
+            3 => dlum[..3].copy_from_slice(&[0.212671, 0.715160, 0.072169]),
+            _ => dlum[..nc].fill(1.0 / nc as f64),
+        }
+        let inv_lum = if lum > 0.0 { 1.0 / lum } else { 0.0 };
+        let mut tint = [1.0; MAX_CHANNELS];
+        if lum > 0.0 {
+            (0..nc).for_each(|c| tint[c] = base[c] / lum);
+        }
+        let (spec, rough, aniso) = (s[1], s[3], s[4]);
+        // As the dual formula: sqrt kept away from 0 (derivative 0 below).
+        let (sc, dsc) = if spec >= 1e-12 {
+            (spec, 1.0)
+        } else {
+            (1e-12, 0.0)
+        };
+        let r = (sc * 0.08).sqrt();
+        let dr = dsc * 0.04 / r;
+        let eta = (1.0 + r) / (1.0 - r);
+        let deta = 2.0 / ((1.0 - r) * (1.0 - r)) * dr;
+        let r2 = rough * rough;
+        let aspect = (1.0 - aniso * 0.9).sqrt();
+        let dasp = if aspect > 0.0 { -0.45 / aspect } else { 0.0 };
+        let (ax, ay) = (r2 / aspect, r2 * aspect);
+        let (kx, ky) = (
+            f64::from(u8::from(ax >= 0.001)),
+            f64::from(u8::from(ay >= 0.001)),
+        );
+        let a_c = 0.1 + (0.001 - 0.1) * s[8];
+        let a2 = a_c * a_c;
+        Hoisted {
+            nc,
+            base,
+            tint,
+            dlum,
+            inv_lum,
+            metallic: s[0],
+            spec_tint: s[2],
+            rough,
+            sheen: s[5],
+            sheen_tint: s[6],
+            cc: s[7],
+            eta,
+            deta,
+            r0: r * r,
+            dr0: 2.0 * r * dr,
+            ax: ax.max(0.001),
+            ay: ay.max(0.001),
+            dax_dr: kx * 2.0 * rough / aspect,
+            day_dr: ky * 2.0 * rough * aspect,
+            dax_da: -kx * r2 * dasp / (aspect * aspect),
+            day_da: ky * r2 * dasp,
+            ax2: ax.max(0.001) * ax.max(0.001),
+            ay2: ay.max(0.001) * ay.max(0.001),
+            inv_ax: 1.0 / ax.max(0.001),
+            inv_ay: 1.0 / ay.max(0.001),
+            inv_pi_axay: 1.0 / (PI * ax.max(0.001) * ay.max(0.001)),
+            a2m1: a2 - 1.0,
+            gtr1_num: (a2 - 1.0) / (PI * a2.ln()),
+            dln_gtr1: 1.0 / (a2 - 1.0) - 1.0 / (a2 * a2.ln()),
+            da2_dgloss: 2.0 * a_c * (0.001 - 0.1),
+        }
+    }
+
+    /// `d tint_c / d C_k`.
+    #[inline]
+    fn dtint(&self, c: usize, k: usize) -> f64 {
+        let own = if c == k { self.inv_lum } else { 0.0 };
+        own - self.base[c] * self.dlum[k] * self.inv_lum * self.inv_lum
+    }
+}
+
+/// The direction-dependent terms of one sample.
+struct Terms {
+    /// Schlick weight of `V.H`.
+    w: f64,
+    /// The GGX lobe (0 under the Fresnel mask) and its width derivatives.
+    s: f64,
+    ds_ax: f64,
+    ds_ay: f64,
+    /// Dielectric Fresnel and its `eta` derivative.
+    fdl: f64,
+    dfdl: f64,
+    /// `(1 - m)`-free diffuse factor and its roughness derivative.
+    dg: f64,
+    ddg: f64,
+    /// Clear-coat factor (without `clearcoat`) and its gloss derivative.
+    k: f64,
+    dk: f64,
+}
+
+/// The separable-Smith GGX lobe `D G / (4 N.L N.V)` at the hoisted widths,
+/// its width derivatives, the half vector, and the clear coat's
+/// `G1(L) G1(V)` at `alpha = 0.25` (as [`crate::ggx::ggx_specular`] and
+/// `separable_g1`, with the divisions shared: `1 + Lambda = (1 + r)/2`,
+/// `r = sqrt(1 + t)`, so `G1 = 2 / (1 + r)`, and one reciprocal of
+/// `N.L N.V` gives both `1/(N.W)^2` and the lobe's `1/(4 N.L N.V)`).
+struct Lobe {
+    h: [f64; 3],
+    value: f64,
+    d_ax: f64,
+    d_ay: f64,
+    g_cc: f64,
+}
+
+#[inline]
+fn lobe(k: &Hoisted, l: &Vector3<f64>, v: &Vector3<f64>) -> Lobe {
+    let s = l + v;
+    let inv_len = 1.0 / s.norm();
+    let h = [s.x * inv_len, s.y * inv_len, s.z * inv_len];
+    let x2 = h[0] * h[0] / k.ax2;
+    let y2 = h[1] * h[1] / k.ay2;
+    let inv_s = 1.0 / (x2 + y2 + h[2] * h[2]);
+    let d = k.inv_pi_axay * inv_s * inv_s;
+    let dlx = -k.inv_ax + 4.0 * x2 * k.inv_ax * inv_s;
+    let dly = -k.inv_ay + 4.0 * y2 * k.inv_ay * inv_s;
+    let q = 1.0 / (l.z * v.z);
+    let (il2, iv2) = (q * q * v.z * v.z, q * q * l.z * l.z);
+    let (lx2, ly2, vx2, vy2) = (l.x * l.x, l.y * l.y, v.x * v.x, v.y * v.y);
+    let rl = (1.0 + (k.ax2 * lx2 + k.ay2 * ly2) * il2).sqrt();
+    let rv = (1.0 + (k.ax2 * vx2 + k.ay2 * vy2) * iv2).sqrt();
+    // G1 dLambda/dt = 2/(1 + r) * 1/(4 r); dt/dax = 2 ax wx^2 / wz^2.
+    let (cl, cv) = (0.5 / (rl * (1.0 + rl)), 0.5 / (rv * (1.0 + rv)));
+    let g = 4.0 / ((1.0 + rl) * (1.0 + rv));
+    let gx = 2.0 * k.ax * (cl * lx2 * il2 + cv * vx2 * iv2);
+    let gy = 2.0 * k.ay * (cl * ly2 * il2 + cv * vy2 * iv2);
+    let value = d * g * 0.25 * q;
+    let rcl = (1.0 + 0.0625 * (lx2 + ly2) * il2).sqrt();
+    let rcv = (1.0 + 0.0625 * (vx2 + vy2) * iv2).sqrt();
+    Lobe {
+        h,
+        value,
+        d_ax: value * (dlx - gx),
+        d_ay: value * (dly - gy),
+        g_cc: 4.0 / ((1.0 + rcl) * (1.0 + rcv)),
+    }
+}
+
+impl Terms {
+    #[inline]
+    fn new(k: &Hoisted, l: &Vector3<f64>, v: &Vector3<f64>) -> Self {
+        let g = lobe(k, l, v);
+        let cos_d = (v.x * g.h[0] + v.y * g.h[1] + v.z * g.h[2]).clamp(0.0, 1.0);
+        let w = schlick_weight(cos_d);
+        let (fdl, dfdl) = fresnel_dielectric_d_eta(cos_d, k.eta);
+        let (s, ds_ax, ds_ay) = if fdl > 0.0 {
+            (g.value, g.d_ax, g.d_ay)
+        } else {
+            (0.0, 0.0, 0.0)
+        };
+        let (wl, wv) = (schlick_weight(l.z), schlick_weight(v.z));
+        let f_diff = (1.0 - 0.5 * wl) * (1.0 - 0.5 * wv);
+        let c2 = 2.0 * cos_d * cos_d;
+        let rr = k.rough * c2;
+        let dg = FRAC_1_PI * (f_diff + rr * (wl + wv + wl * wv * (rr - 1.0)));
+        let ddg = FRAC_1_PI * c2 * (wl + wv + wl * wv * (2.0 * rr - 1.0));
+        let nh2 = g.h[2] * g.h[2];
+        let iq = 1.0 / (1.0 + k.a2m1 * nh2);
+        let gtr1 = k.gtr1_num * iq;
+        let dgtr1 = gtr1 * (k.dln_gtr1 - nh2 * iq);
+        let coat = 0.25 * (0.04 + 0.96 * w) * g.g_cc;
+        Terms {
+            w,
+            s,
+            ds_ax,
+            ds_ay,
+            fdl,
+            dfdl,
+            dg,
+            ddg,
+            k: coat * gtr1,
+            dk: coat * dgtr1 * k.da2_dgloss,
+        }
+    }
+}
+
+/// Value of channel `c` and, with `row`, its derivatives (`nc + 9`).
+#[inline]
+fn channel_row(h: &Hoisted, t: &Terms, c: usize, row: Option<&mut [f64]>) -> f64 {
+    let (m, st, w) = (h.metallic, h.spec_tint, t.w);
+    let (b, ct) = (h.base[c], h.tint[c]);
+    let f0t = ct * h.r0;
+    let metal_f = b + (1.0 - b) * w;
+    let tint_f = f0t + (1.0 - f0t) * w;
+    let f = (1.0 - m) * (1.0 - st) * t.fdl + m * metal_f + (1.0 - m) * st * tint_f;
+    let c_sheen = 1.0 + h.sheen_tint * (ct - 1.0);
+    let sheen_w = h.sheen * (1.0 - m) * w;
+    let value = f * t.s + (1.0 - m) * t.dg * b + sheen_w * c_sheen + h.cc * t.k;
+    let Some(row) = row else { return value };
+    let nc = h.nc;
+    // Through the tint: R0 tint in the dielectric lobe, and the sheen tint.
+    let via_tint = (1.0 - m) * st * h.r0 * (1.0 - w) * t.s + sheen_w * h.sheen_tint;
+    let own = m * (1.0 - w) * t.s + (1.0 - m) * t.dg;
+    for (k, r) in row[..nc].iter_mut().enumerate() {
+        *r = via_tint * h.dtint(c, k) + if k == c { own } else { 0.0 };
+    }
+    let d = &mut row[nc..nc + NS];
+    d[0] = (metal_f - (1.0 - st) * t.fdl - st * tint_f) * t.s - t.dg * b - h.sheen * w * c_sheen;
+    d[1] = (1.0 - m) * ((1.0 - st) * t.dfdl * h.deta + st * ct * (1.0 - w) * h.dr0) * t.s;
+    d[2] = (1.0 - m) * (tint_f - t.fdl) * t.s;
+    d[3] = f * (t.ds_ax * h.dax_dr + t.ds_ay * h.day_dr) + (1.0 - m) * b * t.ddg;
+    d[4] = f * (t.ds_ax * h.dax_da + t.ds_ay * h.day_da);
+    d[5] = (1.0 - m) * w * c_sheen;
+    d[6] = sheen_w * (ct - 1.0);
+    d[7] = t.k;
+    d[8] = h.cc * t.dk;
+    value
+}
+
+/// Values `out[c * n + j]` and, with `jac`, the Jacobian
+/// `jac[(c * n + j) * (nc + 9) + k]` of the principled model at `p` on
+/// every pair; 0 (and zero derivatives) below the horizon.
+pub(crate) fn batch(
+    p: &[f64],
+    nc: usize,
+    pairs: &DirPairs,
+    out: &mut [f64],
+    jac: Option<&mut [f64]>,
+) {
+    let h = Hoisted::new(p, nc);
+    let (n, np) = (pairs.len(), nc + NS);
+    let mut jac = jac;
+    for j in 0..n {
+        let (l, v) = (pairs.l(j), pairs.v(j));
+        let terms = (l.z > 0.0 && v.z > 0.0).then(|| Terms::new(&h, &l, &v));
+        for c in 0..nc {
+            let i = c * n + j;
+            let row = jac.as_deref_mut().map(|g| &mut g[i * np..(i + 1) * np]);
+            out[i] = match (&terms, row) {
+                (Some(t), row) => channel_row(&h, t, c, row),
+                (None, Some(row)) => {
+                    row.fill(0.0);
+                    0.0
+                }
+                (None, None) => 0.0,
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use brdf_core::{DirPairs, Parametric};
+    use nalgebra::Vector3;
+
+    use crate::Principled;
+
+    /// Direction pairs over the upper hemisphere (pole, grazing, mirror and
+    /// retro-reflection included) and two below it.
+    pub(crate) fn pairs() -> DirPairs {
+        let mut pairs = DirPairs::with_capacity(400);
+        let dir = |t: f64, p: f64| Vector3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
+        let thetas = [0.0, 0.3, 0.8, 1.2, 1.5, std::f64::consts::FRAC_PI_2 - 1e-6];
+        for &ti in &thetas {
+            for &to in &thetas {
+                for k in 0..6 {
+                    let phi = k as f64 * 1.1;
+                    pairs.push(&dir(ti, 0.4), &dir(to, 0.4 + phi));
+                }
+            }
+        }
+        pairs.push(&dir(2.0, 0.0), &dir(0.5, 1.0));
+        pairs.push(&dir(0.5, 0.0), &dir(1.7, 1.0));
+        pairs
+    }
+
+    /// The batch kernel against the dual formula at every pair.
+    pub(crate) fn assert_batch_matches_duals(model: &dyn Parametric, p: &[f64]) {
+        let pairs = pairs();
+        let (n, nc, np) = (pairs.len(), model.channels(), p.len());
+        let mut out = vec![0.0; nc * n];
+        let mut jac = vec![f64::NAN; nc * n * np];
+        model.eval_grad_batch_at(p, &pairs, &mut out, &mut jac);
+        let mut only = vec![0.0; nc * n];
+        model.eval_batch_at(p, &pairs, &mut only);
+        let (mut f, mut g) = (vec![0.0; nc], vec![0.0; nc * np]);
+        for j in 0..n {
+            model.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut f, &mut g);
+            for c in 0..nc {
+                let i = c * n + j;
+                let tol = 1e-11 * (1.0 + f[c].abs());
+                assert!(
+                    (out[i] - f[c]).abs() <= tol,
+                    "value {p:?} pair {j}: {} vs {}",
+                    out[i],
+                    f[c]
+                );
+                assert_eq!(out[i], only[i], "value without derivatives");
+                for k in 0..np {
+                    let (a, b) = (jac[i * np + k], g[c * np + k]);
+                    let tol = 1e-10 * (1.0 + f[c].abs() + b.abs());
+                    assert!(
+                        (a - b).abs() <= tol,
+                        "d/dp{k} {p:?} pair {j} ch {c}: {a} vs {b}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn batch_kernel_matches_the_dual_formula() {
+        let cases: [[f64; 9]; 5] = [
+            [0.0, 0.5, 0.0, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [0.3, 0.7, 0.4, 0.35, 0.6, 0.5, 0.3, 0.8, 0.4],
+            [1.0, 1.0, 1.0, 0.02, 0.0, 1.0, 1.0, 1.0, 1.0],
+            [0.1, 1e-14, 0.9, 0.9, 1.0, 0.2, 0.7, 0.1, 0.9],
+            [0.6, 0.2, 0.1, 0.1, 0.95, 0.0, 0.0, 0.5, 0.0],
+        ];
+        let colours: [&[f64]; 4] = [&[0.8], &[0.2, 0.5, 0.9], &[0.0, 0.0, 0.0], &[0.3, 0.0]];
+        for base in colours {
+            let nc = base.len();
+            for s in &cases {
+                let p: Vec<f64> = base.iter().chain(s).copied().collect();
+                let model = Principled::new(nc, &p).expect("parameters in the box");
+                assert_batch_matches_duals(&model, &p);
+            }
+        }
+    }
+}
