@@ -123,6 +123,7 @@ fn save_converted(c: &Conversion, source: &SavedModel, path: &Path) -> Result<()
         error: c.error.ngan_l2,
         solver: format!("conversion by fitting from `{}`", c.source),
         software: format!("brdf-export {}", env!("CARGO_PKG_VERSION")),
+        ..Provenance::default()
     };
     SavedModel::capture(
         c.model.as_ref(),

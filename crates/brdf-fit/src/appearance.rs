@@ -309,7 +309,12 @@ pub fn fit_for_appearance(
     );
     let refine = with_lobes(fit, &lobes).image_target(Arc::new(target));
     let (refined, mut c) = candidate(&refine, Objective::Image, lobes, samples, data, &judge)?;
-    if c.image.mean_flip() < flip(&candidates, k) {
+    // The refinement sees the BRDF only through the sphere's pixels; it is
+    // kept only if it also stays a fit of the data (Ngan's L2 at most
+    // REFINE_L2_GROWTH times the winner's), so it cannot trade the
+    // unrendered directions for a lower image error.
+    let keeps_data = c.ngan_l2 <= REFINE_L2_GROWTH * candidates[k].ngan_l2;
+    if keeps_data && c.image.mean_flip() < flip(&candidates, k) {
         candidates[k].chosen = false;
         c.chosen = true;
         report = refined;
@@ -320,4 +325,42 @@ pub fn fit_for_appearance(
 
 fn flip(candidates: &[Candidate], k: usize) -> f64 {
     candidates[k].image.mean_flip()
+}
+
+/// Whether a catalogue model is one a renderer offers (principled, glTF,
+/// the GGX family): these are fitted for appearance by default.
+pub fn is_renderer_model(name: &str) -> bool {
+    matches!(name, "principled" | "gltf" | "gltf-ext") || name.starts_with("ggx")
+}
+
+/// Why a data set gets no image error.
+pub const SCATTERED_NOTE: &str = "no image error: the data are scattered samples (CUReT, Cornell, CSV) that cannot be evaluated at the direction pairs of a rendered sphere; RGL `.bsdf` and MERL `.binary` data can";
+
+/// A fit as front ends run it: chosen by image error when `for_appearance`
+/// and the data can be rendered (`dense`, the same measurement as
+/// `samples`), else `fit` itself; then its image errors at
+/// [`REPORT_SIZE`] pixels and their warnings attached, or the note that
+/// none can be formed.
+pub fn fit_judged(
+    fit: &Fit,
+    samples: &SampleSet,
+    dense: Option<&dyn Brdf>,
+    for_appearance: bool,
+) -> Result<FitReport, FitError> {
+    let Some(data) = dense else {
+        let mut report = fit.run(samples)?;
+        report.image_note = Some(SCATTERED_NOTE.to_string());
+        return Ok(report);
+    };
+    let mut report = if for_appearance {
+        let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
+        report.candidates = candidates;
+        report
+    } else {
+        fit.run(samples)?
+    };
+    let errors = Judge::new(REPORT_SIZE).errors(data, report.model.as_ref())?;
+    report.notes.extend(errors.warnings());
+    report.image_error = Some(errors);
+    Ok(report)
 }

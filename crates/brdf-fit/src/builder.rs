@@ -14,7 +14,7 @@
 //! ```
 
 use brdf_core::{Parametric, SampleSet};
-use brdf_models::saved_model::{Provenance, SavedModel};
+use brdf_models::saved_model::{Provenance, RenderedError, SavedModel};
 use brdf_models::{ModelConfig, ModelEntry};
 
 use crate::FitError;
@@ -68,6 +68,13 @@ pub struct FitReport {
     /// extreme data, a solver chosen for the objective, parameters on a
     /// bound of their box), for the report.
     pub notes: Vec<String>,
+    /// Image errors against the data under the standard light sets, for
+    /// data that can be rendered ([`crate::appearance::fit_judged`]).
+    pub image_error: Option<crate::appearance::ImageError>,
+    /// Why there is no image error (scattered data), when there is none.
+    pub image_note: Option<String>,
+    /// The candidates of a fit chosen by image error.
+    pub candidates: Vec<crate::appearance::Candidate>,
     /// The direction pairs fitted (Kurt's polynomial stores its PCA of them).
     pairs: brdf_core::DirPairs,
 }
@@ -261,6 +268,9 @@ impl Fit {
             limit_deg: self.limit_deg,
             channel_names: data.channel_names.clone(),
             notes,
+            image_error: None,
+            image_note: None,
+            candidates: Vec::new(),
             pairs: data.pairs().clone(),
         })
     }
@@ -364,6 +374,17 @@ impl FitReport {
             error: self.summary.error,
             solver: self.summary.solver.clone(),
             software: format!("brdf-fit {}", env!("CARGO_PKG_VERSION")),
+            image_error: self.image_error.as_ref().map_or_else(Vec::new, |e| {
+                e.lights
+                    .iter()
+                    .map(|l| RenderedError {
+                        light: l.light.clone(),
+                        flip: l.flip,
+                        psnr: l.psnr,
+                        delta_e: l.delta_e,
+                    })
+                    .collect()
+            }),
         };
         Ok(SavedModel::capture(
             self.model.as_ref(),

@@ -16,6 +16,8 @@ pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::V
     Ok(serde_json::json!({
         "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
         "notes": reports.iter().map(|r| &r.notes).collect::<Vec<_>>(),
+        "image_errors": reports.iter().map(|r| &r.image_error).collect::<Vec<_>>(),
+        "candidates": reports.iter().map(|r| &r.candidates).collect::<Vec<_>>(),
         "samples_present": first.samples_present,
         "dropped_invalid": first.dropped_invalid,
         "dropped_angle": first.dropped_angle,

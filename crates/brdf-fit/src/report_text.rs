@@ -55,10 +55,48 @@ pub fn text(rep: &FitReport) -> String {
         r.ngan_l2,
         r.seconds * 1e3
     );
+    image_lines(&mut s, rep);
     for note in &rep.notes {
         let _ = writeln!(s, "note: {note}");
     }
     s
+}
+
+/// The candidates of a fit chosen by image error, and the fit's image
+/// errors (or why there are none).
+fn image_lines(s: &mut String, rep: &FitReport) {
+    for c in &rep.candidates {
+        let flips: Vec<String> = c
+            .image
+            .lights
+            .iter()
+            .map(|l| format!("{} {:.3}", l.light, l.flip))
+            .collect();
+        let _ = writeln!(
+            s,
+            "candidate{} {:<9} lobes [{}]: FLIP {} ({} px), CIEDE2000 {:.1}, Ngan L2 {:.4e}, {:.2} s",
+            if c.chosen { " *" } else { "  " },
+            c.objective,
+            c.lobes.join(", "),
+            flips.join(", "),
+            c.image.size,
+            c.image.max_delta_e(),
+            c.ngan_l2,
+            c.seconds
+        );
+    }
+    if let Some(e) = &rep.image_error {
+        for l in &e.lights {
+            let _ = writeln!(
+                s,
+                "image error ({}, {} px): FLIP {:.3}  PSNR {:.1} dB  mean colour CIEDE2000 {:.2}",
+                l.light, e.size, l.flip, l.psnr, l.delta_e
+            );
+        }
+    }
+    if let Some(n) = &rep.image_note {
+        let _ = writeln!(s, "{n}");
+    }
 }
 
 /// Names of the non-linear parameters a fit leaves undetermined: the

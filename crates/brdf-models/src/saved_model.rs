@@ -196,6 +196,23 @@ pub struct Provenance {
     pub solver: String,
     /// Software and version that wrote the file.
     pub software: String,
+    /// The fit's image errors against the data under the standard light
+    /// sets (empty when the data cannot be rendered: scattered samples).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub image_error: Vec<RenderedError>,
+}
+
+/// A fit's image error under one light set (see `brdf_fit::appearance`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RenderedError {
+    /// Light set (`sky`, `studio`).
+    pub light: String,
+    /// Mean HDR-FLIP (0: identical).
+    pub flip: f64,
+    /// PSNR in dB after the data's exposure.
+    pub psnr: f64,
+    /// CIEDE2000 between the mean sphere colours.
+    pub delta_e: f64,
 }
 
 /// The saved form.

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use brdf_fit::{Channels, Fit, Objective, Solver};
+use brdf_fit::{Channels, Fit, Objective, Solver, appearance};
 
 use crate::error::CliError;
 
@@ -17,8 +17,11 @@ pub struct FitArgs {
     /// Model name (see `brdf models`).
     #[arg(long)]
     pub model: String,
-    /// Objective and metric: ngan, sopp, sopp-unweighted, lafortune, log.
-    #[arg(long, default_value = "ngan")]
+    /// Objective and metric: auto (appearance for renderer models on data
+    /// that can be rendered, else ngan), appearance (candidates chosen by
+    /// image error, refined in the image objective), ngan, sopp,
+    /// sopp-unweighted, lafortune, log, cube-root, relative, image.
+    #[arg(long, default_value = "auto")]
     pub metric: String,
     /// Drop samples with theta_i or theta_o above this angle (degrees).
     #[arg(long, default_value_t = 80.0)]
@@ -73,10 +76,20 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
             "--save needs one model: use --channels rgb or grey".into(),
         ));
     }
+    let dense = brdf_io::load_dense(&args.data)?;
+    let entry = brdf_fit::resolve(&args.model)?;
+    // Per-channel fits are grey models of one channel: not rendered.
+    let dense = dense.as_deref().filter(|_| args.channels != "per-channel");
+    let (appearance, metric) = match args.metric.as_str() {
+        "auto" if appearance::is_renderer_model(entry.name) && dense.is_some() => (true, "ngan"),
+        "auto" => (false, "ngan"),
+        "appearance" => (true, "ngan"),
+        m => (false, m),
+    };
     let mut reports = Vec::new();
     for (set, channels) in &sets {
-        let fit = Fit::model(&args.model)?
-            .objective(Objective::parse(&args.metric)?)
+        let fit = Fit::entry(entry)
+            .objective(Objective::parse(metric)?)
             .solver(Solver::parse(&args.solver)?)
             .starts(args.starts)
             .limit_deg(args.limit)
@@ -84,7 +97,7 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
             .lobes(args.lobes)
             .order(args.order)
             .degree(args.degree);
-        let report = fit.run(set)?;
+        let report = appearance::fit_judged(&fit, set, dense, appearance)?;
         if let Some(path) = &args.save {
             report
                 .saved_model(&brdf_fit::data_name(&args.data))?
