@@ -42,6 +42,8 @@ pub const DELTA_E_WARN: f64 = 5.0;
 pub const FLIP_WARN: f64 = 0.15;
 /// Relative FLIP improvement an optional lobe must bring to be kept.
 pub const LOBE_MARGIN: f64 = 0.05;
+/// Largest growth of Ngan's L2 an image-objective refinement may bring.
+pub const REFINE_L2_GROWTH: f64 = 1.5;
 /// Image size of the image errors in reports (the judge's film).
 pub const REPORT_SIZE: usize = 128;
 /// Image size of the image objective and of the candidate ranking.
