@@ -56,9 +56,11 @@ pub fn nine_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig
 /// A fit in the narrow box is the same model, constrained.
 pub const KURT_LAFORTUNE_BOX: [(&str, f64, f64); 2] = [("cxy", -1.0, 0.0), ("cz", 0.0, 1.0)];
 
-/// The renderer models set beside Kurt's nine (Table 9.3 stand-in, error
-/// against time): `(label, catalogue name, config)`, GGX with `lobes`
-/// lobes as Cook-Torrance.
+/// The renderer models and the most accurate models of the literature
+/// (Löw et al. 2012's ABC and smooth-surface models, Ribardière et al.
+/// 2017's STD, Bagher et al. 2012's SGD) set beside Kurt's nine (Table 9.3
+/// stand-in, error against time): `(label, catalogue name, config)`, GGX
+/// with `lobes` lobes as Cook-Torrance.
 pub fn renderer_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig)> {
     let c = ModelConfig {
         lobes,
@@ -70,6 +72,10 @@ pub fn renderer_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelCo
         ("Principled", "principled", c),
         ("glTF", "gltf", c),
         ("glTF + KHR", "gltf-ext", c),
+        ("ABC (Löw)", "abc", c),
+        ("ABC smooth (Löw)", "abc-smooth", c),
+        ("STD (Ribardière)", "std", c),
+        ("SGD (Bagher)", "sgd", c),
     ]
 }
 
