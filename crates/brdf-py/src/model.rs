@@ -105,6 +105,16 @@ pub fn eval<'py>(
         degree,
     };
     let m = resolve(model, params, structure)?;
+    eval_model(py, m.as_ref(), wi, wo)
+}
+
+/// Evaluate `m` at the direction pairs `wi`, `wo` (as [`eval`]).
+pub fn eval_model<'py>(
+    py: Python<'py>,
+    m: &dyn Parametric,
+    wi: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    wo: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+) -> PyResult<Bound<'py, PyAny>> {
     let (wi, wi_single) = crate::directions::parse(wi.as_array(), "wi")?;
     let (wo, wo_single) = crate::directions::parse(wo.as_array(), "wo")?;
     let n = match (wi_single, wo_single) {
