@@ -53,7 +53,7 @@ class Fit:
         """The report ``brdf fit --json`` prints."""
     @property
     def image_error(self) -> Optional[dict[str, Any]]:
-        """Image errors of the fit (None: not computed yet)."""
+        """Image errors against dense data (RGL, MERL), else None."""
 
 def load(path: StrPath) -> Samples:
     """Read a data set into NumPy arrays (``wi``, ``wo``, ``values``, ...)."""

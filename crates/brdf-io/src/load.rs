@@ -67,10 +67,10 @@ pub fn resolve_path(path: &Path) -> Result<PathBuf, IoError> {
 /// [`split_sample`] with the path found by [`resolve_path`]; a `#` that is
 /// part of an existing name under `BRDF_DATA` stays in the path.
 pub fn resolve_spec(spec: &str) -> Result<(PathBuf, Option<String>), IoError> {
-    if let Ok(p) = resolve_path(Path::new(spec)) {
-        if p.is_file() {
-            return Ok((p, None));
-        }
+    if let Ok(p) = resolve_path(Path::new(spec))
+        && p.is_file()
+    {
+        return Ok((p, None));
     }
     let (path, sample) = split_sample(spec);
     Ok((resolve_path(&path)?, sample))

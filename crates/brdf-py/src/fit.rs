@@ -67,6 +67,10 @@ pub fn fit<'py>(
     save: Option<PathBuf>,
 ) -> PyResult<PyFit> {
     let (set, name) = data_set(py, data)?;
+    let spec = data
+        .extract::<PathBuf>()
+        .ok()
+        .map(|p| p.display().to_string());
     let fit = Fit::model(model)
         .and_then(|f| Ok(f.objective(Objective::parse(metric)?)))
         .and_then(|f| Ok(f.solver(Solver::parse(solver)?)))
@@ -88,6 +92,7 @@ pub fn fit<'py>(
         models: saved.into_iter().map(|saved| PyModel { saved }).collect(),
         report: crate::json::to_py_object(py, &report)?.unbind(),
         data: name,
+        spec,
         errors: reports.iter().map(|r| r.summary.ngan_l2).collect(),
     })
 }

@@ -148,7 +148,7 @@ impl PyModel {
 /// report : dict
 ///     The report ``brdf fit --json`` prints.
 /// image_error : dict or None
-///     Image errors of the fit (not computed yet: None).
+///     Image errors against dense data (RGL, MERL), else None.
 #[pyclass(name = "Fit", module = "brdf", frozen)]
 #[derive(Debug)]
 pub struct PyFit {
@@ -158,6 +158,9 @@ pub struct PyFit {
     pub(crate) data: String,
     /// Ngan L2 error of every fit.
     pub(crate) errors: Vec<f64>,
+    /// The data path, when the data were named by one (for image errors
+    /// against dense data).
+    pub(crate) spec: Option<String>,
 }
 
 #[pymethods]
@@ -183,10 +186,28 @@ impl PyFit {
         self.report.clone_ref(py)
     }
 
-    /// Image errors of the fit; None (not computed yet).
+    /// Image errors of the fit against dense data (RGL, MERL: rendered
+    /// spheres under the standard light sets, computed on first access);
+    /// None for scattered data or data given as arrays.
     #[getter]
-    pub fn image_error(&self) -> Option<Py<PyAny>> {
-        None
+    pub fn image_error(&self, py: Python<'_>) -> PyResult<Option<Py<PyAny>>> {
+        let (Some(spec), Some(model)) = (&self.spec, self.models.first()) else {
+            return Ok(None);
+        };
+        let errors = py.detach(|| -> Result<_, String> {
+            let Some(dense) = brdf_io::load_dense(spec).map_err(|e| e.to_string())? else {
+                return Ok(None);
+            };
+            let fitted = model.saved.build().map_err(|e| e.to_string())?;
+            brdf_fit::appearance::Judge::new(128)
+                .errors(dense.as_ref(), fitted.as_ref())
+                .map(Some)
+                .map_err(|e| e.to_string())
+        });
+        match errors.map_err(usage)? {
+            Some(e) => Ok(Some(crate::json::to_py_object(py, &e)?.unbind())),
+            None => Ok(None),
+        }
     }
 
     fn __repr__(&self) -> String {

@@ -132,6 +132,13 @@ def test_per_channel_fit_has_a_model_per_channel():
     assert len(fit.models) == 3 and len(fit.report["fits"]) == 3
 
 
+def test_image_error_of_a_fit_to_dense_data():
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    fit = brdf.fit(path, "lambert", starts=2)
+    err = fit.image_error
+    assert isinstance(err, dict) and err, err
+
+
 def test_model_load_refuses_a_data_file():
     path = data_file("rgl/paper_white_rgb.bsdf")
     with pytest.raises(brdf.BrdfError, match="is a data file"):
@@ -139,6 +146,9 @@ def test_model_load_refuses_a_data_file():
 
 
 def test_every_function_has_a_numpy_style_docstring():
-    for f in [brdf.fit, brdf.Model.load, brdf.Model.eval, brdf.Model.export, brdf.Model.save]:
+    functions = [brdf.load, brdf.save_samples, brdf.fit, brdf.eval, brdf.export, brdf.models,
+                 brdf.materials, brdf.canonical_name, brdf.data_name,
+                 brdf.Model.load, brdf.Model.eval, brdf.Model.export, brdf.Model.save]
+    for f in functions:
         doc = f.__doc__ or ""
         assert "Parameters" in doc or "Returns" in doc, f
