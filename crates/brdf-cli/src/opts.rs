@@ -9,10 +9,10 @@ use crate::error::CliError;
 #[derive(Debug, Clone, clap::Args)]
 pub struct ModelOpts {
     /// Colour channels of the model (1 grey, 3 RGB).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = at_least_one)]
     pub channels: usize,
     /// Specular lobes (Lafortune, Cook-Torrance).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = at_least_one)]
     pub lobes: usize,
     /// Koenderink expansion order.
     #[arg(long, default_value_t = 8)]
@@ -31,6 +31,15 @@ impl ModelOpts {
             order: self.order,
             degree: self.degree,
         }
+    }
+}
+
+/// A count of at least 1 (`--lobes`, `--channels`); clap names the flag.
+pub fn at_least_one(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(0) => Err("must be at least 1 (e.g. 1)".into()),
+        Ok(n) => Ok(n),
+        Err(_) => Err(format!("`{s}` is not a whole number >= 1")),
     }
 }
 

@@ -2,8 +2,11 @@
 //! material x model of a database.
 //!
 //! Every fit is one JSON line in `OUT/fits.jsonl`, appended as it
-//! finishes; a rerun skips the fits already there, so a killed run
-//! resumes. A [`Shard`] `I/N` takes the `I`-th of `N` deterministic shares
+//! finishes, the whole line in one write; a rerun skips the fits already
+//! there, so a killed run resumes. A torn last line (a run killed while
+//! writing it) is dropped on resume, reported in
+//! [`BatchOutcome::dropped_torn_line`], and its fit redone. A batch that
+//! fails before any fit is written leaves no output folder behind. A [`Shard`] `I/N` takes the `I`-th of `N` deterministic shares
 //! of the sorted material x model list, so the same command runs as a
 //! Slurm job array or under GNU parallel; [`merge`] joins the shards. The
 //! summary (`summary.csv`, `summary.md`) is sorted by material and model,
@@ -86,6 +89,8 @@ pub struct BatchOutcome {
     pub failures: Vec<String>,
     /// The `fits.jsonl` written.
     pub fits_path: PathBuf,
+    /// The torn last line of `fits.jsonl` (a killed run) that was dropped.
+    pub dropped_torn_line: Option<String>,
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> FitError + '_ {
@@ -116,7 +121,7 @@ type Item = (String, &'static str);
 fn plan(opts: &BatchOptions, models: &[&'static str]) -> Result<(Vec<Item>, usize), FitError> {
     let mut materials = Vec::new();
     for d in &opts.data {
-        materials.extend(brdf_io::materials(d)?);
+        materials.extend(brdf_io::materials(&resolved(d)?)?);
     }
     materials.sort();
     materials.dedup();
@@ -136,22 +141,72 @@ fn plan(opts: &BatchOptions, models: &[&'static str]) -> Result<(Vec<Item>, usiz
     Ok((todo, n))
 }
 
-/// `fits.jsonl` opened for appending; a half line a killed run left is
-/// ended, so the next line starts on its own (the half line is ignored
-/// when read).
+/// A data spec with its path looked up as [`brdf_io::load::resolve_spec`]
+/// does (the working directory, then `BRDF_DATA`).
+fn resolved(spec: &str) -> Result<String, FitError> {
+    let (path, sample) = brdf_io::load::resolve_spec(spec)?;
+    let path = path.display().to_string();
+    Ok(match sample {
+        Some(s) => format!("{path}#{s}"),
+        None => path,
+    })
+}
+
+/// Drop a torn last line (no newline: a run killed while writing it) from
+/// `fits.jsonl`; returns it.
+fn drop_torn_line(path: &Path) -> Result<Option<String>, FitError> {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(io_err(path)(e)),
+    };
+    if bytes.last().is_none_or(|c| *c == b'\n') {
+        return Ok(None);
+    }
+    let keep = bytes.iter().rposition(|c| *c == b'\n').map_or(0, |i| i + 1);
+    let file = std::fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .map_err(io_err(path))?;
+    file.set_len(keep as u64).map_err(io_err(path))?;
+    file.sync_all().map_err(io_err(path))?;
+    Ok(Some(String::from_utf8_lossy(&bytes[keep..]).into_owned()))
+}
+
+/// `fits.jsonl` opened for appending.
 fn open_fits(path: &Path) -> Result<std::fs::File, FitError> {
-    let ends_open = std::fs::read(path)
-        .map(|b| b.last().is_some_and(|c| *c != b'\n'))
-        .unwrap_or(false);
-    let mut file = std::fs::OpenOptions::new()
+    std::fs::OpenOptions::new()
         .create(true)
         .append(true)
         .open(path)
-        .map_err(io_err(path))?;
-    if ends_open {
-        writeln!(file).map_err(io_err(path))?;
+        .map_err(io_err(path))
+}
+
+/// Append one fit as a whole line: one write of the line with its newline,
+/// then a flush, so a kill leaves at most one torn last line.
+fn append_line(out: &Mutex<std::fs::File>, v: &Value) -> Option<String> {
+    let line = format!("{v}\n");
+    match out.lock() {
+        Ok(mut f) => f
+            .write_all(line.as_bytes())
+            .and_then(|()| f.flush())
+            .err()
+            .map(|e| e.to_string()),
+        Err(_) => Some("output lock poisoned".into()),
     }
-    Ok(file)
+}
+
+/// The models, resolved and without repeats (`ggx,GGX` is one model), in
+/// the order given.
+fn resolve_models(names: &[String]) -> Result<Vec<&'static str>, FitError> {
+    let mut out: Vec<&'static str> = Vec::new();
+    for m in names {
+        let name = crate::names::resolve(m)?.name;
+        if !out.contains(&name) {
+            out.push(name);
+        }
+    }
+    Ok(out)
 }
 
 /// Run a batch: fit what this share still lacks, append each fit to
@@ -162,19 +217,43 @@ pub fn run(
     started: impl FnOnce(usize, usize),
     progress: &(dyn Fn() + Sync),
 ) -> Result<BatchOutcome, FitError> {
-    std::fs::create_dir_all(&opts.out).map_err(io_err(&opts.out))?;
-    let models: Vec<&'static str> = opts
-        .models
-        .iter()
-        .map(|m| crate::names::resolve(m).map(|e| e.name))
-        .collect::<Result<_, _>>()?;
-    let (todo, in_share) = plan(opts, &models)?;
-    started(todo.len(), in_share);
+    let models = resolve_models(&opts.models)?;
     let path = opts.out.join(FITS);
-    let out = Mutex::new(open_fits(&path)?);
+    let dropped_torn_line = drop_torn_line(&path)?;
+    let (todo, in_share) = plan(opts, &models)?;
+    let created = !opts.out.exists();
+    std::fs::create_dir_all(&opts.out).map_err(io_err(&opts.out))?;
+    started(todo.len(), in_share);
+    let result = fit_all(opts, &todo, &path, progress);
+    let fitted = read_fits(&path).map(|f| !f.is_empty()).unwrap_or(false);
+    if created && !fitted {
+        // Nothing to keep: leave no empty output folder behind.
+        let _ = std::fs::remove_dir_all(&opts.out);
+    }
+    let failures = result?;
+    if fitted || !created {
+        write_summary(&opts.out, &read_fits(&path)?)?;
+    }
+    Ok(BatchOutcome {
+        in_share,
+        already_done: in_share - todo.len(),
+        failures,
+        fits_path: path,
+        dropped_torn_line,
+    })
+}
+
+/// Fit every item, appending each fit to `path`; the failures.
+fn fit_all(
+    opts: &BatchOptions,
+    todo: &[Item],
+    path: &Path,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Vec<String>, FitError> {
+    let out = Mutex::new(open_fits(path)?);
     // Materials in parallel; each one loaded once for all its models.
     let mut by_material: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
-    for (m, x) in &todo {
+    for (m, x) in todo {
         by_material.entry(m.as_str()).or_default().push(x);
     }
     let failures: Vec<String> = by_material
@@ -195,20 +274,11 @@ pub fn run(
             lines
         })
         .filter_map(|r| match r {
-            Ok(v) => match out.lock() {
-                Ok(mut f) => writeln!(f, "{v}").err().map(|e| e.to_string()),
-                Err(_) => Some("output lock poisoned".into()),
-            },
+            Ok(v) => append_line(&out, &v),
             Err(e) => Some(e),
         })
         .collect();
-    write_summary(&opts.out, &read_fits(&path)?)?;
-    Ok(BatchOutcome {
-        in_share,
-        already_done: in_share - todo.len(),
-        failures,
-        fits_path: path,
-    })
+    Ok(failures)
 }
 
 /// One fit as a JSON line.

@@ -87,6 +87,38 @@ pub fn candidates(channels: usize) -> Vec<(String, &'static str, ModelConfig)> {
     v
 }
 
+/// Which candidates to fit: only these models (forgiving names; all when
+/// empty), only those with at most this many stored numbers.
+#[derive(Clone, Debug, Default)]
+pub struct Among {
+    /// Model names (`--models`); every catalogue model when empty.
+    pub models: Vec<String>,
+    /// The most stored numbers a candidate may have (`--max-parameters`).
+    pub max_parameters: Option<usize>,
+}
+
+impl Among {
+    /// The resolved model names, without repeats; `None` for all.
+    fn names(&self) -> Result<Option<Vec<&'static str>>, FitError> {
+        if self.models.is_empty() {
+            return Ok(None);
+        }
+        let mut out: Vec<&'static str> = Vec::new();
+        for m in &self.models {
+            let name = crate::names::resolve(m)?.name;
+            if !out.contains(&name) {
+                out.push(name);
+            }
+        }
+        Ok(Some(out))
+    }
+}
+
+/// Stored numbers of a model of `name` with `n_params` parameters.
+fn stored_numbers(name: &str, n_params: usize) -> usize {
+    n_params + if name == "polynomial" { 4 } else { 0 }
+}
+
 /// Fit every candidate to `data` and return the rows and the index of the
 /// choice (fewest stored numbers with error `<= (1 + tolerance) best`).
 pub fn select(
@@ -94,19 +126,39 @@ pub fn select(
     tolerance: f64,
     opts: &FitOptions,
 ) -> Result<(Vec<SelectRow>, usize), FitError> {
+    select_among(data, tolerance, opts, &Among::default())
+}
+
+/// [`select`] among the candidates `among` admits.
+pub fn select_among(
+    data: &SampleSet,
+    tolerance: f64,
+    opts: &FitOptions,
+    among: &Among,
+) -> Result<(Vec<SelectRow>, usize), FitError> {
     if !(tolerance >= 0.0 && tolerance.is_finite()) {
         return Err(FitError::Usage(format!(
             "--tolerance {tolerance} must be >= 0"
         )));
     }
+    let names = among.names()?;
     let n = (data.len() * data.channels()) as f64;
     let mut rows = Vec::new();
     for (label, name, config) in candidates(data.channels()) {
+        if names.as_ref().is_some_and(|v| !v.contains(&name)) {
+            continue;
+        }
         let Some(e) = brdf_models::entry(name) else {
             continue;
         };
         let model = e.build_for(&config, data.pairs())?;
         if model.n_params() >= data.len() * data.channels() {
+            continue;
+        }
+        if among
+            .max_parameters
+            .is_some_and(|m| stored_numbers(name, model.n_params()) > m)
+        {
             continue;
         }
         let n_params = model.n_params();
@@ -129,8 +181,7 @@ pub fn select(
                 continue;
             }
         };
-        let pca = if name == "polynomial" { 4 } else { 0 };
-        let k = n_params + pca;
+        let k = stored_numbers(name, n_params);
         // SSR on Ngan's rows: E^2 times the weight sum (per channel averaged).
         let wsum: f64 = data.weights().iter().sum();
         let ssr = r.ngan_l2 * r.ngan_l2 * wsum * data.channels() as f64;
@@ -172,7 +223,7 @@ pub fn select(
                 data.name,
                 rows.first()
                     .map(|r| format!("{}: {}", r.label, r.termination))
-                    .unwrap_or_else(|| "no candidate has fewer parameters than samples".into())
+                    .unwrap_or_else(|| "no candidate has fewer parameters than samples, or within --models and --max-parameters".into())
             ))
         })?;
     Ok((rows, choice))

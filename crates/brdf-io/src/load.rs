@@ -33,6 +33,49 @@ pub fn split_sample(spec: &str) -> (PathBuf, Option<String>) {
     }
 }
 
+/// The file `path` names: as given when it exists; otherwise, when it is
+/// relative and `BRDF_DATA` is set, under `BRDF_DATA`. The error names
+/// every place tried.
+pub fn resolve_path(path: &Path) -> Result<PathBuf, IoError> {
+    if path.exists() {
+        return Ok(path.to_path_buf());
+    }
+    let data = std::env::var_os("BRDF_DATA").filter(|d| !d.is_empty());
+    let under = match data {
+        Some(d) if path.is_relative() => Some(PathBuf::from(d).join(path)),
+        _ => None,
+    };
+    if let Some(p) = under.as_ref().filter(|p| p.exists()) {
+        return Ok(p.clone());
+    }
+    let reason = match under {
+        Some(p) => format!(
+            "does not exist (looked in the working directory and at {} under BRDF_DATA)",
+            p.display()
+        ),
+        None if path.is_relative() => {
+            "does not exist in the working directory (set BRDF_DATA to look there too)".into()
+        }
+        None => "does not exist".into(),
+    };
+    Err(IoError::Unsupported {
+        path: path.to_path_buf(),
+        reason,
+    })
+}
+
+/// [`split_sample`] with the path found by [`resolve_path`]; a `#` that is
+/// part of an existing name under `BRDF_DATA` stays in the path.
+pub fn resolve_spec(spec: &str) -> Result<(PathBuf, Option<String>), IoError> {
+    if let Ok(p) = resolve_path(Path::new(spec))
+        && p.is_file()
+    {
+        return Ok((p, None));
+    }
+    let (path, sample) = split_sample(spec);
+    Ok((resolve_path(&path)?, sample))
+}
+
 /// The format of a path, by name (and, for CSV, its header).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -53,6 +96,12 @@ pub enum Format {
 
 /// Detect the format of `path`.
 pub fn format_of(path: &Path) -> Result<Format, IoError> {
+    if path.is_dir() {
+        return Err(IoError::Unsupported {
+            path: path.to_path_buf(),
+            reason: "is a folder; name one data file in it".into(),
+        });
+    }
     let name = path.file_name().and_then(|f| f.to_str()).unwrap_or("");
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     Ok(match (name, ext) {
@@ -61,6 +110,7 @@ pub fn format_of(path: &Path) -> Result<Format, IoError> {
         (_, "binary") => Format::Merl,
         (_, "bsdf") => Format::Rgl,
         (_, "csv") => {
+            let path = &resolve_path(path)?;
             let text = std::fs::read_to_string(path).map_err(|e| IoError::Io {
                 path: path.to_path_buf(),
                 source: e,
@@ -84,7 +134,7 @@ pub fn format_of(path: &Path) -> Result<Format, IoError> {
 /// resampling and rendering): MERL tables and RGL materials are, scattered
 /// sets are not.
 pub fn load_dense(spec: &str) -> Result<Option<Box<dyn Brdf>>, IoError> {
-    let (path, _) = split_sample(spec);
+    let (path, _) = resolve_spec(spec)?;
     Ok(match format_of(&path)? {
         Format::Merl => Some(Box::new(crate::merl::read(&path)?)),
         Format::Rgl => Some(Box::new(crate::rgl::Rgl::read(&path)?)),
@@ -94,7 +144,7 @@ pub fn load_dense(spec: &str) -> Result<Option<Box<dyn Brdf>>, IoError> {
 
 /// Load the sample set named by `spec`.
 pub fn load(spec: &str) -> Result<SampleSet, IoError> {
-    let (path, sample) = split_sample(spec);
+    let (path, sample) = resolve_spec(spec)?;
     match format_of(&path)? {
         Format::Curet => {
             let table = path.parent().unwrap_or(Path::new(".")).join("table.txt");

@@ -394,9 +394,20 @@ impl SavedModel {
 
     /// Read and check the schema.
     pub fn load(path: &Path) -> Result<Self, SavedModelError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SavedModelError::Io {
-            path: path.display().to_string(),
-            source: e,
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        let data_ext = ["bsdf", "binary", "brdf", "dat"].contains(&ext);
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            if data_ext || e.kind() == std::io::ErrorKind::InvalidData {
+                SavedModelError::Model {
+                    path: path.display().to_string(),
+                    reason: "is a data file, not a fitted model; give a model saved by `brdf fit --save`".into(),
+                }
+            } else {
+                SavedModelError::Io {
+                    path: path.display().to_string(),
+                    source: e,
+                }
+            }
         })?;
         Self::from_json(&text, &path.display().to_string())
     }

@@ -45,7 +45,7 @@ def fit_material(material, name, models, channels, limit, starts):
     for model in models:
         try:
             report = brdf.fit(samples, model, channels=channels,
-                              limit_deg=limit, starts=starts)
+                              limit_deg=limit, starts=starts).report
         except brdf.BrdfError as e:
             out.append(f"{name} x {model}: {e}")
             continue

@@ -8,9 +8,18 @@ use serde_json::{Value, json};
 
 use crate::error::to_py;
 
-/// The catalogue: a list of dicts (name, family, summary, paper,
-/// reciprocal, parameters with their boxes, linear flags and defaults), as
-/// `brdf models --json` prints it for the same structure options.
+/// The model catalogue, as ``brdf models --json`` prints it.
+///
+/// Parameters
+/// ----------
+/// channels, lobes, order, degree : int
+///     Structure the parameter lists are given for.
+///
+/// Returns
+/// -------
+/// list of dict
+///     Name, family, summary, paper, reciprocity, and the parameters with
+///     their boxes, linear flags and defaults.
 #[pyfunction]
 #[pyo3(signature = (*, channels=1, lobes=1, order=8, degree=7))]
 pub fn models(
@@ -49,23 +58,52 @@ pub fn models(
     crate::json::to_py_object(py, &out)
 }
 
-/// The catalogue name a forgiving model name stands for ("Blinn-Phong" ->
-/// "blinn-phong"); an unknown name is an error suggesting the nearest.
+/// The catalogue name a forgiving model name stands for.
+///
+/// Parameters
+/// ----------
+/// name : str
+///     E.g. ``"Blinn-Phong"`` or ``"blinn_phong"``.
+///
+/// Returns
+/// -------
+/// str
+///     The catalogue name (``"blinn-phong"``); a ``BrdfError`` suggesting
+///     the nearest names for an unknown one.
 #[pyfunction]
 pub fn canonical_name(name: &str) -> PyResult<&'static str> {
     brdf_fit::resolve(name).map(|e| e.name).map_err(to_py)
 }
 
-/// A data set's name in outputs: relative to `BRDF_DATA` when inside it.
+/// A data set's name in outputs.
+///
+/// Parameters
+/// ----------
+/// spec : str
+///     A data path, ``PATH`` or ``PATH#SAMPLE``.
+///
+/// Returns
+/// -------
+/// str
+///     Relative to ``BRDF_DATA`` when inside it, as given when relative,
+///     the file name otherwise.
 #[pyfunction]
 pub fn data_name(spec: &str) -> String {
     brdf_fit::data_name(spec)
 }
 
-/// The data sets a path stands for, sorted, as `brdf batch --data` reads
-/// it: a folder gives every file of a known format in it, a CUReT
-/// `abrdf.dat` without `#N` every sample (`abrdf.dat#N`), anything else
-/// itself.
+/// The data sets a path stands for, as ``brdf batch --data`` reads it.
+///
+/// Parameters
+/// ----------
+/// path : str or os.PathLike
+///     A folder (every file of a known format in it), a CUReT
+///     ``abrdf.dat`` (every sample, ``abrdf.dat#N``) or one file.
+///
+/// Returns
+/// -------
+/// list of str
+///     Sorted, without repeats.
 #[pyfunction]
 pub fn materials(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Vec<String>> {
     let spec = path.display().to_string();

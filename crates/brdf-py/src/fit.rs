@@ -6,18 +6,49 @@ use std::path::PathBuf;
 
 use brdf_core::SampleSet;
 use brdf_fit::{Channels, Fit, FitReport, Objective, Solver};
+use brdf_models::saved_model::SavedModel;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::error::{to_py, usage};
+use crate::fitted::{PyFit, PyModel};
 
-/// Fit `model` to `data` (a path such as `"curet/abrdf.dat#25"`, or a dict
-/// of arrays as `load` returns) from automatic starts; options as `brdf
-/// fit`: `channels` "rgb" (shared non-linear, per-channel linear
-/// parameters), "grey" or "per-channel"; `metric` ngan, sopp,
-/// sopp-unweighted, lafortune, log; `solver` auto, sqp, lm, sopp, ols,
-/// irls, irls:WEIGHT; `save` writes the fitted model (JSON). Returns the
-/// dict `brdf fit --json` prints.
+/// Fit a model to measured data from automatic starts, as ``brdf fit``.
+///
+/// Parameters
+/// ----------
+/// data : str, os.PathLike or dict
+///     A data path such as ``"curet/abrdf.dat#25"`` (relative paths are
+///     also looked up under ``BRDF_DATA``), or a dict of arrays as
+///     ``load`` returns.
+/// model : str
+///     Catalogue name (forgiving: ``"Blinn-Phong"``, ``"blinn_phong"``).
+/// channels : str
+///     ``"rgb"`` (shared non-linear, per-channel linear parameters),
+///     ``"grey"`` or ``"per-channel"``.
+/// metric : str
+///     ngan, sopp, sopp-unweighted, lafortune or log.
+/// limit_deg : float
+///     Drop samples with theta_i or theta_o above this angle.
+/// starts : int
+///     Multi-start count.
+/// solver : str
+///     auto, sqp, lm, sopp, ols, irls or irls:WEIGHT.
+/// lobes, order, degree : int
+///     Structure: specular lobes, Koenderink order, polynomial degree.
+/// save : str or os.PathLike, optional
+///     Also write the fitted model (JSON) here.
+///
+/// Returns
+/// -------
+/// Fit
+///     ``.model`` (a ``Model``), ``.report`` (the dict ``brdf fit --json``
+///     prints), ``.image_error``.
+///
+/// Raises
+/// ------
+/// BrdfError
+///     With the message of the ``brdf`` command.
 #[pyfunction]
 #[pyo3(signature = (data, model, *, channels="rgb", metric="ngan", limit_deg=80.0,
     starts=12, solver="auto", lobes=1, order=8, degree=7, save=None))]
@@ -34,8 +65,12 @@ pub fn fit<'py>(
     order: usize,
     degree: usize,
     save: Option<PathBuf>,
-) -> PyResult<Bound<'py, PyAny>> {
+) -> PyResult<PyFit> {
     let (set, name) = data_set(py, data)?;
+    let spec = data
+        .extract::<PathBuf>()
+        .ok()
+        .map(|p| p.display().to_string());
     let fit = Fit::model(model)
         .and_then(|f| Ok(f.objective(Objective::parse(metric)?)))
         .and_then(|f| Ok(f.solver(Solver::parse(solver)?)))
@@ -51,9 +86,15 @@ pub fn fit<'py>(
             "save= needs one model: use channels=\"rgb\" or \"grey\"".into(),
         ));
     }
-    let reports = py.detach(|| run_all(&fit, &sets, save.as_ref(), &name))?;
+    let (reports, saved) = py.detach(|| run_all(&fit, &sets, save.as_ref(), &name))?;
     let report = brdf_fit::fit_json(&reports, &set).map_err(to_py)?;
-    crate::json::to_py_object(py, &report)
+    Ok(PyFit {
+        models: saved.into_iter().map(|saved| PyModel { saved }).collect(),
+        report: crate::json::to_py_object(py, &report)?.unbind(),
+        data: name,
+        spec,
+        errors: reports.iter().map(|r| r.summary.ngan_l2).collect(),
+    })
 }
 
 /// The data set and its name for outputs (relative to `BRDF_DATA`).
@@ -96,18 +137,17 @@ fn run_all(
     sets: &[(SampleSet, Channels)],
     save: Option<&PathBuf>,
     name: &str,
-) -> PyResult<Vec<FitReport>> {
+) -> PyResult<(Vec<FitReport>, Vec<SavedModel>)> {
     let mut reports = Vec::new();
+    let mut models = Vec::new();
     for (set, channels) in sets {
         let report = fit.clone().channels(*channels).run(set).map_err(to_py)?;
+        let saved = report.saved_model(name).map_err(to_py)?;
         if let Some(path) = save {
-            report
-                .saved_model(name)
-                .map_err(to_py)?
-                .save(path)
-                .map_err(to_py)?;
+            saved.save(path).map_err(to_py)?;
         }
         reports.push(report);
+        models.push(saved);
     }
-    Ok(reports)
+    Ok((reports, models))
 }

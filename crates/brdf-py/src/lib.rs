@@ -6,7 +6,8 @@
 //! ```python
 //! import brdf
 //! d = brdf.load("curet/abrdf.dat#25")        # dict of numpy arrays
-//! r = brdf.fit(d, "blinn-phong", save="fit.json")  # the dict of `brdf fit --json`
+//! r = brdf.fit(d, "blinn-phong", save="fit.json")  # a brdf.Fit
+//! r.model.eval(d["wi"], d["wo"]); r.report       # the dict of `brdf fit --json`
 //! f = brdf.eval("fit.json", d["wi"], d["wo"])  # (n, channels)
 //! xml = brdf.export("principled", "mitsuba")
 //! ```
@@ -14,7 +15,8 @@
 //! | module | what |
 //! | --- | --- |
 //! | [`samples`] | `load`, `save_samples`: data sets as numpy arrays and back |
-//! | [`fit`] | `fit`: the `brdf fit --json` report, GIL released |
+//! | [`fit`] | `fit`: a `Fit` (model, `brdf fit --json` report), GIL released |
+//! | [`fitted`] | `Fit` and `Model` (`eval`, `params`, `export`, `save`, `load`) |
 //! | [`model`] | `eval` (vectorised), `export`; model arguments |
 //! | [`catalogue`] | `models`, `materials`, `canonical_name`, `data_name` |
 //! | [`directions`] | unit-vector arrays, checked row by row |
@@ -36,6 +38,7 @@ pub mod catalogue;
 pub mod directions;
 pub mod error;
 pub mod fit;
+pub mod fitted;
 pub mod json;
 pub mod model;
 pub mod samples;
@@ -51,6 +54,8 @@ fn brdf_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(samples::load, m)?)?;
     m.add_function(wrap_pyfunction!(samples::save_samples, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit, m)?)?;
+    m.add_class::<fitted::PyFit>()?;
+    m.add_class::<fitted::PyModel>()?;
     m.add_function(wrap_pyfunction!(model::eval, m)?)?;
     m.add_function(wrap_pyfunction!(model::export, m)?)?;
     m.add_function(wrap_pyfunction!(catalogue::models, m)?)?;

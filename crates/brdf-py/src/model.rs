@@ -81,10 +81,26 @@ fn no_params(params: &Option<BTreeMap<String, f64>>, what: &str) -> PyResult<()>
     }
 }
 
-/// Evaluate a model at direction pairs: `wi`, `wo` are `(n, 3)` arrays of
-/// unit vectors (local frame, normal +z), or one `(3,)` vector broadcast
-/// against the other. Returns `(n, channels)` values in 1/sr, or
-/// `(channels,)` when both are single vectors.
+/// Evaluate a model at direction pairs (vectorised).
+///
+/// Parameters
+/// ----------
+/// model : str, os.PathLike or dict
+///     A catalogue name (with ``params``), a saved model's path, or its
+///     content as a dict.
+/// wi, wo : array_like
+///     ``(n, 3)`` unit vectors (local frame, normal +z), or one ``(3,)``
+///     vector broadcast against the other.
+/// params : dict of str to float, optional
+///     A catalogue model's parameters (the rest at their defaults).
+/// channels, lobes, order, degree : int
+///     A catalogue model's structure.
+///
+/// Returns
+/// -------
+/// numpy.ndarray
+///     ``(n, channels)`` values in 1/sr, or ``(channels,)`` for two single
+///     vectors.
 #[pyfunction]
 #[pyo3(signature = (model, wi, wo, *, params=None, channels=1, lobes=1, order=8, degree=7))]
 pub fn eval<'py>(
@@ -105,6 +121,16 @@ pub fn eval<'py>(
         degree,
     };
     let m = resolve(model, params, structure)?;
+    eval_model(py, m.as_ref(), wi, wo)
+}
+
+/// Evaluate `m` at the direction pairs `wi`, `wo` (as [`eval`]).
+pub fn eval_model<'py>(
+    py: Python<'py>,
+    m: &dyn Parametric,
+    wi: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    wo: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+) -> PyResult<Bound<'py, PyAny>> {
     let (wi, wi_single) = crate::directions::parse(wi.as_array(), "wi")?;
     let (wo, wo_single) = crate::directions::parse(wo.as_array(), "wo")?;
     let n = match (wi_single, wo_single) {
@@ -137,9 +163,24 @@ pub fn eval<'py>(
     Ok(out.into_pyarray(py).into_any())
 }
 
-/// A model as a renderer's material: `to` is mitsuba, pbrt, gltf or
-/// materialx; only exact equivalents are written (otherwise a `BrdfError`
-/// says why).
+/// A model as a renderer's material.
+///
+/// Parameters
+/// ----------
+/// model : str, os.PathLike or dict
+///     As for ``eval``.
+/// to : str
+///     ``"mitsuba"``, ``"pbrt"``, ``"gltf"`` or ``"materialx"``.
+/// params : dict of str to float, optional
+///     A catalogue model's parameters.
+/// channels, lobes, order, degree : int
+///     A catalogue model's structure.
+///
+/// Returns
+/// -------
+/// str
+///     The material; a ``BrdfError`` says why when there is no exact
+///     equivalent.
 #[pyfunction]
 #[pyo3(signature = (model, to, *, params=None, channels=1, lobes=1, order=8, degree=7))]
 pub fn export(

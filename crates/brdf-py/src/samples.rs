@@ -14,8 +14,25 @@ use pyo3::types::PyDict;
 
 use crate::error::{to_py, usage};
 
-/// Read a data set (any format brdf-io detects: CUReT `abrdf.dat#N`,
-/// Cornell, RGL `.bsdf`, MERL, CSV) into numpy arrays.
+/// Read a data set into NumPy arrays.
+///
+/// Parameters
+/// ----------
+/// path : str or os.PathLike
+///     Any format the library detects: CUReT ``abrdf.dat#N``, Cornell,
+///     RGL ``.bsdf``, MERL, CSV; a relative path is also looked up under
+///     ``BRDF_DATA``.
+///
+/// Returns
+/// -------
+/// dict
+///     ``wi``, ``wo`` (``(n, 3)``), ``values`` (``(n, channels)``),
+///     ``weights``, ``channel_names``, ``name``.
+///
+/// Raises
+/// ------
+/// BrdfError
+///     Naming the file (and line) at fault.
 #[pyfunction]
 pub fn load<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
     let spec = path.display().to_string();
@@ -23,8 +40,14 @@ pub fn load<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>>
     to_dict(py, &set)
 }
 
-/// Write a data set (a dict as `load` returns) as a CSV sample file, which
-/// `load` reads back exactly.
+/// Write a data set as a CSV sample file, which ``load`` reads back exactly.
+///
+/// Parameters
+/// ----------
+/// data : dict
+///     Arrays as ``load`` returns them.
+/// path : str or os.PathLike
+///     The CSV file to write.
 #[pyfunction]
 pub fn save_samples(data: &Bound<'_, PyDict>, path: PathBuf) -> PyResult<()> {
     let set = from_dict(data)?;

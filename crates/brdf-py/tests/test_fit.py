@@ -21,7 +21,7 @@ MODELS = ["lambert", "blinn-phong", "ashikhmin-shirley", "cook-torrance"]
 def test_fit_equals_cli(brdf_cli, material, model):
     path = data_file(material)
     cli = cli_json(brdf_cli, "fit", "--data", path, "--model", model)
-    py = brdf.fit(path, model)
+    py = brdf.fit(path, model).report
     assert without_seconds(py) == without_seconds(cli)
     assert py["fits"][0]["seconds"] > 0
 
@@ -39,14 +39,14 @@ def test_fit_options_equal_cli(brdf_cli, options, flags):
     path = data_file("curet/abrdf.dat#25")
     model = "lafortune" if "lobes" in options else "ward"
     cli = cli_json(brdf_cli, "fit", "--data", path, "--model", model, *flags)
-    py = brdf.fit(path, model, **options)
+    py = brdf.fit(path, model, **options).report
     assert without_seconds(py) == without_seconds(cli)
 
 
 def test_fit_of_rgb_file_equals_cli(brdf_cli):
     path = data_file("rgl/paper_white_rgb.bsdf")
     cli = cli_json(brdf_cli, "fit", "--data", path, "--model", "ward", "--starts", "4")
-    py = brdf.fit(path, "ward", starts=4)
+    py = brdf.fit(path, "ward", starts=4).report
     assert len(py["fits"][0]["ngan_l2_per_channel"]) == 3
     assert without_seconds(py) == without_seconds(cli)
 
@@ -54,15 +54,15 @@ def test_fit_of_rgb_file_equals_cli(brdf_cli):
 @pytest.mark.parametrize("material", MATERIALS)
 def test_fit_from_arrays_equals_fit_from_path(material):
     path = data_file(material)
-    from_arrays = brdf.fit(brdf.load(path), "blinn-phong")
-    from_path = brdf.fit(path, "blinn-phong")
+    from_arrays = brdf.fit(brdf.load(path), "blinn-phong").report
+    from_path = brdf.fit(path, "blinn-phong").report
     assert without_seconds(from_arrays) == without_seconds(from_path)
 
 
 def test_saved_model_evaluates_as_cli(brdf_cli, tmp_path):
     path = data_file("curet/abrdf.dat#25")
     saved = tmp_path / "fit.json"
-    report = brdf.fit(path, "ashikhmin-shirley", save=saved)
+    report = brdf.fit(path, "ashikhmin-shirley", save=saved).report
     fitted = {p["name"]: p["value"] for p in report["fits"][0]["parameters"]}
     params = [(0.3, 0.0, 0.5, math.pi), (1.0, 0.5, 0.2, 2.0), (0.1, 1.0, 1.2, -2.5)]
     for ti, pi, to, po in params:
@@ -103,3 +103,52 @@ def test_fit_releases_the_gil():
     # cannot run Python while it is held); released, one every ~1 ms.
     assert span["end"] - span["start"] > 0.05, "the fit was too short to tell"
     assert len(inside) >= 10, f"{len(inside)} ticks during a {span['end'] - span['start']:.3f} s fit"
+
+
+def test_fit_object_model_evaluates_saves_and_loads(tmp_path):
+    path = data_file("curet/abrdf.dat#25")
+    fit = brdf.fit(path, "blinn-phong")
+    assert isinstance(fit, brdf.Fit) and isinstance(fit.model, brdf.Model)
+    assert fit.image_error is None
+    fitted = {p["name"]: p["value"] for p in fit.report["fits"][0]["parameters"]}
+    assert fit.model.params == fitted
+    assert repr(fit).startswith('Fit(model="blinn-phong"') and "ngan_l2" in repr(fit)
+    assert "blinn-phong" in repr(fit.model)
+    theta = np.linspace(0.0, 1.2, 7)
+    wi = np.stack([np.sin(theta), np.zeros_like(theta), np.cos(theta)], axis=1)
+    wo = wi[::-1].copy()
+    values = fit.model.eval(wi, wo)
+    assert values.shape == (7, fit.model.channels)
+    assert values.tolist() == brdf.eval("blinn-phong", wi, wo, params=fitted).tolist()
+    saved = tmp_path / "m.json"
+    fit.model.save(saved)
+    assert brdf.Model.load(saved).eval(wi, wo).tolist() == values.tolist()
+    assert brdf.Model.load(str(saved)).params == fitted
+
+
+def test_per_channel_fit_has_a_model_per_channel():
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    fit = brdf.fit(path, "lambert", channels="per-channel", starts=2)
+    assert len(fit.models) == 3 and len(fit.report["fits"]) == 3
+
+
+def test_image_error_of_a_fit_to_dense_data():
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    fit = brdf.fit(path, "lambert", starts=2)
+    err = fit.image_error
+    assert isinstance(err, dict) and err, err
+
+
+def test_model_load_refuses_a_data_file():
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    with pytest.raises(brdf.BrdfError, match="is a data file"):
+        brdf.Model.load(path)
+
+
+def test_every_function_has_a_numpy_style_docstring():
+    functions = [brdf.load, brdf.save_samples, brdf.fit, brdf.eval, brdf.export, brdf.models,
+                 brdf.materials, brdf.canonical_name, brdf.data_name,
+                 brdf.Model.load, brdf.Model.eval, brdf.Model.export, brdf.Model.save]
+    for f in functions:
+        doc = f.__doc__ or ""
+        assert "Parameters" in doc or "Returns" in doc, f

@@ -70,7 +70,7 @@ def test_lambert_fit_of_arrays_recovers_kd():
                       np.sin(theta[:, k]) * np.sin(phi[:, k]), np.cos(theta[:, k])], 1)
             for k in range(2)]
     d = {"wi": dirs[0], "wo": dirs[1], "values": np.full(50, 0.3 / math.pi)}
-    r = brdf.fit(d, "lambert")
+    r = brdf.fit(d, "lambert").report
     assert r["samples_present"] == 50 and r["fits"][0]["data"] == "numpy"
     kd = r["fits"][0]["parameters"][0]
     assert kd["name"] == "kd" and abs(kd["value"] - 0.3) < 1e-12

@@ -79,6 +79,13 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     };
     let done = brdf_fit::batch::run(&opts, started, &|| bar.inc(1))?;
     bar.finish_and_clear();
+    if let Some(line) = &done.dropped_torn_line {
+        eprintln!(
+            "brdf batch: dropped the torn last line of {} (a killed run; {} bytes); its fit was redone",
+            done.fits_path.display(),
+            line.len()
+        );
+    }
     for f in &done.failures {
         eprintln!("brdf batch: {f}");
     }

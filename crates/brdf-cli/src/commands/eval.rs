@@ -44,6 +44,21 @@ struct EvalOut {
     channels: Vec<f64>,
 }
 
+/// Without `--degrees`, a polar angle above pi/2 is almost surely degrees
+/// typed without the flag: refuse it rather than wrap it around.
+fn check_radians(s: &str, degrees: bool, what: &str) -> Result<(), CliError> {
+    if degrees {
+        return Ok(());
+    }
+    let theta = s.split(',').next().map(str::trim).unwrap_or_default();
+    match theta.parse::<f64>() {
+        Ok(t) if t.abs() > std::f64::consts::FRAC_PI_2 => Err(CliError::Usage(format!(
+            "`{what} {s}`: {theta} is not an angle in radians (> pi/2); add --degrees"
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// Run `brdf eval`.
 pub fn run(args: &EvalArgs) -> Result<(), CliError> {
     let (model, values) = match &args.load {
@@ -65,6 +80,8 @@ pub fn run(args: &EvalArgs) -> Result<(), CliError> {
             (m, v)
         }
     };
+    check_radians(&args.wi, args.degrees, "--wi")?;
+    check_radians(&args.wo, args.degrees, "--wo")?;
     let wi = parse_direction(&args.wi, args.degrees, "--wi")?;
     let wo = parse_direction(&args.wo, args.degrees, "--wo")?;
     let mut f = vec![0.0; model.channels()];

@@ -46,7 +46,7 @@ pub struct FitArgs {
     #[arg(long)]
     pub json: bool,
     /// Specular lobes (Lafortune, Cook-Torrance).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = crate::opts::at_least_one)]
     pub lobes: usize,
     /// Koenderink expansion order.
     #[arg(long, default_value_t = 8)]
@@ -58,6 +58,13 @@ pub struct FitArgs {
 
 /// Run `brdf fit`: a thin layer over [`brdf_fit::Fit`].
 pub fn run(args: &FitArgs) -> Result<(), CliError> {
+    let (path, _) = brdf_io::load::resolve_spec(&args.data)?;
+    if path.is_dir() {
+        return Err(CliError::Usage(format!(
+            "`{0}` is a folder: fit one file, or `brdf batch --data {0}`",
+            args.data
+        )));
+    }
     let data = brdf_io::load(&args.data)?;
     let sets = match args.channels.as_str() {
         "rgb" => vec![(data.clone(), Channels::All)],

@@ -29,7 +29,8 @@ pub struct RenderArgs {
     /// Sphere size in pixels (16 to 2048).
     #[arg(long, default_value_t = 256)]
     pub size: usize,
-    /// Output PNG.
+    /// Output image: `.png` (labelled, tone mapped) or `.exr` (linear
+    /// radiance of the spheres, side by side).
     pub out: PathBuf,
 }
 
@@ -43,9 +44,46 @@ fn light(s: &str) -> Result<Vector3<f64>, CliError> {
     Ok(*d.vector())
 }
 
+/// The image formats `brdf render` writes, chosen by the extension.
+#[derive(Clone, Copy, Debug)]
+enum ImageFormat {
+    Png,
+    Exr,
+}
+
+impl ImageFormat {
+    fn of(out: &std::path::Path) -> Result<Self, CliError> {
+        let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
+        match ext.to_ascii_lowercase().as_str() {
+            "png" => Ok(ImageFormat::Png),
+            "exr" => Ok(ImageFormat::Exr),
+            _ => Err(CliError::Usage(format!(
+                "`{}`: cannot write .{ext} images; name the output .png (labelled) or .exr (linear radiance)",
+                out.display()
+            ))),
+        }
+    }
+}
+
+/// The spheres of the picture (and their difference), side by side, as
+/// linear OpenEXR.
+fn write_exr(picture: &SideBySide, out: &std::path::Path) -> Result<(), CliError> {
+    let grid = picture.grid()?;
+    let tiles: Vec<&brdf_render::Image> = grid
+        .tiles
+        .iter()
+        .flatten()
+        .flatten()
+        .map(|t| &t.image)
+        .collect();
+    brdf_render::Image::hstack(&tiles).write_exr(out)?;
+    Ok(())
+}
+
 /// Run `brdf render`: load what was named, let
 /// [`brdf_render::side_by_side`] render and lay it out.
 pub fn run(args: &RenderArgs) -> Result<(), CliError> {
+    let format = ImageFormat::of(&args.out)?;
     if !(16..=2048).contains(&args.size) {
         return Err(CliError::Usage(format!(
             "--size {}: must be 16 to 2048 pixels",
@@ -89,6 +127,9 @@ pub fn run(args: &RenderArgs) -> Result<(), CliError> {
         light_label: args.light.clone(),
         size: args.size,
     };
-    picture.write_png(&args.out)?;
+    match format {
+        ImageFormat::Png => picture.write_png(&args.out)?,
+        ImageFormat::Exr => write_exr(&picture, &args.out)?,
+    }
     say!("wrote {}", args.out.display())
 }

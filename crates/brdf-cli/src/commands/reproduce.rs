@@ -41,6 +41,34 @@ pub struct ReproduceArgs {
     pub list: bool,
 }
 
+/// The data folder named by `--data` or `BRDF_DATA` must exist and hold
+/// something: a typo would otherwise silently give the synthetic study.
+fn check_data(arg: Option<&std::path::Path>) -> Result<(), CliError> {
+    let env = std::env::var_os("BRDF_DATA").filter(|d| !d.is_empty());
+    let (dir, from) = match (arg, env) {
+        (Some(d), _) => (d.to_path_buf(), "--data"),
+        (None, Some(d)) => (PathBuf::from(d), "BRDF_DATA"),
+        (None, None) => return Ok(()),
+    };
+    let fix = "point it at the folder holding curet/, rgl/, merl/ ..., or unset it for the synthetic materials";
+    let entries = match std::fs::read_dir(&dir) {
+        Ok(e) => e,
+        Err(e) => {
+            return Err(CliError::Usage(format!(
+                "{from}={}: cannot read the folder ({e}); {fix}",
+                dir.display()
+            )));
+        }
+    };
+    if entries.count() == 0 {
+        return Err(CliError::Usage(format!(
+            "{from}={}: the folder is empty; {fix}",
+            dir.display()
+        )));
+    }
+    Ok(())
+}
+
 /// Run `brdf reproduce`.
 pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
     if args.list {
@@ -49,6 +77,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         }
         return Ok(());
     }
+    check_data(args.data.as_deref())?;
     let done = brdf_study::reproduce::run(&Reproduce {
         data: args.data.clone(),
         out: args.out.clone(),

@@ -1,4 +1,4 @@
-//! `brdf select --data PATH [--tolerance REL] [--json]`: fit the candidate
+//! `brdf select --data PATH [--tolerance REL] [--models A,B] [--max-parameters N] [--json]`: fit the candidate
 //! models and choose the smallest one within the tolerance of the best.
 
 use crate::error::CliError;
@@ -19,6 +19,12 @@ pub struct SelectArgs {
     /// Fit the mean of the channels (grey) instead of every channel.
     #[arg(long)]
     pub grey: bool,
+    /// Only these models (comma-separated, forgiving names; repeats count once).
+    #[arg(long, value_delimiter = ',')]
+    pub models: Vec<String>,
+    /// Only candidates with at most N stored numbers.
+    #[arg(long, value_name = "N")]
+    pub max_parameters: Option<usize>,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
@@ -28,7 +34,12 @@ pub struct SelectArgs {
 pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     let data = brdf_io::load(&args.data)?;
     let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
-    let (rows, choice) = brdf_fit::select::select(&data, args.tolerance, &FitOptions::default())?;
+    let among = brdf_fit::select::Among {
+        models: args.models.clone(),
+        max_parameters: args.max_parameters,
+    };
+    let (rows, choice) =
+        brdf_fit::select::select_among(&data, args.tolerance, &FitOptions::default(), &among)?;
     if args.json {
         let v = serde_json::json!({ "data": data.name, "tolerance": args.tolerance, "choice": rows[choice], "candidates": rows });
         return say!("{}", serde_json::to_string_pretty(&v)?);

@@ -1,0 +1,117 @@
+"""Type stubs of the ``brdf`` module (PyO3): fit analytic BRDF models to
+measured reflectance data with NumPy arrays in and out."""
+
+import os
+from typing import Any, Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+StrPath = Union[str, "os.PathLike[str]"]
+ArrayLike = npt.ArrayLike
+Samples = dict[str, Any]
+
+class BrdfError(ValueError):
+    """An error of the brdf library; the message names the file, line or
+    parameter at fault."""
+
+class Model:
+    """A fitted or saved model."""
+
+    @staticmethod
+    def load(path: StrPath) -> "Model":
+        """Read a model saved by ``Model.save`` or ``brdf fit --save``."""
+    @property
+    def name(self) -> str:
+        """Catalogue name of the model."""
+    @property
+    def channels(self) -> int:
+        """Colour channels the model returns."""
+    @property
+    def params(self) -> dict[str, float]:
+        """Parameter values by name."""
+    def eval(self, wi: ArrayLike, wo: ArrayLike) -> npt.NDArray[np.float64]:
+        """Values at ``(n, 3)`` direction pairs: ``(n, channels)`` in 1/sr."""
+    def export(self, *, to: str) -> str:
+        """The model as a mitsuba, pbrt, gltf or materialx material."""
+    def save(self, path: StrPath) -> None:
+        """Write the model (JSON)."""
+
+class Fit:
+    """The outcome of ``fit``."""
+
+    @property
+    def model(self) -> Model:
+        """The fitted model (the first of ``models``)."""
+    @property
+    def models(self) -> list[Model]:
+        """One model per fit (three for ``channels="per-channel"``)."""
+    @property
+    def report(self) -> dict[str, Any]:
+        """The report ``brdf fit --json`` prints."""
+    @property
+    def image_error(self) -> Optional[dict[str, Any]]:
+        """Image errors against dense data (RGL, MERL), else None."""
+
+def load(path: StrPath) -> Samples:
+    """Read a data set into NumPy arrays (``wi``, ``wo``, ``values``, ...)."""
+
+def save_samples(data: Samples, path: StrPath) -> None:
+    """Write a data set as a CSV sample file ``load`` reads back exactly."""
+
+def fit(
+    data: Union[StrPath, Samples],
+    model: str,
+    *,
+    channels: str = "rgb",
+    metric: str = "ngan",
+    limit_deg: float = 80.0,
+    starts: int = 12,
+    solver: str = "auto",
+    lobes: int = 1,
+    order: int = 8,
+    degree: int = 7,
+    save: Optional[StrPath] = None,
+) -> Fit:
+    """Fit a model to measured data, as ``brdf fit``."""
+
+def eval(
+    model: Union[str, "os.PathLike[str]", dict[str, Any]],
+    wi: ArrayLike,
+    wo: ArrayLike,
+    *,
+    params: Optional[dict[str, float]] = None,
+    channels: int = 1,
+    lobes: int = 1,
+    order: int = 8,
+    degree: int = 7,
+) -> npt.NDArray[np.float64]:
+    """Evaluate a catalogue or saved model at direction pairs."""
+
+def export(
+    model: Union[str, "os.PathLike[str]", dict[str, Any]],
+    to: str,
+    *,
+    params: Optional[dict[str, float]] = None,
+    channels: int = 1,
+    lobes: int = 1,
+    order: int = 8,
+    degree: int = 7,
+) -> str:
+    """A model as a renderer's material."""
+
+def models(
+    *, channels: int = 1, lobes: int = 1, order: int = 8, degree: int = 7
+) -> list[dict[str, Any]]:
+    """The catalogue, as ``brdf models --json`` prints it."""
+
+def materials(path: StrPath) -> list[str]:
+    """The data sets a path stands for, as ``brdf batch --data`` reads it."""
+
+def canonical_name(name: str) -> str:
+    """The catalogue name a forgiving model name stands for."""
+
+def data_name(spec: str) -> str:
+    """A data set's name in outputs (relative to ``BRDF_DATA``)."""

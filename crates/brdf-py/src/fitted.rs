@@ -1,0 +1,225 @@
+//! The objects `fit` returns: [`PyFit`] (`brdf.Fit`: the report, the
+//! fitted model, its image error) and [`PyModel`] (`brdf.Model`: a fitted
+//! or saved model that evaluates, exports and saves itself).
+
+use std::path::PathBuf;
+
+use brdf_models::saved_model::SavedModel;
+use numpy::{AllowTypeChange, PyArrayLikeDyn};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::{to_py, usage};
+
+/// A fitted or saved model.
+///
+/// Attributes
+/// ----------
+/// name : str
+///     Catalogue name of the model.
+/// params : dict[str, float]
+///     Parameter values by name.
+/// channels : int
+///     Colour channels the model returns.
+#[pyclass(name = "Model", module = "brdf", frozen)]
+#[derive(Clone, Debug)]
+pub struct PyModel {
+    pub(crate) saved: SavedModel,
+}
+
+#[pymethods]
+impl PyModel {
+    /// Read a model saved by ``Model.save``, ``fit(..., save=...)`` or
+    /// ``brdf fit --save``.
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     The saved model (JSON).
+    ///
+    /// Returns
+    /// -------
+    /// Model
+    ///
+    /// Raises
+    /// ------
+    /// BrdfError
+    ///     When the file is missing, a data file, or not a saved model.
+    #[staticmethod]
+    pub fn load(path: PathBuf) -> PyResult<Self> {
+        let saved = SavedModel::load(&path).map_err(to_py)?;
+        saved.build().map_err(to_py)?;
+        Ok(PyModel { saved })
+    }
+
+    /// Catalogue name of the model.
+    #[getter]
+    pub fn name(&self) -> String {
+        self.saved.model.clone()
+    }
+
+    /// Colour channels the model returns.
+    #[getter]
+    pub fn channels(&self) -> PyResult<usize> {
+        Ok(self.saved.build().map_err(to_py)?.channels())
+    }
+
+    /// Parameter values by name (a new dict on every access).
+    #[getter]
+    pub fn params<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for p in &self.saved.parameters {
+            d.set_item(&p.name, p.value)?;
+        }
+        Ok(d)
+    }
+
+    /// Evaluate the model at direction pairs.
+    ///
+    /// Parameters
+    /// ----------
+    /// wi, wo : array_like
+    ///     ``(n, 3)`` unit vectors (local frame, normal +z), or one ``(3,)``
+    ///     vector broadcast against the other.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     ``(n, channels)`` values in 1/sr, or ``(channels,)`` for two
+    ///     single vectors.
+    pub fn eval<'py>(
+        &self,
+        py: Python<'py>,
+        wi: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        wo: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let m = self.saved.build().map_err(to_py)?;
+        crate::model::eval_model(py, m.as_ref(), wi, wo)
+    }
+
+    /// The model as a renderer's material.
+    ///
+    /// Parameters
+    /// ----------
+    /// to : str
+    ///     ``"mitsuba"``, ``"pbrt"``, ``"gltf"`` or ``"materialx"``.
+    ///
+    /// Returns
+    /// -------
+    /// str
+    ///     The material's text; a ``BrdfError`` when there is no exact
+    ///     equivalent.
+    #[pyo3(signature = (*, to))]
+    pub fn export(&self, to: &str) -> PyResult<String> {
+        let m = self.saved.build().map_err(to_py)?;
+        let target: brdf_export::Target = to.parse().map_err(to_py)?;
+        brdf_export::export(m.as_ref(), target).map_err(to_py)
+    }
+
+    /// Write the model (JSON) for ``Model.load`` and ``brdf eval --load``.
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     The file to write.
+    pub fn save(&self, path: PathBuf) -> PyResult<()> {
+        self.saved.save(&path).map_err(to_py)
+    }
+
+    fn __repr__(&self) -> String {
+        let params: Vec<String> = self
+            .saved
+            .parameters
+            .iter()
+            .map(|p| format!("{}={:.6}", p.name, p.value))
+            .collect();
+        format!("Model({:?}, {})", self.saved.model, params.join(", "))
+    }
+}
+
+/// The outcome of ``brdf.fit``.
+///
+/// Attributes
+/// ----------
+/// model : Model
+///     The fitted model (the first channel's for ``channels="per-channel"``).
+/// models : list[Model]
+///     One model per fit (three for ``channels="per-channel"``).
+/// report : dict
+///     The report ``brdf fit --json`` prints.
+/// image_error : dict or None
+///     Image errors against dense data (RGL, MERL), else None.
+#[pyclass(name = "Fit", module = "brdf", frozen)]
+#[derive(Debug)]
+pub struct PyFit {
+    pub(crate) models: Vec<PyModel>,
+    pub(crate) report: Py<PyAny>,
+    /// Data name (relative to `BRDF_DATA`).
+    pub(crate) data: String,
+    /// Ngan L2 error of every fit.
+    pub(crate) errors: Vec<f64>,
+    /// The data path, when the data were named by one (for image errors
+    /// against dense data).
+    pub(crate) spec: Option<String>,
+}
+
+#[pymethods]
+impl PyFit {
+    /// The fitted model (the first of ``models``).
+    #[getter]
+    pub fn model(&self) -> PyResult<PyModel> {
+        self.models
+            .first()
+            .cloned()
+            .ok_or_else(|| usage("the fit produced no model".into()))
+    }
+
+    /// One model per fit.
+    #[getter]
+    pub fn models(&self) -> Vec<PyModel> {
+        self.models.clone()
+    }
+
+    /// The report ``brdf fit --json`` prints, as a dict.
+    #[getter]
+    pub fn report(&self, py: Python<'_>) -> Py<PyAny> {
+        self.report.clone_ref(py)
+    }
+
+    /// Image errors of the fit against dense data (RGL, MERL: rendered
+    /// spheres under the standard light sets, computed on first access);
+    /// None for scattered data or data given as arrays.
+    #[getter]
+    pub fn image_error(&self, py: Python<'_>) -> PyResult<Option<Py<PyAny>>> {
+        let (Some(spec), Some(model)) = (&self.spec, self.models.first()) else {
+            return Ok(None);
+        };
+        let errors = py.detach(|| -> Result<_, String> {
+            let Some(dense) = brdf_io::load_dense(spec).map_err(|e| e.to_string())? else {
+                return Ok(None);
+            };
+            let fitted = model.saved.build().map_err(|e| e.to_string())?;
+            brdf_fit::appearance::Judge::new(128)
+                .errors(dense.as_ref(), fitted.as_ref())
+                .map(Some)
+                .map_err(|e| e.to_string())
+        });
+        match errors.map_err(usage)? {
+            Some(e) => Ok(Some(crate::json::to_py_object(py, &e)?.unbind())),
+            None => Ok(None),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        let errors: Vec<String> = self.errors.iter().map(|e| format!("{e:.4e}")).collect();
+        let name = self
+            .models
+            .first()
+            .map_or("?".into(), |m| m.saved.model.clone());
+        format!(
+            "Fit(model={name:?}, data={:?}, ngan_l2=[{}])",
+            self.data,
+            errors.join(", ")
+        )
+    }
+}
