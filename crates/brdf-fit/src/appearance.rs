@@ -366,3 +366,61 @@ pub fn fit_judged(
     report.image_error = Some(errors);
     Ok(report)
 }
+
+/// The renderer models `brdf select --by-image` chooses among.
+pub const RENDERER_MODELS: [&str; 4] = ["principled", "gltf", "gltf-ext", "ggx"];
+
+/// One model of [`select_by_image`]: its appearance fit and image errors.
+#[derive(Clone, Debug, Serialize)]
+pub struct ImageChoice {
+    /// Catalogue name.
+    pub model: String,
+    /// Objective of the chosen candidate of this model.
+    pub objective: String,
+    /// Optional lobes it kept.
+    pub lobes: Vec<String>,
+    /// Its image errors at [`REPORT_SIZE`] pixels.
+    pub image: ImageError,
+    /// Ngan's L2.
+    pub ngan_l2: f64,
+    /// Parameters.
+    pub parameters: usize,
+    /// Seconds of the model's appearance fit.
+    pub seconds: f64,
+}
+
+/// Selection by image error (Bieron and Peers 2020): every model of
+/// `models` fitted for appearance to `samples`, judged against `data` at
+/// [`REPORT_SIZE`] pixels; the index of the least mean FLIP is the choice.
+pub fn select_by_image(
+    models: &[&str],
+    samples: &SampleSet,
+    data: &dyn Brdf,
+) -> Result<(Vec<ImageChoice>, usize), FitError> {
+    let mut rows = Vec::with_capacity(models.len());
+    for name in models {
+        let t0 = Instant::now();
+        let report = fit_judged(&Fit::model(name)?, samples, Some(data), true)?;
+        let chosen = report.candidates.iter().find(|c| c.chosen);
+        rows.push(ImageChoice {
+            model: report.summary.model.clone(),
+            objective: chosen.map_or_else(String::new, |c| c.objective.clone()),
+            lobes: chosen.map_or_else(Vec::new, |c| c.lobes.clone()),
+            image: report.image_error.clone().ok_or_else(|| {
+                FitError::Usage(format!("`{}`: the fit has no image error", samples.name))
+            })?,
+            ngan_l2: report.summary.ngan_l2,
+            parameters: report.summary.parameters.len(),
+            seconds: t0.elapsed().as_secs_f64(),
+        });
+    }
+    let choice = (0..rows.len())
+        .min_by(|a, b| {
+            rows[*a]
+                .image
+                .mean_flip()
+                .total_cmp(&rows[*b].image.mean_flip())
+        })
+        .ok_or_else(|| FitError::Usage("select by image: no model to fit".into()))?;
+    Ok((rows, choice))
+}

@@ -28,10 +28,18 @@ pub struct SelectArgs {
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
+    /// Choose among the renderer models (principled, glTF, glTF + KHR, GGX;
+    /// or those of --models) by their image error against the data under
+    /// the standard light sets (data that can be rendered: RGL, MERL).
+    #[arg(long)]
+    pub by_image: bool,
 }
 
 /// Run `brdf select`.
 pub fn run(args: &SelectArgs) -> Result<(), CliError> {
+    if args.by_image {
+        return by_image(args);
+    }
     let data = brdf_io::load(&args.data)?;
     let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
     let among = brdf_fit::select::Among {
@@ -46,4 +54,48 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     }
     let table = brdf_fit::select::table(&data.name, &rows, choice, args.tolerance);
     say_raw!("{}", table.markdown())
+}
+
+/// `brdf select --by-image`: a thin layer over
+/// [`brdf_fit::appearance::select_by_image`].
+fn by_image(args: &SelectArgs) -> Result<(), CliError> {
+    let samples = brdf_io::load(&args.data)?;
+    let Some(dense) = brdf_io::load_dense(&args.data)? else {
+        return Err(CliError::Usage(format!(
+            "--by-image: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select without --by-image",
+            args.data
+        )));
+    };
+    let names: Vec<&str> = if args.models.is_empty() {
+        brdf_fit::appearance::RENDERER_MODELS.to_vec()
+    } else {
+        args.models.iter().map(String::as_str).collect()
+    };
+    let (rows, choice) = brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref())?;
+    if args.json {
+        let v =
+            serde_json::json!({ "data": samples.name, "choice": rows[choice], "candidates": rows });
+        return say!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    for (i, r) in rows.iter().enumerate() {
+        let flips: Vec<String> = r
+            .image
+            .lights
+            .iter()
+            .map(|l| format!("{} {:.3}", l.light, l.flip))
+            .collect();
+        say!(
+            "{} {:<11} {:<9} lobes [{}]: FLIP {}, CIEDE2000 {:.1}, Ngan L2 {:.4e}, {} parameters, {:.1} s",
+            if i == choice { "*" } else { " " },
+            r.model,
+            r.objective,
+            r.lobes.join(", "),
+            flips.join(", "),
+            r.image.max_delta_e(),
+            r.ngan_l2,
+            r.parameters,
+            r.seconds
+        )?;
+    }
+    Ok(())
 }

@@ -1,0 +1,89 @@
+//! The appearance fit through the command (issue 23): `brdf fit` on data
+//! that can be rendered reports image errors and its candidates, scattered
+//! data say why there are none, and `brdf select --by-image` ranks renderer
+//! models by their image error.
+
+mod common;
+use common::{brdf, data_file};
+
+#[test]
+fn fit_of_a_renderer_model_reports_image_errors_and_candidates() {
+    let Some(p) = data_file("rgl/paper_white_rgb.bsdf") else {
+        return;
+    };
+    let p = p.display().to_string();
+    let (ok, out, err) = brdf(&["fit", "--data", &p, "--model", "gltf", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let lights = v["image_errors"][0]["lights"]
+        .as_array()
+        .expect("image errors");
+    assert_eq!(lights.len(), 2);
+    for l in lights {
+        let flip = l["flip"].as_f64().expect("flip");
+        // A white paper is close to Lambertian: its fit renders alike.
+        assert!(flip > 0.0 && flip < 0.15, "{l}");
+        assert!(l["delta_e"].as_f64().expect("dE") < 3.0, "{l}");
+    }
+    let candidates = v["candidates"][0].as_array().expect("candidates");
+    assert_eq!(candidates.iter().filter(|c| c["chosen"] == true).count(), 1);
+    assert!(
+        candidates.len() >= 4,
+        "three objectives and the image refinement"
+    );
+}
+
+#[test]
+fn scattered_data_say_no_image_error_can_be_formed() {
+    let Some(p) = data_file("curet/abrdf.dat") else {
+        return;
+    };
+    let spec = format!("{}#25", p.display());
+    let (ok, out, err) = brdf(&[
+        "fit",
+        "--data",
+        &spec,
+        "--model",
+        "ggx",
+        "--channels",
+        "grey",
+    ]);
+    assert!(ok, "{err}");
+    assert!(out.contains("no image error"), "{out}");
+    let (ok, _, err) = brdf(&["select", "--data", &spec, "--by-image"]);
+    assert!(!ok);
+    assert!(
+        err.contains("--by-image") && err.contains("scattered"),
+        "{err}"
+    );
+}
+
+#[test]
+fn select_by_image_marks_the_least_flip() {
+    let Some(p) = data_file("rgl/paper_white_rgb.bsdf") else {
+        return;
+    };
+    let p = p.display().to_string();
+    let (ok, out, err) = brdf(&[
+        "select",
+        "--data",
+        &p,
+        "--by-image",
+        "--models",
+        "gltf,ggx",
+        "--json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let rows = v["candidates"].as_array().expect("rows");
+    assert_eq!(rows.len(), 2);
+    let mean = |r: &serde_json::Value| {
+        let l = r["image"]["lights"].as_array().expect("lights");
+        l.iter()
+            .map(|x| x["flip"].as_f64().expect("flip"))
+            .sum::<f64>()
+            / l.len() as f64
+    };
+    let best = rows.iter().map(mean).fold(f64::INFINITY, f64::min);
+    assert_eq!(mean(&v["choice"]), best);
+}
