@@ -230,11 +230,11 @@ fn bad_input_is_an_error_naming_it() {
         "--from",
         s(&principled()),
         "--to",
-        "blender",
+        "maya",
         s(&out),
     ]);
     assert!(
-        !ok && stderr.contains("unknown export target `blender`"),
+        !ok && stderr.contains("unknown export target `maya`"),
         "{stderr}"
     );
 
