@@ -78,8 +78,11 @@ fn py_str(s: &str) -> String {
 
 const BODY: &str = r#"
 
+
 def build(name=NAME):
     mat = bpy.data.materials.get(name) or bpy.data.materials.new(name)
+    # Kept in a saved .blend without an object using it (a library material).
+    mat.use_fake_user = True
     mat.use_nodes = True
     nodes = mat.node_tree.nodes
     nodes.clear()

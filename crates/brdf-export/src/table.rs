@@ -96,5 +96,7 @@ pub fn markdown() -> String {
     for t in Target::ALL {
         s += &format!(" converted ({}) |", default_via(t));
     }
-    s + "\n"
+    s += "\nMaterialX `--surface standard_surface` or `openpbr`: the glTF rows are mapped, not exact.\n";
+    s += "Conversions are fitted for appearance and refused above mean HDR-FLIP 0.05 or CIEDE2000 3 (`--force`).\n";
+    s
 }

@@ -144,12 +144,24 @@ fn report(
         });
         let v = serde_json::json!({
             "model": model, "target": target.to_string(), "out": out.to_string(),
-            "exact": exported.conversion.is_none(), "conversion": conversion,
+            "exact": exported.conversion.is_none(), "mapped": mapped(args, target),
+            "conversion": conversion,
         });
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     match &exported.conversion {
+        None if mapped(args, target) => say!(
+            "wrote {out}: `{model}` mapped to {target} (its parameters; the renderer's own BRDF, see `brdf export --list`)"
+        ),
         None => say!("wrote {out}: `{model}` exactly as {target}"),
         Some(c) => say!("wrote {out}: {}", c.note()),
     }
+}
+
+/// Whether the target writes the model's parameters into a material with
+/// the renderer's own BRDF (see `brdf_export::table`).
+fn mapped(args: &ExportArgs, target: Target) -> bool {
+    matches!(target, Target::Usd | Target::Blender)
+        || (target == Target::MaterialX
+            && args.surface.parse() != Ok(brdf_export::Surface::GltfPbr))
 }

@@ -21,7 +21,8 @@ def main():
         out.append({
             "file": f, "text": open(f).read(), "mitsuba": mi.__version__,
             "shapes": len(scene.shapes()), "emitters": len(scene.emitters()),
-            "sphere_bsdf": str(sphere[0].bsdf()).split("[")[0] if sphere else None,
+            "sphere_bsdf": str(sphere[0].bsdf()).splitlines()[0].split("[")[0].strip(" :")
+            if sphere else None,
             "size": list(img.shape[:2]), "finite": bool(np.isfinite(img).all()),
             "mean": [float(x) for x in img.reshape(-1, 3).mean(axis=0)],
         })
