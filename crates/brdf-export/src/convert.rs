@@ -31,8 +31,9 @@
 //! either is a different-looking material; fitting the target's model
 //! to the measurement directly is then the better route.
 //!
-//! pbrt-v4's `mix` (below) is not a catalogue model, so its conversion is
-//! the BRDF-space fit only; its image error is still measured and checked.
+//! pbrt-v4's `mix` (below) is not a catalogue model: its BRDF-space fit
+//! (Ngan's objective) is refined in the image objective and the
+//! refinement kept when its image error is lower.
 //!
 //! | target | model fitted by default | why |
 //! | --- | --- | --- |
@@ -48,8 +49,13 @@
 
 use brdf_core::half_diff::HalfDiff;
 use brdf_core::{Brdf, DirPairs, Direction, Parametric, SampleSet};
-use brdf_fit::appearance::{ImageError, Judge, REPORT_SIZE, fit_for_appearance};
-use brdf_fit::{Channels, Fit, FitOptions, pipeline};
+use std::sync::Arc;
+
+use brdf_fit::appearance::{
+    FIT_SIZE, ImageError, Judge, REPORT_SIZE, fit_for_appearance, image_terms,
+};
+use brdf_fit::image_objective::ImageTarget;
+use brdf_fit::{Channels, Fit, FitOptions, Objective, pipeline};
 use brdf_models::ModelConfig;
 
 use crate::pbrt_mix::PbrtMix;
@@ -228,12 +234,7 @@ pub fn convert(
         "ggx-conductor" | "ggx-dielectric" | "ggx-conductor-aniso" | "ggx-dielectric-aniso"
     );
     let (model, config) = if target == Target::Pbrt && pbrt_lobe {
-        let mut mix = PbrtMix::new(via, source.channels()).map_err(|e| fail(e.to_string()))?;
-        let fit_opts = FitOptions {
-            starts: opts.starts,
-            ..FitOptions::default()
-        };
-        pipeline::fit(&mut mix, &samples, &fit_opts).map_err(|e| fail(e.to_string()))?;
+        let mix = fit_mix(source, via, &samples, opts).map_err(fail)?;
         let config = ModelConfig {
             channels: source.channels(),
             ..ModelConfig::default()
@@ -253,8 +254,46 @@ pub fn convert(
         pairs: samples.pairs().clone(),
         error,
         image,
-        appearance: opts.appearance && !(target == Target::Pbrt && pbrt_lobe),
+        appearance: opts.appearance,
     })
+}
+
+/// Fit pbrt-v4's mix with lobe `via` to the samples of `source` in BRDF
+/// space, then (for appearance) refine it in the image objective, kept
+/// when its image error is lower.
+fn fit_mix(
+    source: &dyn Parametric,
+    via: &str,
+    samples: &SampleSet,
+    opts: &ConvertOptions,
+) -> Result<PbrtMix, String> {
+    let mut mix = PbrtMix::new(via, source.channels()).map_err(|e| e.to_string())?;
+    let mut fit_opts = FitOptions {
+        starts: opts.starts,
+        ..FitOptions::default()
+    };
+    pipeline::fit(&mut mix, samples, &fit_opts).map_err(|e| e.to_string())?;
+    if !opts.appearance {
+        return Ok(mix);
+    }
+    let judge = Judge::new(FIT_SIZE);
+    let flip = |m: &PbrtMix| {
+        judge
+            .errors(source as &dyn Brdf, m as &dyn Brdf)
+            .map(|e| e.mean_flip())
+            .map_err(|e| e.to_string())
+    };
+    let before = flip(&mix)?;
+    let start = mix.params().to_vec();
+    let target = ImageTarget::new(image_terms(FIT_SIZE), source, mix.channels(), start);
+    let mut refined = mix.clone();
+    fit_opts.objective = Objective::Image;
+    fit_opts.image = Some(Arc::new(target));
+    // A failed refinement keeps the BRDF-space fit.
+    if pipeline::fit(&mut refined, samples, &fit_opts).is_ok() && flip(&refined)? < before {
+        return Ok(refined);
+    }
+    Ok(mix)
 }
 
 /// Fit the catalogue model `via` to the samples of `source`: for

@@ -173,7 +173,13 @@ fn khronos_validator_accepts_the_gltf() {
 #[test]
 fn materialx_validates_the_documents() {
     let v: serde_json::Value = serde_json::from_str(&read("materialx_validation.json")).unwrap();
-    let v = v.as_array().unwrap();
+    // The gltf_pbr documents (tests/targets.rs checks the OpenPBR ones).
+    let v: Vec<_> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| !r["file"].as_str().unwrap().ends_with(".openpbr.mtlx"))
+        .collect();
     assert_eq!(v.len(), MODELS.len());
     for (m, r) in MODELS.iter().zip(v) {
         assert_eq!(r["text"].as_str().unwrap(), read(&format!("{m}.mtlx")));

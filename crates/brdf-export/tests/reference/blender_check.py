@@ -32,6 +32,10 @@ def read_back(blend, name):
 
 
 def main():
+    # Blender writes its own messages to file descriptor 1: send them to
+    # stderr while it works, so stdout holds only the JSON.
+    stdout = os.dup(1)
+    os.dup2(2, 1)
     out = []
     for f in sys.argv[1:]:
         text = open(f).read()
@@ -46,9 +50,11 @@ def main():
                  "blend_written": os.path.getsize(blend) > 0}
             r.update(read_back(blend, g["NAME"]))
             # What the script meant to set, to compare in the Rust test.
-            r["expected"] = {k: (round(v, 6) if isinstance(v, float) else [round(x, 6) for x in v])
+            r["expected"] = {k: (round(float(v), 6) if isinstance(v, (int, float)) else [round(float(x), 6) for x in v])
                              for k, v in g["INPUTS"].items()}
         out.append(r)
+    sys.stdout.flush()
+    os.dup2(stdout, 1)
     print(json.dumps(out, indent=1))
 
 
