@@ -71,7 +71,7 @@ fn exact_export_keeps_the_saved_values() {
     assert!(stdout.contains("exactly as mitsuba"), "{stdout}");
     let xml = std::fs::read_to_string(&out).expect("written");
     assert!(
-        xml.starts_with(r#"<bsdf version="3.0.0" type="principled">"#),
+        xml.starts_with(r#"<bsdf id="fitted" type="principled">"#),
         "{xml}"
     );
     for (name, v) in [
@@ -104,6 +104,7 @@ fn conversion_is_reported_and_its_model_exports_exactly() {
         "--save-converted",
         s(&conv),
         "--json",
+        "--force",
     ];
     let (ok, stdout, stderr) = brdf(&args);
     assert!(ok, "{stderr}");
@@ -156,6 +157,7 @@ fn plain_conversion_message_names_models_and_error() {
         "128",
         "--starts",
         "2",
+        "--force",
     ];
     let (ok, stdout, stderr) = brdf(&args);
     assert!(ok, "{stderr}");
@@ -230,11 +232,11 @@ fn bad_input_is_an_error_naming_it() {
         "--from",
         s(&principled()),
         "--to",
-        "blender",
+        "maya",
         s(&out),
     ]);
     assert!(
-        !ok && stderr.contains("unknown export target `blender`"),
+        !ok && stderr.contains("unknown export target `maya`"),
         "{stderr}"
     );
 
@@ -254,4 +256,101 @@ fn bad_input_is_an_error_naming_it() {
         "{stderr}"
     );
     assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+fn glossy() -> PathBuf {
+    saved(
+        "glossy.json",
+        "ggx",
+        1,
+        &[("kd", 0.2), ("ks1", 0.5), ("alpha1", 0.08), ("f0_1", 0.04)],
+    )
+}
+
+#[test]
+fn a_conversion_that_changes_the_look_is_refused_unless_forced() {
+    let (from, out) = (glossy(), tmp("glossy.gltf"));
+    let args = [
+        "export",
+        "--from",
+        s(&from),
+        "--to",
+        "gltf",
+        s(&out),
+        "--via",
+        "lambert",
+        "--pairs",
+        "256",
+        "--starts",
+        "2",
+    ];
+    let (ok, _, stderr) = brdf(&args);
+    assert!(!ok, "a Lambert cannot look like a glossy GGX");
+    assert!(
+        stderr.contains("fit the target's model directly: `brdf fit --model lambert")
+            && stderr.contains("--force"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "nothing is written");
+    let mut forced = args.to_vec();
+    forced.push("--force");
+    let (ok, stdout, stderr) = brdf(&forced);
+    assert!(ok, "{stderr}");
+    assert!(stdout.contains("HDR-FLIP sky"), "{stdout}");
+    let asset = std::fs::read_to_string(&out).expect("written");
+    assert!(asset.contains("CIEDE2000"), "{asset}");
+}
+
+#[test]
+fn list_prints_every_model_and_target() {
+    let (ok, stdout, stderr) = brdf(&["export", "--list"]);
+    assert!(ok, "{stderr}");
+    assert!(stdout.contains("| model | mitsuba | pbrt | gltf | materialx | usd | blender |"));
+    assert!(stdout.contains("| `principled` | exact |"), "{stdout}");
+    assert!(
+        stdout.contains("| `gltf` | converted (principled) |"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn new_targets_write_their_files() {
+    let from = saved(
+        "g.json",
+        "gltf",
+        1,
+        &[("base_color", 0.5), ("metallic", 0.0), ("roughness", 0.5)],
+    );
+    for (to, file, extra, want) in [
+        (
+            "usd",
+            "g.usda",
+            None,
+            r#"uniform token info:id = "UsdPreviewSurface""#,
+        ),
+        ("blender", "g.py", None, r#""Specular IOR Level": 0.5"#),
+        ("materialx", "g.mtlx", Some("openpbr"), "<open_pbr_surface"),
+    ] {
+        let out = tmp(file);
+        let mut args = vec!["export", "--from", s(&from), "--to", to, s(&out)];
+        if let Some(surface) = extra {
+            args.extend(["--surface", surface]);
+        }
+        let (ok, stdout, stderr) = brdf(&args);
+        assert!(ok, "{to}: {stderr}");
+        assert!(stdout.contains("mapped"), "{to}: {stdout}");
+        let text = std::fs::read_to_string(&out).expect("written");
+        assert!(text.contains(want), "{to}: {text}");
+    }
+    let out = tmp("scene.xml");
+    let (ok, _, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&from),
+        "--to",
+        "gltf",
+        s(&out),
+        "--scene",
+    ]);
+    assert!(!ok && stderr.contains("--scene"), "{stderr}");
 }

@@ -7,7 +7,10 @@ use std::path::{Path, PathBuf};
 use brdf_models::saved_model::{Provenance, SavedModel, SavedModelError};
 use thiserror::Error;
 
-use crate::{Conversion, ConvertOptions, ExportError, Exported, Target, export, export_or_convert};
+use crate::{
+    Conversion, ConvertOptions, ExportError, Exported, Target, WriteOptions,
+    export_or_convert_with, export_with, identifier,
+};
 
 /// What to export where.
 #[derive(Clone, Debug)]
@@ -24,6 +27,20 @@ pub struct ExportJob {
     pub convert: ConvertOptions,
     /// Also save the converted model (the material written) here.
     pub save_converted: Option<PathBuf>,
+    /// The target's options; an empty `name` is the data's file stem
+    /// (see [`material_name`]).
+    pub write: WriteOptions,
+}
+
+/// The material's name for `saved`: its data's file stem (`paper_white_rgb`)
+/// as an [`identifier`], or `fitted`.
+pub fn material_name(saved: &SavedModel) -> String {
+    let data = saved.provenance.data.replace('\\', "/");
+    let stem = Path::new(&data)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    identifier(&stem)
 }
 
 /// What an export did.
@@ -80,13 +97,17 @@ pub fn run(job: &ExportJob) -> Result<ExportDone, ExportFileError> {
         path: job.from.display().to_string(),
         reason: e.to_string(),
     })?;
+    let mut write = job.write.clone();
+    if write.name.is_empty() {
+        write.name = material_name(&saved);
+    }
     let exported = if job.exact {
         Exported {
-            text: export(model.as_ref(), job.target)?,
+            text: export_with(model.as_ref(), job.target, None, &write)?,
             conversion: None,
         }
     } else {
-        export_or_convert(model.as_ref(), job.target, &job.convert)?
+        export_or_convert_with(model.as_ref(), job.target, &job.convert, &write)?
     };
     match (&exported.conversion, &job.save_converted) {
         (Some(c), Some(path)) => save_converted(c, &saved, path)?,
@@ -118,10 +139,18 @@ fn save_converted(c: &Conversion, source: &SavedModel, path: &Path) -> Result<()
         data: source.provenance.data.clone(),
         samples_used: c.error.samples,
         samples_present: c.error.samples,
+        // The error below is Ngan's L2 on the sampled pairs.
         objective: "ngan".into(),
         limit_deg: c.error.limit_deg,
         error: c.error.ngan_l2,
-        solver: format!("conversion by fitting from `{}`", c.source),
+        solver: if c.appearance {
+            format!(
+                "conversion by fitting from `{}` for appearance (image objective)",
+                c.source
+            )
+        } else {
+            format!("conversion by fitting from `{}`", c.source)
+        },
         software: format!("brdf-export {}", env!("CARGO_PKG_VERSION")),
         ..Provenance::default()
     };

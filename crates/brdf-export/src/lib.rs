@@ -1,7 +1,9 @@
 //! # brdf-export
 //!
 //! Writes a fitted model as a material a renderer loads: a Mitsuba 3
-//! `<bsdf>`, a pbrt-v4 material, a glTF 2.0 asset and a MaterialX document.
+//! `<bsdf>` snippet or judge scene, a pbrt-v4 material, a glTF 2.0 asset, a
+//! MaterialX document (`gltf_pbr`, `standard_surface`, `open_pbr_surface`),
+//! a USD `UsdPreviewSurface` material and a Blender script.
 //! A material is written only where the target's BSDF equals the fitted
 //! BRDF; otherwise [`export`] returns [`ExportError::NoEquivalent`] naming
 //! why, and [`export_or_convert`] fits a model the target has to the
@@ -14,7 +16,12 @@
 //! | Mitsuba 3 | [`mitsuba`] | `principled`; `lambert`; `ggx*-separable` (blend of `diffuse`, `roughconductor`, metallic `principled`) |
 //! | pbrt-v4 | [`pbrt`] | `lambert`; `ggx-conductor*` / `ggx-dielectric*` (height-correlated; `mix` of `diffuse` and `conductor`) |
 //! | glTF 2.0 | [`gltf`] | `gltf`, `gltf-ext` (with `KHR_materials_ior`, `_specular`, `_clearcoat`); `lambert` |
-//! | MaterialX | [`materialx`] | `gltf`, `gltf-ext`, `lambert` as `gltf_pbr` |
+//! | MaterialX | [`materialx`] | `gltf`, `gltf-ext`, `lambert` as `gltf_pbr` (mapped as `standard_surface`, `open_pbr_surface`) |
+//! | USD | [`usd`] | `gltf`, `gltf-ext`, `lambert` mapped to `UsdPreviewSurface` |
+//! | Blender | [`blender`] | `gltf`, `gltf-ext`, `lambert` mapped to the Principled BSDF |
+//!
+//! *Mapped* ([`table`]): the renderer's material takes the model's
+//! parameters under the same meaning, but its BRDF is the renderer's own.
 //!
 //! Any other model is converted by fitting (see [`mod@convert`] for the model
 //! each target gets).
@@ -23,7 +30,8 @@
 //! use brdf_export::{Target, export};
 //! let m = brdf_models::build("principled", &brdf_models::ModelConfig::default()).unwrap();
 //! let xml = export(m.as_ref(), Target::Mitsuba).unwrap();
-//! assert!(xml.contains(r#"<bsdf version="3.0.0" type="principled">"#));
+//! // A paste-in snippet: no `version`, an id to reference.
+//! assert!(xml.contains(r#"<bsdf id="fitted" type="principled">"#));
 //! // The height-correlated GGX has no Mitsuba equivalent:
 //! let g = brdf_models::build("ggx", &brdf_models::ModelConfig::default()).unwrap();
 //! assert!(export(g.as_ref(), Target::Mitsuba).is_err());
@@ -42,6 +50,7 @@
 //!
 //! None.
 
+pub mod blender;
 pub mod convert;
 pub mod file;
 pub mod fitted;
@@ -50,6 +59,8 @@ pub mod materialx;
 pub mod mitsuba;
 pub mod pbrt;
 pub mod pbrt_mix;
+pub mod table;
+pub mod usd;
 mod xml;
 
 use brdf_core::Parametric;
@@ -69,6 +80,126 @@ pub enum Target {
     Gltf,
     /// MaterialX document with one material.
     MaterialX,
+    /// USD layer (`.usda`) with a `Material` and a `UsdPreviewSurface`.
+    Usd,
+    /// Blender Python script building a Principled BSDF material.
+    Blender,
+}
+
+impl Target {
+    /// Every target, in the order of `brdf export --list`.
+    pub const ALL: [Target; 6] = [
+        Target::Mitsuba,
+        Target::Pbrt,
+        Target::Gltf,
+        Target::MaterialX,
+        Target::Usd,
+        Target::Blender,
+    ];
+
+    /// The usual file extension of the target's files.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Target::Mitsuba => "xml",
+            Target::Pbrt => "pbrt",
+            Target::Gltf => "gltf",
+            Target::MaterialX => "mtlx",
+            Target::Usd => "usda",
+            Target::Blender => "py",
+        }
+    }
+}
+
+/// A light set of the judge scene (`shared/spec/appearance.md`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Light {
+    /// A dim constant surround and a square key light.
+    #[default]
+    Studio,
+    /// Mitsuba's `sunsky`, the sun at (0.5, 0.64, 0.58).
+    Sky,
+}
+
+impl std::str::FromStr for Light {
+    type Err = ExportError;
+    fn from_str(s: &str) -> Result<Self, ExportError> {
+        match s {
+            "studio" => Ok(Light::Studio),
+            "sky" => Ok(Light::Sky),
+            _ => Err(ExportError::UnknownOption {
+                option: "--light",
+                value: s.to_string(),
+                expected: "studio or sky",
+            }),
+        }
+    }
+}
+
+/// The surface shader of a MaterialX document.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Surface {
+    /// Khronos's `gltf_pbr` (the glTF material itself).
+    #[default]
+    GltfPbr,
+    /// Autodesk Standard Surface (`standard_surface`).
+    StandardSurface,
+    /// OpenPBR Surface (`open_pbr_surface`, MaterialX 1.39).
+    OpenPbr,
+}
+
+impl std::str::FromStr for Surface {
+    type Err = ExportError;
+    fn from_str(s: &str) -> Result<Self, ExportError> {
+        match s {
+            "gltf_pbr" | "gltf-pbr" | "gltf" => Ok(Surface::GltfPbr),
+            "standard_surface" | "standard-surface" | "standard" => Ok(Surface::StandardSurface),
+            "openpbr" | "open_pbr_surface" | "open-pbr" => Ok(Surface::OpenPbr),
+            _ => Err(ExportError::UnknownOption {
+                option: "--surface",
+                value: s.to_string(),
+                expected: "gltf_pbr, standard_surface or openpbr",
+            }),
+        }
+    }
+}
+
+/// How a material file is written (beyond the model).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WriteOptions {
+    /// The material's name (an identifier: letters, digits, `_`).
+    pub name: String,
+    /// Mitsuba: a complete judge scene instead of a `<bsdf>` snippet.
+    pub scene: bool,
+    /// Mitsuba scene: its light set.
+    pub light: Light,
+    /// MaterialX: the surface shader.
+    pub surface: Surface,
+}
+
+impl Default for WriteOptions {
+    fn default() -> Self {
+        WriteOptions {
+            name: "fitted".into(),
+            scene: false,
+            light: Light::Studio,
+            surface: Surface::GltfPbr,
+        }
+    }
+}
+
+/// `text` as an identifier every target accepts (USD prim, MaterialX
+/// node, Mitsuba id, Python string): other characters become `_`, a
+/// leading digit gets a `m_` prefix, empty becomes `fitted`.
+pub fn identifier(text: &str) -> String {
+    let s: String = text
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    match s.chars().next() {
+        None => "fitted".into(),
+        Some(c) if c.is_ascii_digit() => format!("m_{s}"),
+        Some(_) => s,
+    }
 }
 
 impl std::str::FromStr for Target {
@@ -78,7 +209,9 @@ impl std::str::FromStr for Target {
             "mitsuba" => Ok(Target::Mitsuba),
             "pbrt" => Ok(Target::Pbrt),
             "gltf" => Ok(Target::Gltf),
-            "materialx" => Ok(Target::MaterialX),
+            "materialx" | "mtlx" => Ok(Target::MaterialX),
+            "usd" | "usda" => Ok(Target::Usd),
+            "blender" => Ok(Target::Blender),
             _ => Err(ExportError::UnknownTarget(s.to_string())),
         }
     }
@@ -91,6 +224,8 @@ impl std::fmt::Display for Target {
             Target::Pbrt => "pbrt",
             Target::Gltf => "gltf",
             Target::MaterialX => "materialx",
+            Target::Usd => "usd",
+            Target::Blender => "blender",
         })
     }
 }
@@ -124,9 +259,38 @@ pub enum ExportError {
         /// its channel count
         channels: usize,
     },
-    /// A target name that is not one of mitsuba, pbrt, gltf, materialx.
-    #[error("unknown export target `{0}` (mitsuba, pbrt, gltf, materialx)")]
+    /// A target name that is not one of mitsuba, pbrt, gltf, materialx, usd, blender.
+    #[error("unknown export target `{0}`: use --to mitsuba, pbrt, gltf, materialx, usd or blender")]
     UnknownTarget(String),
+    /// An option value that is not one of its choices.
+    #[error("unknown {option} `{value}`: use {expected}")]
+    UnknownOption {
+        /// the option
+        option: &'static str,
+        /// the value given
+        value: String,
+        /// its choices
+        expected: &'static str,
+    },
+    /// The converted material renders unlike the source (see
+    /// [`convert::FLIP_LIMIT`], [`convert::DELTA_E_LIMIT`]).
+    #[error(
+        "converting `{model}` to {target} as `{via}` changes its look (mean HDR-FLIP {flip:.3}, limit {flip_limit}; CIEDE2000 {delta_e:.2}, limit {de_limit}): fit the target's model directly: `brdf fit --model {via} ...` and export that, or pass --force to export the conversion anyway",
+        flip_limit = convert::FLIP_LIMIT,
+        de_limit = convert::DELTA_E_LIMIT
+    )]
+    LooksDifferent {
+        /// the source's catalogue name
+        model: String,
+        /// the target
+        target: Target,
+        /// the model fitted
+        via: String,
+        /// mean HDR-FLIP over the light sets
+        flip: f64,
+        /// largest mean-colour CIEDE2000
+        delta_e: f64,
+    },
     /// Conversion by fitting failed.
     #[error("converting `{model}` to {target} by fitting `{via}`: {reason}")]
     Conversion {
@@ -162,18 +326,32 @@ pub fn export_noted(
     target: Target,
     note: Option<&str>,
 ) -> Result<String, ExportError> {
+    export_with(model, target, note, &WriteOptions::default())
+}
+
+/// [`export_noted`] with the material's name and the target's options.
+pub fn export_with(
+    model: &dyn Parametric,
+    target: Target,
+    note: Option<&str>,
+    opts: &WriteOptions,
+) -> Result<String, ExportError> {
     let fit = Fitted::new(model)?;
     match target {
-        Target::Mitsuba => mitsuba::write(&fit, note),
+        Target::Mitsuba => mitsuba::write(&fit, note, opts),
         Target::Pbrt => pbrt::write(&fit, note),
         Target::Gltf => gltf::write(&fit, note),
-        Target::MaterialX => materialx::write(&fit, note),
+        Target::MaterialX => materialx::write(&fit, note, opts),
+        Target::Usd => usd::write(&fit, note, opts),
+        Target::Blender => blender::write(&fit, note, opts),
     }
 }
 
 /// Write `model` exactly where `target` has its equivalent, otherwise
 /// convert it by fitting ([`convert()`]) and write the conversion with its
-/// error noted in the file. Errors other than
+/// error noted in the file; a conversion that renders unlike the source
+/// is refused ([`ExportError::LooksDifferent`]) unless `opts.force`. Errors
+/// other than
 /// [`ExportError::NoEquivalent`] are not converted around.
 ///
 /// ```
@@ -188,14 +366,27 @@ pub fn export_or_convert(
     target: Target,
     opts: &ConvertOptions,
 ) -> Result<Exported, ExportError> {
-    match export(model, target) {
+    export_or_convert_with(model, target, opts, &WriteOptions::default())
+}
+
+/// [`export_or_convert`] with the material's name and the target's options.
+pub fn export_or_convert_with(
+    model: &dyn Parametric,
+    target: Target,
+    opts: &ConvertOptions,
+    write: &WriteOptions,
+) -> Result<Exported, ExportError> {
+    match export_with(model, target, None, write) {
         Ok(text) => Ok(Exported {
             text,
             conversion: None,
         }),
         Err(ExportError::NoEquivalent { .. }) => {
             let c = convert(model, target, opts)?;
-            let text = export_noted(c.model.as_ref(), target, Some(&c.note()))?;
+            if !opts.force {
+                c.check(target)?;
+            }
+            let text = export_with(c.model.as_ref(), target, Some(&c.note()), write)?;
             Ok(Exported {
                 text,
                 conversion: Some(c),

@@ -1,21 +1,29 @@
-//! MaterialX documents with a `gltf_pbr` surface shader.
+//! MaterialX 1.39 documents with one surface shader ([`Surface`]):
 //!
-//! `gltf_pbr` is Khronos's MaterialX definition of the glTF 2.0 material,
-//! with the same parameters as `gltf-ext` (`base_color`, `metallic`,
-//! `roughness`, `ior`, `specular`, `specular_color`, `clearcoat`,
-//! `clearcoat_roughness`), so `gltf` and `gltf-ext` fits are written as it
-//! and `lambert` as a `gltf_pbr` with `specular = 0`. MaterialX evaluates the
-//! material with its own node graph (layering by directional albedo where
-//! the glTF appendix writes `1 - max F`); the glTF specification leaves that
-//! choice to implementations, the material is the same.
+//! - `gltf_pbr` (default) is Khronos's MaterialX definition of the glTF
+//!   2.0 material, with the same parameters as `gltf-ext` (`base_color`,
+//!   `metallic`, `roughness`, `ior`, `specular`, `specular_color`,
+//!   `clearcoat`, `clearcoat_roughness`), so `gltf` and `gltf-ext` fits
+//!   are written as it and `lambert` as a `gltf_pbr` with `specular = 0`.
+//!   MaterialX evaluates the material with its own node graph (layering by
+//!   directional albedo where the glTF appendix writes `1 - max F`); the
+//!   glTF specification leaves that choice to implementations, the
+//!   material is the same.
+//! - `standard_surface` (Autodesk Standard Surface) and `open_pbr_surface`
+//!   (OpenPBR 1.x) take the same glTF fits *mapped*, as Khronos and the
+//!   OpenPBR specification map glTF: base colour, metalness, specular
+//!   roughness and IOR, specular weight and colour, coat weight and
+//!   roughness. Their closures are other materials (OpenPBR's metal is
+//!   F82-tinted, both layer by albedo, Standard Surface's diffuse is
+//!   Oren-Nayar at roughness 0): the mapping keeps the parameters, not the
+//!   BRDF, and its difference is not measured here.
 //!
-//! No exact equivalent (an error): every other model (MaterialX's
-//! `standard_surface`, `open_pbr_surface` and `disney_principled` are other
-//! materials than the catalogue's).
+//! No equivalent (an error): every other model (converted by fitting
+//! `gltf`).
 
 use crate::fitted::{Fitted, rgb_string};
 use crate::xml::Node;
-use crate::{ExportError, Target};
+use crate::{ExportError, Surface, Target, WriteOptions};
 
 fn input(name: &str, kind: &str, value: String) -> Node {
     Node::new("input")
@@ -24,34 +32,45 @@ fn input(name: &str, kind: &str, value: String) -> Node {
         .attr("value", value)
 }
 
-/// The MaterialX document for `fit`, with `note` as a comment before it.
-pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
-    let mut shader = Node::new("gltf_pbr")
-        .attr("name", "fitted_shader")
-        .attr("type", "surfaceshader");
-    let f = |n: &str, v: f64| input(n, "float", v.to_string());
-    let c = |n: &str, v: [f64; 3]| input(n, "color3", rgb_string(&v));
+/// A glTF material's parameters (core defaults where the model lacks one).
+struct Gltf {
+    base: [f64; 3],
+    metallic: f64,
+    roughness: f64,
+    ior: f64,
+    specular: f64,
+    specular_color: [f64; 3],
+    coat: f64,
+    coat_roughness: f64,
+}
+
+fn gltf_params(fit: &Fitted) -> Result<Gltf, ExportError> {
+    let mut g = Gltf {
+        base: [0.0; 3],
+        metallic: 0.0,
+        roughness: 1.0,
+        ior: 1.5,
+        specular: 1.0,
+        specular_color: [1.0; 3],
+        coat: 0.0,
+        coat_roughness: 0.0,
+    };
     match fit.name.as_str() {
         "gltf" | "gltf-ext" => {
-            shader = shader
-                .child(c("base_color", fit.colour("base_color")?))
-                .child(f("metallic", fit.get("metallic")?))
-                .child(f("roughness", fit.get("roughness")?));
+            g.base = fit.colour("base_color")?;
+            g.metallic = fit.get("metallic")?;
+            g.roughness = fit.get("roughness")?;
             if fit.name == "gltf-ext" {
-                shader = shader
-                    .child(f("ior", fit.get("ior")?))
-                    .child(f("specular", fit.get("specular")?))
-                    .child(c("specular_color", fit.colour("specular_color")?))
-                    .child(f("clearcoat", fit.get("clearcoat")?))
-                    .child(f("clearcoat_roughness", fit.get("clearcoat_roughness")?));
+                g.ior = fit.get("ior")?;
+                g.specular = fit.get("specular")?;
+                g.specular_color = fit.colour("specular_color")?;
+                g.coat = fit.get("clearcoat")?;
+                g.coat_roughness = fit.get("clearcoat_roughness")?;
             }
         }
         "lambert" => {
-            shader = shader
-                .child(c("base_color", fit.colour("kd")?))
-                .child(f("metallic", 0.0))
-                .child(f("roughness", 1.0))
-                .child(f("specular", 0.0));
+            g.base = fit.colour("kd")?;
+            g.specular = 0.0;
         }
         _ => {
             return Err(fit.no_equivalent(
@@ -60,14 +79,83 @@ pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
             ));
         }
     }
+    Ok(g)
+}
+
+/// The shader node's kind and inputs for `surface`.
+fn shader_inputs(fit: &Fitted, g: &Gltf, surface: Surface) -> (&'static str, Vec<Node>) {
+    let f = |n: &str, v: f64| input(n, "float", v.to_string());
+    let c = |n: &str, v: [f64; 3]| input(n, "color3", rgb_string(&v));
+    match surface {
+        Surface::GltfPbr => {
+            let mut v = vec![
+                c("base_color", g.base),
+                f("metallic", g.metallic),
+                f("roughness", g.roughness),
+            ];
+            if fit.name == "gltf-ext" {
+                v.extend([
+                    f("ior", g.ior),
+                    f("specular", g.specular),
+                    c("specular_color", g.specular_color),
+                    f("clearcoat", g.coat),
+                    f("clearcoat_roughness", g.coat_roughness),
+                ]);
+            } else if fit.name == "lambert" {
+                v.push(f("specular", 0.0));
+            }
+            ("gltf_pbr", v)
+        }
+        Surface::StandardSurface => (
+            "standard_surface",
+            vec![
+                f("base", 1.0),
+                c("base_color", g.base),
+                f("metalness", g.metallic),
+                f("specular", g.specular),
+                c("specular_color", g.specular_color),
+                f("specular_roughness", g.roughness),
+                f("specular_IOR", g.ior),
+                f("coat", g.coat),
+                f("coat_roughness", g.coat_roughness),
+            ],
+        ),
+        Surface::OpenPbr => (
+            "open_pbr_surface",
+            vec![
+                f("base_weight", 1.0),
+                c("base_color", g.base),
+                f("base_metalness", g.metallic),
+                f("specular_weight", g.specular),
+                c("specular_color", g.specular_color),
+                f("specular_roughness", g.roughness),
+                f("specular_ior", g.ior),
+                f("coat_weight", g.coat),
+                f("coat_roughness", g.coat_roughness),
+            ],
+        ),
+    }
+}
+
+/// The MaterialX document for `fit`, with `note` as a comment before it.
+pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+    let g = gltf_params(fit)?;
+    let (kind, inputs) = shader_inputs(fit, &g, opts.surface);
+    let shader_name = format!("{}_shader", opts.name);
+    let shader = inputs.into_iter().fold(
+        Node::new(kind)
+            .attr("name", &shader_name)
+            .attr("type", "surfaceshader"),
+        Node::child,
+    );
     let material = Node::new("surfacematerial")
-        .attr("name", "fitted")
+        .attr("name", &opts.name)
         .attr("type", "material")
         .child(
             Node::new("input")
                 .attr("name", "surfaceshader")
                 .attr("type", "surfaceshader")
-                .attr("nodename", "fitted_shader"),
+                .attr("nodename", &shader_name),
         );
     let doc = Node::new("materialx")
         .attr("version", "1.39")

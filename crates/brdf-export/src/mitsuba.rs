@@ -1,4 +1,13 @@
-//! Mitsuba 3 `<bsdf>` XML (`mitsuba.load_string` loads it).
+//! Mitsuba 3 XML: by default a paste-in `<bsdf type=... id=...>` snippet
+//! (no `version` attribute: Mitsuba refuses one on a nested element, and a
+//! scene's root carries it), or with [`WriteOptions::scene`] a complete
+//! scene (the judge's sphere, camera and one light set of
+//! `shared/spec/appearance.md`) that `mitsuba scene.xml` renders. A
+//! snippet loads standalone once wrapped: `<scene version="3.0.0">`
+//! snippet `</scene>`.
+//!
+//! A scene holds one light set (Mitsuba allows one environment emitter per
+//! scene, and both sets have one): [`Light::Studio`] by default.
 //!
 //! - `principled` is Mitsuba's own `principled` BSDF with the same
 //!   parameters (the model is defined by it).
@@ -20,7 +29,7 @@
 
 use crate::fitted::{Fitted, GgxFit, LobeFit, LobeFresnel, rgb_string};
 use crate::xml::Node;
-use crate::{ExportError, Target};
+use crate::{ExportError, Light, Target, WriteOptions};
 
 const T: Target = Target::Mitsuba;
 
@@ -38,8 +47,18 @@ fn bsdf(kind: &str) -> Node {
     Node::new("bsdf").attr("type", kind)
 }
 
-/// The Mitsuba document for `fit`, with `note` as a comment before it.
-pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
+/// The Mitsuba snippet (or scene) for `fit`, with `note` as a comment
+/// before it.
+pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+    let node = bsdf_node(fit)?;
+    let root = Node::new("bsdf").attr("id", &opts.name).attr_from(&node);
+    if opts.scene {
+        return Ok(scene(root, &opts.name, opts.light).to_document(false, note));
+    }
+    Ok(root.to_document(false, note))
+}
+
+fn bsdf_node(fit: &Fitted) -> Result<Node, ExportError> {
     let node = match fit.name.as_str() {
         "lambert" => bsdf("diffuse").child(rgb("reflectance", &fit.colour("kd")?)),
         "principled" => principled(fit)?,
@@ -50,10 +69,92 @@ pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
             }
         },
     };
-    // Only the root carries the scene-format version.
-    let mut root = Node::new("bsdf").attr("version", "3.0.0");
-    root = root.attr_from(&node);
-    Ok(root.to_document(false, note))
+    Ok(node)
+}
+
+fn named(tag: &str, name: &str, value: impl ToString) -> Node {
+    Node::new(tag).attr("name", name).attr("value", value)
+}
+
+fn look_at(origin: &str, target: &str, up: &str) -> Node {
+    Node::new("lookat")
+        .attr("origin", origin)
+        .attr("target", target)
+        .attr("up", up)
+}
+
+/// The judge scene around the named `bsdf` (its light set `light`).
+fn scene(bsdf: Node, id: &str, light: Light) -> Node {
+    let film = Node::new("film")
+        .attr("type", "hdrfilm")
+        .child(named("integer", "width", 128))
+        .child(named("integer", "height", 128))
+        .child(named("string", "pixel_format", "rgb"));
+    let sensor = Node::new("sensor")
+        .attr("type", "perspective")
+        .child(float("fov", 22.0))
+        .child(
+            Node::new("transform")
+                .attr("name", "to_world")
+                .child(look_at("0, 0, 6", "0, 0, 0", "0, 1, 0")),
+        )
+        .child(film)
+        .child(
+            Node::new("sampler")
+                .attr("type", "independent")
+                .child(named("integer", "sample_count", 256)),
+        );
+    let mut root = Node::new("scene")
+        .attr("version", "3.0.0")
+        .child(
+            Node::new("integrator")
+                .attr("type", "path")
+                .child(named("integer", "max_depth", 2)),
+        )
+        .child(sensor)
+        .child(bsdf)
+        .child(
+            Node::new("shape")
+                .attr("type", "sphere")
+                .child(Node::new("ref").attr("id", id)),
+        );
+    for e in emitters(light) {
+        root = root.child(e);
+    }
+    root
+}
+
+/// The emitters of a judge light set.
+fn emitters(light: Light) -> Vec<Node> {
+    match light {
+        Light::Sky => vec![
+            Node::new("emitter").attr("type", "sunsky").child(
+                Node::new("vector")
+                    .attr("name", "sun_direction")
+                    .attr("x", 0.5)
+                    .attr("y", 0.64)
+                    .attr("z", 0.58),
+            ),
+        ],
+        Light::Studio => vec![
+            Node::new("emitter")
+                .attr("type", "constant")
+                .child(rgb("radiance", &[0.05; 3])),
+            Node::new("shape")
+                .attr("type", "rectangle")
+                .child(
+                    Node::new("transform")
+                        .attr("name", "to_world")
+                        .child(Node::new("scale").attr("value", 0.6))
+                        .child(look_at("3, 3, 4", "0, 0, 0", "0, 1, 0")),
+                )
+                .child(
+                    Node::new("emitter")
+                        .attr("type", "area")
+                        .child(rgb("radiance", &[12.0; 3])),
+                ),
+        ],
+    }
 }
 
 fn principled(fit: &Fitted) -> Result<Node, ExportError> {

@@ -61,3 +61,70 @@ fn a_representable_source_is_recovered() {
     // The converted model is written exactly.
     assert!(export(c.model.as_ref(), Target::Pbrt).is_ok());
 }
+
+fn paper_white_ggx() -> Box<dyn Parametric> {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/reference/paper_white/ggx.json");
+    let saved = brdf_models::saved_model::SavedModel::load(&path).unwrap();
+    saved.build().unwrap()
+}
+
+/// Quick options: fewer pairs and starts, the judge at 64 pixels.
+fn quick() -> ConvertOptions {
+    ConvertOptions {
+        pairs: 1024,
+        starts: 4,
+        judge_size: 64,
+        ..Default::default()
+    }
+}
+
+/// The paper_white GGX fit (height-correlated, no Mitsuba equivalent)
+/// converted to Mitsuba's principled for appearance renders like the
+/// source: mean HDR-FLIP well inside the noise floor of a re-render.
+#[test]
+fn ggx_to_principled_keeps_the_look() {
+    let src = paper_white_ggx();
+    let c = convert(src.as_ref(), Target::Mitsuba, &quick()).unwrap();
+    assert_eq!(c.model.name(), "principled");
+    assert!(c.appearance);
+    eprintln!("{}", brdf_export::convert::image_note(&c.image));
+    assert!(c.image.mean_flip() < 0.03, "{:?}", c.image);
+    assert!(c.image.max_delta_e() < brdf_export::convert::DELTA_E_LIMIT);
+    assert!(c.check(Target::Mitsuba).is_ok());
+    assert!(c.note().contains("HDR-FLIP"), "{}", c.note());
+}
+
+/// A glossy GGX converted to a Lambert (`via`) loses its highlight: the
+/// export is refused with an error naming the better route, and written
+/// with `force`, its image error in the file.
+#[test]
+fn a_conversion_that_changes_the_look_is_refused_unless_forced() {
+    // kd, ks, alpha, f0
+    let src = model("ggx", &[0.2, 0.5, 0.08, 0.04]);
+    let opts = ConvertOptions {
+        via: Some("lambert".into()),
+        ..quick()
+    };
+    let e = brdf_export::export_or_convert(src.as_ref(), Target::Gltf, &opts)
+        .err()
+        .expect("refused");
+    let msg = e.to_string();
+    assert!(
+        matches!(e, brdf_export::ExportError::LooksDifferent { .. }),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("fit the target's model directly: `brdf fit --model lambert")
+            && msg.contains("--force"),
+        "{msg}"
+    );
+    let forced = ConvertOptions {
+        force: true,
+        ..opts
+    };
+    let done = brdf_export::export_or_convert(src.as_ref(), Target::Gltf, &forced).unwrap();
+    let c = done.conversion.expect("converted");
+    assert!(c.image.mean_flip() > brdf_export::convert::FLIP_LIMIT);
+    assert!(done.text.contains("HDR-FLIP"), "{}", done.text);
+}

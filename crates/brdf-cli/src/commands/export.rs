@@ -1,14 +1,16 @@
-//! `brdf export --from MODEL.json --to mitsuba|pbrt|gltf|materialx OUT`:
+//! `brdf export --from MODEL.json --to mitsuba|pbrt|gltf|materialx|usd|blender OUT`:
 //! write a saved model as a renderer's material, a thin layer over
 //! [`brdf_export`]. Exact where the target has the model's equivalent;
 //! otherwise converted by fitting a model the target has (`--via` names
 //! it), with the conversion error printed and written into the file;
-//! `--exact` refuses conversions.
+//! `--exact` refuses conversions, and a conversion that renders unlike
+//! the model is refused unless `--force`. `--list` prints the table of
+//! what each target writes exactly, maps or converts.
 
 use std::path::PathBuf;
 
 use brdf_export::file::ExportJob;
-use brdf_export::{ConvertOptions, Exported, Target};
+use brdf_export::{ConvertOptions, Exported, Target, WriteOptions, identifier};
 
 use crate::error::CliError;
 
@@ -16,13 +18,30 @@ use crate::error::CliError;
 #[derive(Debug, clap::Args)]
 pub struct ExportArgs {
     /// A model saved by `brdf fit --save` (`.json`).
-    #[arg(long)]
-    pub from: PathBuf,
-    /// Target: mitsuba, pbrt, gltf or materialx.
-    #[arg(long)]
-    pub to: String,
+    #[arg(long, required_unless_present = "list")]
+    pub from: Option<PathBuf>,
+    /// Target: mitsuba, pbrt, gltf, materialx, usd or blender.
+    #[arg(long, required_unless_present = "list")]
+    pub to: Option<String>,
     /// Output file.
-    pub out: PathBuf,
+    #[arg(required_unless_present = "list")]
+    pub out: Option<PathBuf>,
+    /// Print which model each target writes exactly, maps or converts.
+    #[arg(long)]
+    pub list: bool,
+    /// Mitsuba: write a complete judge scene (sphere, camera, a light set)
+    /// instead of a `<bsdf>` snippet.
+    #[arg(long)]
+    pub scene: bool,
+    /// Mitsuba scene: the light set, studio or sky.
+    #[arg(long, default_value = "studio")]
+    pub light: String,
+    /// MaterialX: the surface shader, gltf_pbr, standard_surface or openpbr.
+    #[arg(long, default_value = "gltf_pbr")]
+    pub surface: String,
+    /// The material's name (default: the data's file name).
+    #[arg(long)]
+    pub name: Option<String>,
     /// Refuse to convert: fail where the target has no exact equivalent.
     #[arg(long)]
     pub exact: bool,
@@ -39,6 +58,13 @@ pub struct ExportArgs {
     /// Multi-start count of the conversion fit.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
+    /// Export a conversion even when it renders unlike the model (mean
+    /// HDR-FLIP above 0.05 or CIEDE2000 above 3).
+    #[arg(long)]
+    pub force: bool,
+    /// Convert by BRDF-space fitting only (faster; no image objective).
+    #[arg(long)]
+    pub brdf_space: bool,
     /// Also save the converted model (the material written) here.
     #[arg(long)]
     pub save_converted: Option<PathBuf>,
@@ -49,30 +75,59 @@ pub struct ExportArgs {
 
 /// Run `brdf export`.
 pub fn run(args: &ExportArgs) -> Result<(), CliError> {
+    let (Some(to), Some(out), false) = (&args.to, &args.out, args.list) else {
+        return say!("{}", brdf_export::table::markdown());
+    };
+    let target: Target = to.parse()?;
+    if args.scene && target != Target::Mitsuba {
+        return Err(brdf_export::ExportError::UnknownOption {
+            option: "--scene",
+            value: target.to_string(),
+            expected: "--to mitsuba (only Mitsuba scenes are written)",
+        }
+        .into());
+    }
     let job = ExportJob {
-        from: args.from.clone(),
-        target: args.to.parse()?,
-        out: args.out.clone(),
+        from: args
+            .from
+            .clone()
+            .ok_or(brdf_export::ExportError::UnknownOption {
+                option: "--from",
+                value: String::new(),
+                expected: "a model saved by `brdf fit --save` (--from MODEL.json)",
+            })?,
+        target,
+        out: out.clone(),
         exact: args.exact,
         convert: ConvertOptions {
             via: args.via.clone(),
             pairs: args.pairs,
             limit_deg: args.limit,
             starts: args.starts,
+            appearance: !args.brdf_space,
+            force: args.force,
+            ..ConvertOptions::default()
         },
         save_converted: args.save_converted.clone(),
+        write: WriteOptions {
+            name: args.name.as_deref().map(identifier).unwrap_or_default(),
+            scene: args.scene,
+            light: args.light.parse()?,
+            surface: args.surface.parse()?,
+        },
     };
     let done = brdf_export::file::run(&job)?;
-    report(args, &done.model, job.target, &done.exported)
+    report(args, out, &done.model, job.target, &done.exported)
 }
 
 fn report(
     args: &ExportArgs,
+    out: &std::path::Path,
     model: &str,
     target: Target,
     exported: &Exported,
 ) -> Result<(), CliError> {
-    let out = args.out.display();
+    let out = out.display();
     if args.json {
         let conversion = exported.conversion.as_ref().map(|c| {
             serde_json::json!({
@@ -81,16 +136,32 @@ fn report(
                 "limit_deg": c.error.limit_deg,
                 "ngan_l2": c.error.ngan_l2,
                 "relative_l2": c.error.relative_l2,
+                "image": c.image,
+                "note": c.note(),
+                "mean_flip": c.image.mean_flip(),
+                "max_delta_e": c.image.max_delta_e(),
             })
         });
         let v = serde_json::json!({
             "model": model, "target": target.to_string(), "out": out.to_string(),
-            "exact": exported.conversion.is_none(), "conversion": conversion,
+            "exact": exported.conversion.is_none(), "mapped": mapped(args, target),
+            "conversion": conversion,
         });
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     match &exported.conversion {
+        None if mapped(args, target) => say!(
+            "wrote {out}: `{model}` mapped to {target} (its parameters; the renderer's own BRDF, see `brdf export --list`)"
+        ),
         None => say!("wrote {out}: `{model}` exactly as {target}"),
         Some(c) => say!("wrote {out}: {}", c.note()),
     }
+}
+
+/// Whether the target writes the model's parameters into a material with
+/// the renderer's own BRDF (see `brdf_export::table`).
+fn mapped(args: &ExportArgs, target: Target) -> bool {
+    matches!(target, Target::Usd | Target::Blender)
+        || (target == Target::MaterialX
+            && args.surface.parse() != Ok(brdf_export::Surface::GltfPbr))
 }

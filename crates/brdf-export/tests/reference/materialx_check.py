@@ -18,9 +18,14 @@ def main():
         mx.readFromXmlString(doc, text)
         doc.importLibrary(lib)
         valid, message = doc.validate()
-        shaders = [n.getCategory() for n in doc.getNodes() if n.getType() == "surfaceshader"]
+        nodes = [n for n in doc.getNodes() if n.getType() == "surfaceshader"]
+        shaders = [n.getCategory() for n in nodes]
+        # Inputs the shader's node definition does not declare.
+        unknown = [f"{n.getCategory()}.{i.getName()}" for n in nodes for i in n.getInputs()
+                   if n.getNodeDef() is None or n.getNodeDef().getActiveInput(i.getName()) is None]
         out.append({"file": f, "text": text, "materialx": mx.getVersionString(),
-                    "valid": valid, "message": message, "shaders": shaders})
+                    "valid": valid, "message": message, "shaders": shaders,
+                    "unknown_inputs": unknown})
     print(json.dumps(out, indent=1))
 
 

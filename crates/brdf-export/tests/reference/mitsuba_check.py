@@ -15,6 +15,7 @@ Any JSON list of objects with an "xml" member works (paper_white/).
 
 import json
 import math
+import re
 import sys
 
 import mitsuba as mi
@@ -43,11 +44,24 @@ def pairs(n):
     return out
 
 
+def load_bsdf(xml):
+    """The BSDF of an export: a `<bsdf id=...>` snippet (no version: it is
+    pasted into a scene) is wrapped in a scene with a sphere referencing it,
+    as a user pastes it; a complete scene is loaded as is. Returns the
+    sphere's BSDF (the one shape that is not an emitter)."""
+    if "<scene" not in xml:
+        bid = re.search(r'<bsdf[^>]*\bid="([^"]+)"', xml).group(1)
+        xml = (f'<scene version="3.0.0">{xml}'
+               f'<shape type="sphere"><ref id="{bid}"/></shape></scene>')
+    scene = mi.load_string(xml)
+    return [s for s in scene.shapes() if not s.is_emitter()][0].bsdf()
+
+
 def main():
     cases = json.load(open(sys.argv[1]))
     ps = pairs(300)
     for c in cases:
-        bsdf = mi.load_string(c["xml"])
+        bsdf = load_bsdf(c["xml"])
         ctx = mi.BSDFContext()
         si = mi.SurfaceInteraction3f()
         si.n = mi.Normal3f(0, 0, 1)

@@ -1,24 +1,37 @@
 #!/usr/bin/env bash
 # Regenerate the paper_white export fixtures: fit rgl/paper_white_rgb.bsdf
-# in GGX and in principled (`brdf fit`), export each fit to the four formats
-# (`brdf export`, converting where the target has no exact equivalent, the
-# converted models saved beside), then check the files with the renderers'
-# own tools (../check_exports.sh). Takes about 2 minutes (the principled fit).
+# in GGX and in principled (`brdf fit`), export each fit to every target
+# (`brdf export`, converting for appearance where the target has no exact
+# equivalent, the converted models and reports saved beside), then check
+# the files with the renderers' own tools (../check_exports.sh). Files:
+#   M.xml M.pbrt M.gltf M.mtlx M.usda M.py   --to mitsuba|pbrt|gltf|materialx|usd|blender
+#   M.openpbr.mtlx                           --to materialx --surface openpbr
+#   M.scene.xml                              --to mitsuba --scene (studio light)
+#   M.KIND.json, M.KIND.report.json          the conversion, where there is one
+# Takes several minutes (the principled fit, the conversions).
 #   BRDF_DATA=... BRDF=target/release/brdf bash make.sh
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 : "${BRDF_DATA:?set BRDF_DATA}"
 brdf="${BRDF:-brdf}"
 cd "$here"
+# export MODEL KIND FILE ARGS...: exact when possible, else converted.
+export_one() {
+    local m=$1 kind=$2 file=$3
+    shift 3
+    if "$brdf" export --from "$m.json" "$@" "$file" --exact >/dev/null 2>&1; then
+        rm -f "$m.$kind.json" "$m.$kind.report.json"
+    else
+        "$brdf" export --from "$m.json" "$@" "$file" --save-converted "$m.$kind.json" --json >"$m.$kind.report.json"
+    fi
+}
 for m in ggx principled; do
     "$brdf" fit --data "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --model "$m" --starts 4 --save "$m.json" >/dev/null
-    for t in mitsuba pbrt gltf materialx; do
-        ext=$(case $t in mitsuba) echo xml;; pbrt) echo pbrt;; gltf) echo gltf;; materialx) echo mtlx;; esac)
-        if "$brdf" export --from "$m.json" --to "$t" "$m.$ext" --exact >/dev/null 2>&1; then
-            rm -f "$m.$t.json"
-        else
-            "$brdf" export --from "$m.json" --to "$t" "$m.$ext" --save-converted "$m.$t.json" --json >"$m.$t.report.json"
-        fi
+    for t in mitsuba pbrt gltf materialx usd blender; do
+        ext=$(case $t in mitsuba) echo xml;; pbrt) echo pbrt;; gltf) echo gltf;; materialx) echo mtlx;; usd) echo usda;; blender) echo py;; esac)
+        export_one "$m" "$t" "$m.$ext" --to "$t"
     done
+    export_one "$m" openpbr "$m.openpbr.mtlx" --to materialx --surface openpbr
+    export_one "$m" scene "$m.scene.xml" --to mitsuba --scene
 done
 bash ../check_exports.sh

@@ -1,0 +1,48 @@
+"""Principled BSDF material written by `brdf export --to blender`.
+
+Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.
+
+converted by fitting: `principled` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 2.6105e-2 1/sr, relative L2 1.1570e-1; image error at 128 px: HDR-FLIP sky 0.0324, studio 0.0250 (mean 0.0287), mean-colour CIEDE2000 at most 0.17
+"""
+
+import os
+import sys
+
+import bpy
+
+NAME = "paper_white_rgb"
+INPUTS = {
+    "Base Color": (0.831540572426908, 0.8417498583476567, 0.9893584211248085, 1.0),
+    "Metallic": 0.04605886460766305,
+    "Roughness": 0.6807466769522844,
+    "IOR": 1.5,
+    "Specular IOR Level": 0.5,
+}
+
+
+def build(name=NAME):
+    mat = bpy.data.materials.get(name) or bpy.data.materials.new(name)
+    # Kept in a saved .blend without an object using it (a library material).
+    mat.use_fake_user = True
+    mat.use_nodes = True
+    nodes = mat.node_tree.nodes
+    nodes.clear()
+    bsdf = nodes.new("ShaderNodeBsdfPrincipled")
+    out = nodes.new("ShaderNodeOutputMaterial")
+    out.location = (300, 0)
+    mat.node_tree.links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
+    # Single-scatter GGX, as glTF's (MULTI_GGX would add multiple scattering).
+    bsdf.distribution = "GGX"
+    for key, value in INPUTS.items():
+        bsdf.inputs[key].default_value = value
+    return mat
+
+
+if __name__ == "__main__":
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
+    build()
+    if "--blend" in argv:
+        i = argv.index("--blend")
+        if i + 1 >= len(argv):
+            sys.exit("--blend needs a file name: --blend OUT.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(argv[i + 1]))
