@@ -24,6 +24,7 @@ mod cli;
 mod commands;
 mod error;
 mod opts;
+mod progress;
 
 use cli::{Cli, Command};
 use error::CliError;
@@ -41,6 +42,7 @@ fn run() -> Result<(), CliError> {
         Command::Resample(a) => commands::resample::run(&a),
         Command::Export(a) => commands::export::run(&a),
         Command::Render(a) => commands::render::run(&a),
+        Command::Report(a) => commands::report::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
     }
 }

@@ -97,9 +97,7 @@ impl Image {
             png::ColorType::Grayscale
         });
         enc.set_depth(png::BitDepth::Eight);
-        let mut writer = enc
-            .write_header()
-            .map_err(io)?;
+        let mut writer = enc.write_header().map_err(io)?;
         let mut bytes = Vec::with_capacity(self.width * self.height * out_c);
         for p in 0..self.width * self.height {
             for c in 0..out_c {

@@ -327,8 +327,11 @@ pub fn write(plot: &Plot, dir: &Path, stem: &str) -> Result<(), RenderError> {
 pub fn svg(plot: &Plot, (w, h): (u32, u32)) -> Result<String, RenderError> {
     font();
     let mut out = String::new();
-    draw(SVGBackend::with_string(&mut out, (w, h)).into_drawing_area(), plot)
-        .map_err(|x| err(Path::new("in-memory SVG"), x))?;
+    draw(
+        SVGBackend::with_string(&mut out, (w, h)).into_drawing_area(),
+        plot,
+    )
+    .map_err(|x| err(Path::new("in-memory SVG"), x))?;
     Ok(out)
 }
 

@@ -133,7 +133,11 @@ fn row(line: &Value, dir: &Path, back: &str) -> Result<Row, (Row, String)> {
         r.delta_e = a.image.as_ref().map(|i| i.max_delta_e());
         r.measured = a.spheres.first().and_then(|s| s.measured.clone());
         r.fitted = a.spheres.first().map(|s| s.fitted.clone());
-        r.note = if a.verdict.good { "ok".into() } else { a.verdict.reasons.join("; ") };
+        r.note = if a.verdict.good {
+            "ok".into()
+        } else {
+            a.verdict.reasons.join("; ")
+        };
         render(&input, &a, Some(back))
     });
     let name = page_name(&data, &model);
@@ -162,9 +166,14 @@ pub fn write_batch_report(
             reason: "no fits; run `brdf batch --out DIR` first".into(),
         });
     }
-    let dir = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).map_err(ReportError::io(dir))?;
-    let back = out.file_name().map_or("index.html".into(), |n| n.to_string_lossy().to_string());
+    let back = out
+        .file_name()
+        .map_or("index.html".into(), |n| n.to_string_lossy().to_string());
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
     for (k, ((data, model), line)) in fits.iter().enumerate() {
         progress(k, fits.len(), &format!("{data} x {model}"));
@@ -179,8 +188,14 @@ pub fn write_batch_report(
     }
     progress(fits.len(), fits.len(), "index");
     let columns = [
-        ("material", "text"), ("model", "text"), ("Ngan L2", "num"), ("FLIP", "num"),
-        ("ΔE (max)", "num"), ("seconds", "num"), ("how it ended", "text"), ("verdict", "text"),
+        ("material", "text"),
+        ("model", "text"),
+        ("Ngan L2", "num"),
+        ("FLIP", "num"),
+        ("ΔE (max)", "num"),
+        ("seconds", "num"),
+        ("how it ended", "text"),
+        ("verdict", "text"),
     ];
     let ctx = minijinja::context! {
         title => "brdf batch: every material x model fit",

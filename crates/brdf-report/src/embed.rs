@@ -28,6 +28,9 @@ mod tests {
         };
         let uri = png_uri(&img, 1.0).expect("encodes");
         // base64 of the PNG signature
-        assert!(uri.starts_with("data:image/png;base64,iVBORw0KGgo"), "{uri}");
+        assert!(
+            uri.starts_with("data:image/png;base64,iVBORw0KGgo"),
+            "{uri}"
+        );
     }
 }

@@ -173,7 +173,7 @@ pub fn render(input: &FitInput, a: &Analysis, back: Option<&str>) -> Result<Stri
         polar => polar_svgs, coverage => a.coverage_svg, spheres => a.spheres,
         errors => errors(a.image.as_ref()), verdict => a.verdict,
         selection, back,
-        theta_tol => polar::THETA_TOL_DEG, phi_tol => polar::PHI_TOL_DEG,
+        theta_tol => polar::THETA_TOL_DEG, decades => polar::LOG_DECADES, phi_tol => polar::PHI_TOL_DEG,
     };
     templates::render("fit.html", ctx)
 }

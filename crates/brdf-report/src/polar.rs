@@ -20,6 +20,9 @@ pub const INCIDENCE_DEG: [f64; 4] = [0.0, 30.0, 60.0, 75.0];
 pub const THETA_TOL_DEG: f64 = 5.0;
 /// Scattered samples within this of the plane of incidence (degrees).
 pub const PHI_TOL_DEG: f64 = 15.0;
+/// Outgoing angles drawn (degrees either side of the normal; grazing
+/// values of tabulated data are extrapolations).
+pub const MAX_THETA_O_DEG: f64 = 85.0;
 /// Decades shown on the logarithmic radius.
 pub const LOG_DECADES: f64 = 4.0;
 
@@ -49,9 +52,9 @@ fn mean_at(brdf: &dyn Brdf, l: &Vector3<f64>, v: &Vector3<f64>, buf: &mut [f64])
 pub fn along_plane(brdf: &dyn Brdf, theta_i_deg: f64, step_deg: f64) -> Vec<(f64, f64)> {
     let l = dir(theta_i_deg);
     let mut buf = vec![0.0; brdf.channels().max(1)];
-    let n = (178.0 / step_deg).floor() as i64;
+    let n = (2.0 * MAX_THETA_O_DEG / step_deg).floor() as i64;
     (0..=n)
-        .map(|k| -89.0 + k as f64 * step_deg)
+        .map(|k| -MAX_THETA_O_DEG + k as f64 * step_deg)
         .map(|t| (t, mean_at(brdf, &l, &dir(t), &mut buf)))
         .filter(|p| p.1.is_finite())
         .collect()
@@ -68,8 +71,13 @@ pub fn samples_near_plane(data: &SampleSet, theta_i_deg: f64) -> Vec<(f64, f64)>
         if (ti - theta_i_deg).abs() > THETA_TOL_DEG {
             continue;
         }
-        let dphi = (v.y.atan2(v.x) - l.y.atan2(l.x)).to_degrees().rem_euclid(360.0);
+        let dphi = (v.y.atan2(v.x) - l.y.atan2(l.x))
+            .to_degrees()
+            .rem_euclid(360.0);
         let to = v.z.clamp(-1.0, 1.0).acos().to_degrees();
+        if to > MAX_THETA_O_DEG {
+            continue;
+        }
         let t = if dphi.min(360.0 - dphi) <= PHI_TOL_DEG {
             to
         } else if (dphi - 180.0).abs() <= PHI_TOL_DEG {
@@ -137,7 +145,7 @@ pub fn svg(slice: &Slice, log: bool) -> Result<String, ReportError> {
 
 fn draw(out: &mut String, s: &Slice, log: bool, peak: f64, rmax: f64) -> Result<(), String> {
     let e = |x: DrawingAreaErrorKind<std::io::Error>| x.to_string();
-    let root = SVGBackend::with_string(out, (340, 215)).into_drawing_area();
+    let root = SVGBackend::with_string(out, (320, 205)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let scale = if log { "log" } else { "linear" };
     let mut chart = ChartBuilder::on(&root)
@@ -212,7 +220,9 @@ fn grid(chart: &mut Chart, log: bool, peak: f64, rmax: f64) -> Result<(), String
             .draw_series(std::iter::once(Text::new(
                 brdf_render::fmt_sig(value, 2),
                 (r, 0.0),
-                ("sans-serif", 9).into_font().color(&RGBColor(110, 110, 110)),
+                ("sans-serif", 9)
+                    .into_font()
+                    .color(&RGBColor(110, 110, 110)),
             )))
             .map_err(e)?;
     }
