@@ -101,54 +101,47 @@ fn run_info(fit: &Value) -> RunInfo {
     }
 }
 
-/// One row, writing its fit page into `dir`.
-fn row(line: &Value, dir: &Path, back: &str) -> Result<Row, (Row, String)> {
-    let data = line["data"].as_str().unwrap_or_default().to_string();
-    let model = line["model"].as_str().unwrap_or_default().to_string();
+/// The row of a `fits.jsonl` line before its page is made.
+fn base_row(line: &Value) -> Row {
     let run = run_info(&line["fit"]);
-    let mut r = Row {
+    Row {
+        data: line["data"].as_str().unwrap_or_default().to_string(),
+        model: line["model"].as_str().unwrap_or_default().to_string(),
         ngan_l2: line["fit"]["ngan_l2"].as_f64().unwrap_or(f64::NAN),
         seconds: run.seconds,
-        termination: run.termination.clone(),
-        data: data.clone(),
-        model: model.clone(),
+        termination: run.termination,
         ..Row::default()
-    };
-    let what = format!("{data} x {model}");
-    let fail = |r: Row, e: ReportError| (r, format!("{what}: {e}"));
-    let saved = match saved_model(line, &what) {
-        Ok(s) => s,
-        Err(e) => return Err(fail(r, e)),
-    };
-    let spec = resolve_data(&data);
+    }
+}
+
+/// Make the fit page of `line` in `dir` (its thumbnails and errors go into
+/// `r`); the page's file name.
+fn page(line: &Value, r: &mut Row, dir: &Path, back: &str) -> Result<String, ReportError> {
+    let what = format!("{} x {}", r.data, r.model);
+    let saved = saved_model(line, &what)?;
+    let spec = resolve_data(&r.data);
     let input = FitInput {
         data: &spec,
         saved: &saved,
         fit_source: "fits.jsonl",
-        run: Some(run),
+        run: Some(run_info(&line["fit"])),
         selection: None,
     };
-    let html = analyse(&input, SPHERE_SIZE).and_then(|a| {
-        r.flip = a.image.as_ref().map(|i| i.mean_flip());
-        r.delta_e = a.image.as_ref().map(|i| i.max_delta_e());
-        r.measured = a.spheres.first().and_then(|s| s.measured.clone());
-        r.fitted = a.spheres.first().map(|s| s.fitted.clone());
-        r.note = if a.verdict.good {
-            "ok".into()
-        } else {
-            a.verdict.reasons.join("; ")
-        };
-        render(&input, &a, Some(back))
-    });
-    let name = page_name(&data, &model);
+    let a = analyse(&input, SPHERE_SIZE)?;
+    r.flip = a.image.as_ref().map(|i| i.mean_flip());
+    r.delta_e = a.image.as_ref().map(|i| i.max_delta_e());
+    r.measured = a.spheres.first().and_then(|s| s.measured.clone());
+    r.fitted = a.spheres.first().map(|s| s.fitted.clone());
+    r.note = if a.verdict.good {
+        "ok".into()
+    } else {
+        a.verdict.reasons.join("; ")
+    };
+    let html = render(&input, &a, Some(back))?;
+    let name = page_name(&r.data, &r.model);
     let path = dir.join(&name);
-    match html.and_then(|h| std::fs::write(&path, h).map_err(ReportError::io(&path))) {
-        Ok(()) => {
-            r.page = Some(name);
-            Ok(r)
-        }
-        Err(e) => Err(fail(r, e)),
-    }
+    std::fs::write(&path, html).map_err(ReportError::io(&path))?;
+    Ok(name)
 }
 
 /// Write the index of `batch_dir/fits.jsonl` to `out` and every fit page
@@ -177,14 +170,15 @@ pub fn write_batch_report(
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
     for (k, ((data, model), line)) in fits.iter().enumerate() {
         progress(k, fits.len(), &format!("{data} x {model}"));
-        match row(line, dir, &back) {
-            Ok(r) => rows.push(r),
-            Err((mut r, why)) => {
-                r.note = why.clone();
-                rows.push(r);
-                skipped.push(why);
+        let mut r = base_row(line);
+        match page(line, &mut r, dir, &back) {
+            Ok(name) => r.page = Some(name),
+            Err(e) => {
+                r.note = format!("{data} x {model}: {e}");
+                skipped.push(r.note.clone());
             }
         }
+        rows.push(r);
     }
     progress(fits.len(), fits.len(), "index");
     let columns = [

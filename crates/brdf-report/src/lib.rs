@@ -5,7 +5,7 @@
 //! SVG), in the manner of Disney's BRDF Explorer, and an index page for a
 //! batch of fits.
 //!
-//! - [`fit_page`]: header (material, data, samples, model, objective,
+//! - [`fit_page`](mod@fit_page): header (material, data, samples, model, objective,
 //!   solver, time, termination, parameters with standard errors and bound
 //!   marks), polar incidence-plane slices, the data's coverage, sphere
 //!   renders (measured | fitted | FLIP) with image errors, the selection

@@ -18,11 +18,11 @@ fn tmp(name: &str) -> PathBuf {
 /// A scattered grey data set of a Blinn-Phong-like material.
 fn csv_data(dir: &std::path::Path) -> String {
     let mut text = String::from("theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,value,weight\n");
-    for ti in [0, 30, 60, 75] {
+    for ti in [0i32, 30, 60, 75] {
         for to in (0..=80).step_by(10) {
             for po in [0, 90, 180, 270] {
                 let v = 0.2
-                    + if po == 180 && (to - ti as i32).abs() < 15 {
+                    + if po == 180 && (to - ti).abs() < 15 {
                         2.0
                     } else {
                         0.0
