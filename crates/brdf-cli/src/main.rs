@@ -24,7 +24,6 @@ mod cli;
 mod commands;
 mod error;
 mod opts;
-mod progress;
 
 use cli::{Cli, Command};
 use error::CliError;

@@ -75,7 +75,8 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         starts: args.starts,
     };
     let fits = opts.out.join(brdf_fit::batch::FITS);
-    let bar = crate::progress::bar(0, "batch", args.quiet);
+    brdf_study::context::progress::set_quiet(args.quiet);
+    let bar = brdf_study::context::progress::bar(0, "batch");
     let started = |todo: usize, in_share: usize| {
         eprintln!(
             "brdf batch: {in_share} fits in this share, {} already in {}, {todo} to run",

@@ -80,7 +80,8 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
         ));
     }
     let mut reports = Vec::new();
-    let bar = crate::progress::bar(sets.len(), "fit", args.quiet);
+    brdf_study::context::progress::set_quiet(args.quiet);
+    let bar = brdf_study::context::progress::bar(sets.len(), "fit");
     for (set, channels) in &sets {
         bar.set_message(format!("{} on {}", args.model, set.name));
         let fit = Fit::model(&args.model)?

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use brdf_models::saved_model::SavedModel;
 
 use crate::error::CliError;
-use crate::progress;
+use brdf_study::context::progress;
 
 /// Arguments of `brdf report`.
 #[derive(Debug, clap::Args)]
@@ -80,7 +80,10 @@ fn read_json(path: &Path) -> Result<serde_json::Value, CliError> {
 
 /// Write the page of one fit to `out` (shared with `brdf fit --report`).
 pub fn fit_report(input: &brdf_report::FitInput, out: &Path, quiet: bool) -> Result<(), CliError> {
-    let bar = progress::bar(1, "report", quiet);
+    let bar = {
+        progress::set_quiet(quiet);
+        progress::bar(1, "report")
+    };
     bar.set_message(format!("{} on {}", input.saved.model, input.data));
     brdf_report::write_fit_page(input, out)?;
     bar.finish_and_clear();
@@ -91,7 +94,10 @@ pub fn fit_report(input: &brdf_report::FitInput, out: &Path, quiet: bool) -> Res
 /// Write the index of a batch folder and its fit pages (shared with
 /// `brdf batch --report`).
 pub fn batch_report(dir: &Path, out: &Path, quiet: bool) -> Result<(), CliError> {
-    let bar = progress::bar(0, "report", quiet);
+    let bar = {
+        progress::set_quiet(quiet);
+        progress::bar(0, "report")
+    };
     let mut tick = |done: usize, total: usize, current: &str| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);

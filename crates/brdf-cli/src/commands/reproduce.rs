@@ -39,10 +39,14 @@ pub struct ReproduceArgs {
     /// List the parts and exit.
     #[arg(long)]
     pub list: bool,
+    /// No progress bars.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Run `brdf reproduce`.
 pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
+    brdf_study::context::progress::set_quiet(args.quiet);
     if args.list {
         for (name, about) in brdf_study::reproduce::list() {
             say!("{name:16} {about}")?;

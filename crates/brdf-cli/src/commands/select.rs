@@ -22,13 +22,21 @@ pub struct SelectArgs {
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Run `brdf select`.
 pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     let data = brdf_io::load(&args.data)?;
     let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
+    brdf_study::context::progress::set_quiet(args.quiet);
+    let bar = brdf_study::context::progress::bar(1, "select");
+    let n = brdf_fit::select::candidates(data.channels()).len();
+    bar.set_message(format!("fitting {n} candidates to {}", data.name));
     let (rows, choice) = brdf_fit::select::select(&data, args.tolerance, &FitOptions::default())?;
+    bar.finish_and_clear();
     if args.json {
         let v = serde_json::json!({ "data": data.name, "tolerance": args.tolerance, "choice": rows[choice], "candidates": rows });
         return say!("{}", serde_json::to_string_pretty(&v)?);
