@@ -36,6 +36,8 @@ pub enum Command {
     Export(crate::commands::export::ExportArgs),
     /// Render a labelled sphere of a saved model, dense data, or both side by side.
     Render(crate::commands::render::RenderArgs),
+    /// Write a self-contained HTML report of a fit, or of a batch of fits.
+    Report(crate::commands::report::ReportArgs),
     /// Run the study and write its tables and figures into `results/`.
     Reproduce(crate::commands::reproduce::ReproduceArgs),
 }

@@ -31,6 +31,9 @@ pub enum CliError {
     /// Rendering or writing an image failed.
     #[error(transparent)]
     Render(#[from] brdf_render::RenderError),
+    /// A report could not be made.
+    #[error(transparent)]
+    Report(#[from] brdf_report::ReportError),
     /// JSON output failed.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),

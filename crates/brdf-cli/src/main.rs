@@ -41,6 +41,7 @@ fn run() -> Result<(), CliError> {
         Command::Resample(a) => commands::resample::run(&a),
         Command::Export(a) => commands::export::run(&a),
         Command::Render(a) => commands::render::run(&a),
+        Command::Report(a) => commands::report::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
     }
 }

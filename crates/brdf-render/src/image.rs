@@ -72,7 +72,23 @@ impl Image {
             source: e,
         };
         let file = std::fs::File::create(path).map_err(io)?;
-        let w = std::io::BufWriter::new(file);
+        self.encode_png(std::io::BufWriter::new(file), exposure)
+            .map_err(io)
+    }
+
+    /// The PNG of [`Image::write_png`] in memory (for data: URIs).
+    pub fn png_bytes(&self, exposure: f64) -> Result<Vec<u8>, RenderError> {
+        let mut out = Vec::new();
+        self.encode_png(&mut out, exposure)
+            .map_err(|source| RenderError::Io {
+                path: "in-memory PNG".into(),
+                source,
+            })?;
+        Ok(out)
+    }
+
+    fn encode_png(&self, w: impl std::io::Write, exposure: f64) -> Result<(), std::io::Error> {
+        let io = |e: png::EncodingError| std::io::Error::other(e.to_string());
         let mut enc = png::Encoder::new(w, self.width as u32, self.height as u32);
         let out_c = if self.channels >= 3 { 3 } else { 1 };
         enc.set_color(if out_c == 3 {
@@ -81,9 +97,7 @@ impl Image {
             png::ColorType::Grayscale
         });
         enc.set_depth(png::BitDepth::Eight);
-        let mut writer = enc
-            .write_header()
-            .map_err(|e| io(std::io::Error::other(e.to_string())))?;
+        let mut writer = enc.write_header().map_err(io)?;
         let mut bytes = Vec::with_capacity(self.width * self.height * out_c);
         for p in 0..self.width * self.height {
             for c in 0..out_c {
@@ -91,9 +105,7 @@ impl Image {
                 bytes.push((v.powf(1.0 / 2.2) * 255.0).round() as u8);
             }
         }
-        writer
-            .write_image_data(&bytes)
-            .map_err(|e| io(std::io::Error::other(e.to_string())))?;
-        Ok(())
+        writer.write_image_data(&bytes).map_err(io)?;
+        writer.finish().map_err(io)
     }
 }

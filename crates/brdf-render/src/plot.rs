@@ -323,6 +323,18 @@ pub fn write(plot: &Plot, dir: &Path, stem: &str) -> Result<(), RenderError> {
     write_rgb_png(&png, w as usize, h as usize, &buf)
 }
 
+/// The plot as an SVG document in memory (for inline SVG in HTML).
+pub fn svg(plot: &Plot, (w, h): (u32, u32)) -> Result<String, RenderError> {
+    font();
+    let mut out = String::new();
+    draw(
+        SVGBackend::with_string(&mut out, (w, h)).into_drawing_area(),
+        plot,
+    )
+    .map_err(|x| err(Path::new("in-memory SVG"), x))?;
+    Ok(out)
+}
+
 /// The Pareto front of `(time, error)` points (minimise both), sorted by time.
 pub fn pareto_front(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     let mut p: Vec<(f64, f64)> = points

@@ -36,12 +36,20 @@ pub struct BatchArgs {
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
+    /// Also write an HTML index of the fits and one page per fit into
+    /// OUT/report/.
+    #[arg(long)]
+    pub report: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Run `brdf batch`.
 pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     if !args.merge.is_empty() {
-        return Ok(brdf_fit::batch::merge(&args.merge, &args.out)?);
+        brdf_fit::batch::merge(&args.merge, &args.out)?;
+        return report(args);
     }
     if args.models.is_empty() || args.data.is_empty() {
         return Err(CliError::Usage(
@@ -67,7 +75,8 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         starts: args.starts,
     };
     let fits = opts.out.join(brdf_fit::batch::FITS);
-    let bar = indicatif::ProgressBar::hidden();
+    brdf_study::context::progress::set_quiet(args.quiet);
+    let bar = brdf_study::context::progress::bar(0, "batch");
     let started = |todo: usize, in_share: usize| {
         eprintln!(
             "brdf batch: {in_share} fits in this share, {} already in {}, {todo} to run",
@@ -75,7 +84,6 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
             fits.display()
         );
         bar.set_length(todo as u64);
-        bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
     };
     let done = brdf_fit::batch::run(&opts, started, &|| bar.inc(1))?;
     bar.finish_and_clear();
@@ -89,6 +97,7 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     for f in &done.failures {
         eprintln!("brdf batch: {f}");
     }
+    report(args)?;
     if done.failures.is_empty() {
         return Ok(());
     }
@@ -98,4 +107,13 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         done.in_share - done.already_done,
         done.fits_path.display()
     )))
+}
+
+/// `--report`: the index and fit pages in `OUT/report/`.
+fn report(args: &BatchArgs) -> Result<(), CliError> {
+    if !args.report {
+        return Ok(());
+    }
+    let out = args.out.join("report").join("index.html");
+    crate::commands::report::batch_report(&args.out, &out, args.quiet)
 }

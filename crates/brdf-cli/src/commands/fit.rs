@@ -54,6 +54,12 @@ pub struct FitArgs {
     /// Polynomial degree (Kurt's model).
     #[arg(long, default_value_t = 7)]
     pub degree: usize,
+    /// Write a self-contained HTML report of the fit here.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Run `brdf fit`: a thin layer over [`brdf_fit::Fit`].
@@ -78,9 +84,9 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
             )));
         }
     };
-    if args.save.is_some() && sets.len() > 1 {
+    if (args.save.is_some() || args.report.is_some()) && sets.len() > 1 {
         return Err(CliError::Usage(
-            "--save needs one model: use --channels rgb or grey".into(),
+            "--save and --report need one model: use --channels rgb or grey".into(),
         ));
     }
     let dense = brdf_io::load_dense(&args.data)?;
@@ -94,7 +100,10 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
         m => (false, m),
     };
     let mut reports = Vec::new();
+    brdf_study::context::progress::set_quiet(args.quiet);
+    let bar = brdf_study::context::progress::bar(sets.len(), "fit");
     for (set, channels) in &sets {
+        bar.set_message(format!("{} on {}", args.model, set.name));
         let fit = Fit::entry(entry)
             .objective(Objective::parse(metric)?)
             .solver(Solver::parse(&args.solver)?)
@@ -110,8 +119,13 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
                 .saved_model(&brdf_fit::data_name(&args.data))?
                 .save(path)?;
         }
+        if let Some(path) = &args.report {
+            write_report(args, &report, path)?;
+        }
         reports.push(report);
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     if args.json {
         let v = brdf_fit::fit_json(&reports, &data)?;
         say!("{}", serde_json::to_string_pretty(&v)?)?;
@@ -121,4 +135,26 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
         say_raw!("{}", brdf_fit::report_text::text(rep))?;
     }
     Ok(())
+}
+
+/// The HTML report of a fit (`--report`), with its time and termination.
+fn write_report(
+    args: &FitArgs,
+    report: &brdf_fit::FitReport,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let saved = report.saved_model(&brdf_fit::data_name(&args.data))?;
+    let run = brdf_report::RunInfo {
+        seconds: report.summary.seconds,
+        termination: report.summary.termination.clone(),
+        iterations: Some(report.summary.iterations),
+    };
+    let input = brdf_report::FitInput {
+        data: &args.data,
+        saved: &saved,
+        fit_source: "brdf fit",
+        run: Some(run),
+        selection: None,
+    };
+    crate::commands::report::fit_report(&input, path, args.quiet)
 }

@@ -11,6 +11,7 @@ pub mod info;
 pub mod models;
 pub mod nist;
 pub mod render;
+pub mod report;
 pub mod reproduce;
 pub mod resample;
 pub mod select;

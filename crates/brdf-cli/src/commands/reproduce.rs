@@ -39,6 +39,9 @@ pub struct ReproduceArgs {
     /// List the parts and exit.
     #[arg(long)]
     pub list: bool,
+    /// No progress bars.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// The data folder named by `--data` or `BRDF_DATA` must exist and hold
@@ -71,6 +74,7 @@ fn check_data(arg: Option<&std::path::Path>) -> Result<(), CliError> {
 
 /// Run `brdf reproduce`.
 pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
+    brdf_study::context::progress::set_quiet(args.quiet);
     if args.list {
         for (name, about) in brdf_study::reproduce::list() {
             say!("{name:16} {about}")?;

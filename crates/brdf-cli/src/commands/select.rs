@@ -33,6 +33,9 @@ pub struct SelectArgs {
     /// the standard light sets (data that can be rendered: RGL, MERL).
     #[arg(long)]
     pub by_image: bool,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Run `brdf select`.
@@ -42,12 +45,17 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     }
     let data = brdf_io::load(&args.data)?;
     let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
+    brdf_study::context::progress::set_quiet(args.quiet);
+    let bar = brdf_study::context::progress::bar(1, "select");
+    let n = brdf_fit::select::candidates(data.channels()).len();
+    bar.set_message(format!("fitting up to {n} candidates to {}", data.name));
     let among = brdf_fit::select::Among {
         models: args.models.clone(),
         max_parameters: args.max_parameters,
     };
     let (rows, choice) =
         brdf_fit::select::select_among(&data, args.tolerance, &FitOptions::default(), &among)?;
+    bar.finish_and_clear();
     if args.json {
         let v = serde_json::json!({ "data": data.name, "tolerance": args.tolerance, "choice": rows[choice], "candidates": rows });
         return say!("{}", serde_json::to_string_pretty(&v)?);

@@ -1,0 +1,123 @@
+//! `brdf report` and `--report`: usage errors name the fix; on the
+//! measured data (when `BRDF_DATA` is set) `brdf fit --report` and
+//! `brdf report --fit` write self-contained pages with every section, and
+//! scattered CUReT data get a page that says no image error can be formed.
+
+mod common;
+
+use common::{brdf, data_file};
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("brdf-report-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp folder");
+    d
+}
+
+fn read(path: &std::path::Path) -> String {
+    std::fs::read_to_string(path).expect("report written")
+}
+
+fn assert_page(html: &str, sections: &[&str]) {
+    for bad in ["src=\"http", "href=\"http", "<link"] {
+        assert!(!html.contains(bad), "not self-contained: {bad}");
+    }
+    for id in sections {
+        assert!(
+            html.contains(&format!("id=\"{id}\"")),
+            "section {id} missing"
+        );
+    }
+}
+
+#[test]
+fn usage_errors_name_the_fix() {
+    let (ok, _, err) = brdf(&["report"]);
+    assert!(!ok);
+    assert!(
+        err.contains("--data DATA --fit FIT.json, or --batch DIR"),
+        "{err}"
+    );
+    let dir = tmp("usage");
+    let missing = dir.join("missing.json").display().to_string();
+    let (ok, _, err) = brdf(&["report", "--data", "x.csv", "--fit", &missing]);
+    assert!(!ok && err.contains("missing.json"), "{err}");
+    let (ok, _, err) = brdf(&["report", "--batch", &dir.display().to_string()]);
+    assert!(
+        !ok && err.contains("run `brdf batch --out DIR` first"),
+        "{err}"
+    );
+}
+
+#[test]
+fn fit_report_and_report_command_on_dense_data() {
+    let Some(paper) = data_file("rgl/paper_white_rgb.bsdf") else {
+        return;
+    };
+    let dir = tmp("dense");
+    let (json, html) = (dir.join("fit.json"), dir.join("fit.html"));
+    let p = paper.display().to_string();
+    let (ok, _, err) = brdf(&[
+        "fit",
+        "--data",
+        &p,
+        "--model",
+        "ggx",
+        "--starts",
+        "2",
+        "--quiet",
+        "--save",
+        &json.display().to_string(),
+        "--report",
+        &html.display().to_string(),
+    ]);
+    assert!(ok, "{err}");
+    let all = [
+        "summary", "params", "verdict", "slices", "coverage", "spheres", "errors",
+    ];
+    let page = read(&html);
+    assert_page(&page, &all);
+    assert!(page.contains("how the fit ended"));
+    let again = dir.join("again.html");
+    let (ok, _, err) = brdf(&[
+        "report",
+        "--data",
+        &p,
+        "--fit",
+        &json.display().to_string(),
+        "--out",
+        &again.display().to_string(),
+    ]);
+    assert!(ok, "{err}");
+    assert_page(&read(&again), &all);
+}
+
+#[test]
+fn scattered_data_have_no_image_error() {
+    let Some(curet) = data_file("curet/abrdf.dat") else {
+        return;
+    };
+    let dir = tmp("scattered");
+    let html = dir.join("curet.html");
+    let spec = format!("{}#25", curet.display());
+    let (ok, _, err) = brdf(&[
+        "fit",
+        "--data",
+        &spec,
+        "--model",
+        "lambert",
+        "--quiet",
+        "--report",
+        &html.display().to_string(),
+    ]);
+    assert!(ok, "{err}");
+    let page = read(&html);
+    assert_page(
+        &page,
+        &[
+            "summary", "params", "verdict", "slices", "coverage", "spheres",
+        ],
+    );
+    assert!(page.contains("no image error can be formed"));
+    assert!(!page.contains("id=\"errors\""));
+}

@@ -1,0 +1,205 @@
+//! The index of a batch: one row per material x model of `DIR/fits.jsonl`
+//! (what `brdf batch` writes), with thumbnails of the measured and fitted
+//! spheres where the data are evaluable, the errors and how each fit
+//! ended; sortable by any column; each row links to its fit page, written
+//! beside the index. A row whose page cannot be made (data moved, a model
+//! that cannot be rebuilt) says why instead of failing the index.
+
+use std::path::{Path, PathBuf};
+
+use brdf_models::saved_model::{SCHEMA, SavedModel, VERSION};
+use serde::Serialize;
+use serde_json::{Value, json};
+
+use crate::fit_page::{FitInput, RunInfo, analyse, render};
+use crate::{ReportError, templates};
+
+/// Pixels per side of the spheres of batch pages (smaller than a single
+/// report's, so a large batch stays quick).
+pub const SPHERE_SIZE: usize = 96;
+
+/// What was written.
+#[derive(Clone, Debug)]
+pub struct BatchReport {
+    /// the index page
+    pub index: PathBuf,
+    /// fit pages written
+    pub pages: usize,
+    /// rows without a page, with the reason
+    pub skipped: Vec<String>,
+}
+
+#[derive(Serialize, Default)]
+struct Row {
+    data: String,
+    model: String,
+    ngan_l2: f64,
+    flip: Option<f64>,
+    delta_e: Option<f64>,
+    seconds: f64,
+    termination: String,
+    note: String,
+    page: Option<String>,
+    measured: Option<String>,
+    fitted: Option<String>,
+}
+
+/// The data file of a `fits.jsonl` name: as written when it exists, else
+/// under `$BRDF_DATA` (where `brdf batch` shortens names to).
+pub fn resolve_data(name: &str) -> String {
+    let (path, _) = brdf_io::split_sample(name);
+    if path.exists() {
+        return name.to_string();
+    }
+    match std::env::var_os("BRDF_DATA") {
+        Some(root) => Path::new(&root).join(name).display().to_string(),
+        None => name.to_string(),
+    }
+}
+
+/// The saved model of a `fits.jsonl` line (3 channels, else 1).
+pub fn saved_model(line: &Value, what: &str) -> Result<SavedModel, ReportError> {
+    let fit = &line["fit"];
+    let mut last = String::new();
+    for channels in [3, 1] {
+        let v = json!({
+            "schema": SCHEMA, "version": VERSION, "model": line["model"],
+            "structure": { "channels": channels }, "parameters": fit["parameters"],
+            "provenance": {
+                "data": line["data"], "samples_used": line["samples_used"],
+                "samples_present": line["samples_present"], "objective": fit["objective"],
+                "limit_deg": line["limit_deg"], "error": fit["error"],
+                "solver": fit["solver"], "software": "brdf batch",
+            },
+        });
+        match SavedModel::from_json(&v.to_string(), what) {
+            Ok(s) if s.build().is_ok() => return Ok(s),
+            Ok(_) => last = "the parameters do not rebuild the model".into(),
+            Err(e) => last = e.to_string(),
+        }
+    }
+    Err(ReportError::Model {
+        what: what.into(),
+        reason: last,
+    })
+}
+
+fn page_name(data: &str, model: &str) -> String {
+    let clean = |s: &str| -> String {
+        s.chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect()
+    };
+    format!("{}__{}.html", clean(data), clean(model))
+}
+
+fn run_info(fit: &Value) -> RunInfo {
+    RunInfo {
+        seconds: fit["seconds"].as_f64().unwrap_or(f64::NAN),
+        termination: fit["termination"].as_str().unwrap_or("not recorded").into(),
+        iterations: fit["iterations"].as_u64().map(|n| n as usize),
+    }
+}
+
+/// The row of a `fits.jsonl` line before its page is made.
+fn base_row(line: &Value) -> Row {
+    let run = run_info(&line["fit"]);
+    Row {
+        data: line["data"].as_str().unwrap_or_default().to_string(),
+        model: line["model"].as_str().unwrap_or_default().to_string(),
+        ngan_l2: line["fit"]["ngan_l2"].as_f64().unwrap_or(f64::NAN),
+        seconds: run.seconds,
+        termination: run.termination,
+        ..Row::default()
+    }
+}
+
+/// Make the fit page of `line` in `dir` (its thumbnails and errors go into
+/// `r`); the page's file name.
+fn page(line: &Value, r: &mut Row, dir: &Path, back: &str) -> Result<String, ReportError> {
+    let what = format!("{} x {}", r.data, r.model);
+    let saved = saved_model(line, &what)?;
+    let spec = resolve_data(&r.data);
+    let input = FitInput {
+        data: &spec,
+        saved: &saved,
+        fit_source: "fits.jsonl",
+        run: Some(run_info(&line["fit"])),
+        selection: None,
+    };
+    let a = analyse(&input, SPHERE_SIZE)?;
+    r.flip = a.image.as_ref().map(|i| i.mean_flip());
+    r.delta_e = a.image.as_ref().map(|i| i.max_delta_e());
+    r.measured = a.spheres.first().and_then(|s| s.measured.clone());
+    r.fitted = a.spheres.first().map(|s| s.fitted.clone());
+    r.note = if a.verdict.good {
+        "ok".into()
+    } else {
+        a.verdict.reasons.join("; ")
+    };
+    let html = render(&input, &a, Some(back))?;
+    let name = page_name(&r.data, &r.model);
+    let path = dir.join(&name);
+    std::fs::write(&path, html).map_err(ReportError::io(&path))?;
+    Ok(name)
+}
+
+/// Write the index of `batch_dir/fits.jsonl` to `out` and every fit page
+/// beside it; `progress(done, total, current)` before each fit.
+pub fn write_batch_report(
+    batch_dir: &Path,
+    out: &Path,
+    progress: &mut dyn FnMut(usize, usize, &str),
+) -> Result<BatchReport, ReportError> {
+    let fits_path = batch_dir.join(brdf_fit::batch::FITS);
+    let fits = brdf_fit::batch::read_fits(&fits_path)?;
+    if fits.is_empty() {
+        return Err(ReportError::Input {
+            path: fits_path.display().to_string(),
+            reason: "no fits; run `brdf batch --out DIR` first".into(),
+        });
+    }
+    let dir = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(ReportError::io(dir))?;
+    let back = out
+        .file_name()
+        .map_or("index.html".into(), |n| n.to_string_lossy().to_string());
+    let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    for (k, ((data, model), line)) in fits.iter().enumerate() {
+        progress(k, fits.len(), &format!("{data} x {model}"));
+        let mut r = base_row(line);
+        match page(line, &mut r, dir, &back) {
+            Ok(name) => r.page = Some(name),
+            Err(e) => {
+                r.note = format!("{data} x {model}: {e}");
+                skipped.push(r.note.clone());
+            }
+        }
+        rows.push(r);
+    }
+    progress(fits.len(), fits.len(), "index");
+    let columns = [
+        ("material", "text"),
+        ("model", "text"),
+        ("Ngan L2", "num"),
+        ("FLIP", "num"),
+        ("ΔE (max)", "num"),
+        ("seconds", "num"),
+        ("how it ended", "text"),
+        ("verdict", "text"),
+    ];
+    let ctx = minijinja::context! {
+        title => "brdf batch: every material x model fit",
+        source => fits_path.display().to_string(), rows, columns,
+    };
+    let html = templates::render("index.html", ctx)?;
+    std::fs::write(out, html).map_err(ReportError::io(out))?;
+    Ok(BatchReport {
+        index: out.to_path_buf(),
+        pages: fits.len() - skipped.len(),
+        skipped,
+    })
+}
