@@ -137,6 +137,19 @@ fn errors(image: Option<&ImageError>) -> Vec<ErrorRow> {
     })
 }
 
+/// The material's name: the data file's stem and its sample, if any
+/// (`paper_white_rgb`, `abrdf#25`).
+pub fn material(spec: &str) -> String {
+    let (path, sample) = brdf_io::split_sample(spec);
+    let stem = path
+        .file_stem()
+        .map_or(spec.to_string(), |s| s.to_string_lossy().into_owned());
+    match sample {
+        Some(s) => format!("{stem}#{s}"),
+        None => stem,
+    }
+}
+
 /// The self-contained HTML page of a fit.
 pub fn fit_page(input: &FitInput) -> Result<String, ReportError> {
     let a = analyse(input, spheres::SIZE)?;
@@ -161,10 +174,10 @@ pub fn render(input: &FitInput, a: &Analysis, back: Option<&str>) -> Result<Stri
         Some((v, path)) => select_plot::svgs(v, path)?,
         None => Vec::new(),
     };
-    let material = brdf_fit::data_name(input.data);
+    let material = material(input.data);
     let ctx = minijinja::context! {
         title => format!("{} fitted to {}", s.model, material),
-        material, data => input.data, fit_source => input.fit_source,
+        material, data => brdf_fit::data_name(input.data), fit_source => input.fit_source,
         model => s.model, channels => s.structure.channels,
         samples_used => p.samples_used, samples_present => p.samples_present,
         samples_loaded => a.samples, objective => p.objective, error => sig(p.error),
