@@ -44,32 +44,38 @@ pub struct ReproduceArgs {
     pub quiet: bool,
 }
 
-/// The data folder named by `--data` or `BRDF_DATA` must exist and hold
-/// something: a typo would otherwise silently give the synthetic study.
-fn check_data(arg: Option<&std::path::Path>) -> Result<(), CliError> {
+/// The data folder named by `--data` or `BRDF_DATA`, and which named it;
+/// an error when it cannot be read, or is empty and no part is `selected`
+/// (a typo would otherwise silently give the synthetic study).
+fn data_folder(
+    arg: Option<&std::path::Path>,
+    selected: bool,
+) -> Result<Option<(PathBuf, &'static str)>, CliError> {
     let env = std::env::var_os("BRDF_DATA").filter(|d| !d.is_empty());
     let (dir, from) = match (arg, env) {
         (Some(d), _) => (d.to_path_buf(), "--data"),
         (None, Some(d)) => (PathBuf::from(d), "BRDF_DATA"),
-        (None, None) => return Ok(()),
+        (None, None) => return Ok(None),
     };
-    let fix = "point it at the folder holding curet/, rgl/, merl/ ..., or unset it for the synthetic materials";
-    let entries = match std::fs::read_dir(&dir) {
-        Ok(e) => e,
+    let fix =
+        "point it at the folder holding curet/, rgl/, ..., or unset it for the synthetic materials";
+    let empty = match std::fs::read_dir(&dir) {
         Err(e) => {
             return Err(CliError::Usage(format!(
                 "{from}={}: cannot read the folder ({e}); {fix}",
                 dir.display()
             )));
         }
+        Ok(mut entries) => entries.next().is_none(),
     };
-    if entries.count() == 0 {
+    // With parts selected, the study says what each one needs.
+    if empty && !selected {
         return Err(CliError::Usage(format!(
             "{from}={}: the folder is empty; {fix}",
             dir.display()
         )));
     }
-    Ok(())
+    Ok(Some((dir, from)))
 }
 
 /// Run `brdf reproduce`.
@@ -81,7 +87,8 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         }
         return Ok(());
     }
-    check_data(args.data.as_deref())?;
+    let selected = !args.only.is_empty() || args.spec.is_some();
+    let folder = data_folder(args.data.as_deref(), selected)?;
     let done = brdf_study::reproduce::run(&Reproduce {
         data: args.data.clone(),
         out: args.out.clone(),
@@ -89,6 +96,13 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         spec: args.spec.clone(),
         lafortune_wide: args.lafortune_wide,
         threads: args.threads,
+    })
+    .map_err(|e| match &folder {
+        // Say which folder was read: an empty or wrong one explains most failures.
+        Some((dir, from)) => {
+            CliError::Usage(format!("{e} (data read from {from}={})", dir.display()))
+        }
+        None => e.into(),
     })?;
     say!(
         "wrote {} entries into {} (listed in its README.md)",
