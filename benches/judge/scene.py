@@ -34,7 +34,13 @@ def bsdf_of(path):
     path = str(path)
     if path.endswith(".bsdf"):
         return {"type": "measured", "filename": path}
-    return mi.load_file(path)
+    # `brdf export --to mitsuba` writes a paste-in `<bsdf ...>` snippet
+    # without the `version` attribute a file of its own needs.
+    with open(path, encoding="utf-8") as f:
+        xml = f.read()
+    if 'version="' not in xml.split("<bsdf", 1)[1].split(">", 1)[0]:
+        xml = xml.replace("<bsdf", '<bsdf version="3.0.0"', 1)
+    return mi.load_string(xml)
 
 
 def emitters(light):
