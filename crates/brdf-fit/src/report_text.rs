@@ -138,10 +138,10 @@ pub fn undetermined(summary: &FitSummary) -> Vec<String> {
 /// digits after the last letter or underscore, "" when the name has none
 /// besides a built-in digit (`f0`).
 fn lobe_number(name: &str) -> String {
-    if let Some((_, k)) = name.rsplit_once('_') {
-        if k.chars().all(|c| c.is_ascii_digit()) {
-            return k.to_string();
-        }
+    if let Some((_, k)) = name.rsplit_once('_')
+        && k.chars().all(|c| c.is_ascii_digit())
+    {
+        return k.to_string();
     }
     if name == "f0" {
         return String::new();
