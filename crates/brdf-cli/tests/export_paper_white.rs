@@ -41,6 +41,11 @@ fn paper_white_fits_export_to_all_four_formats() {
             &s(&data),
             "--model",
             m,
+            // The fixtures are Ngan-L2 fits (their exports are converted
+            // for appearance); the default for renderer models is the
+            // appearance fit, tested in appearance.rs.
+            "--metric",
+            "ngan",
             "--starts",
             "4",
             "--save",

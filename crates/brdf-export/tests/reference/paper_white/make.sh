@@ -26,7 +26,7 @@ export_one() {
     fi
 }
 for m in ggx principled; do
-    "$brdf" fit --data "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --model "$m" --starts 4 --save "$m.json" >/dev/null
+    "$brdf" fit --data "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --model "$m" --metric ngan --starts 4 --save "$m.json" >/dev/null
     for t in mitsuba pbrt gltf materialx usd blender; do
         ext=$(case $t in mitsuba) echo xml;; pbrt) echo pbrt;; gltf) echo gltf;; materialx) echo mtlx;; usd) echo usda;; blender) echo py;; esac)
         export_one "$m" "$t" "$m.$ext" --to "$t"
