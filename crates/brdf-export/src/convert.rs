@@ -52,7 +52,7 @@ use brdf_core::{Brdf, DirPairs, Direction, Parametric, SampleSet};
 use std::sync::Arc;
 
 use brdf_fit::appearance::{
-    FIT_SIZE, ImageError, Judge, REPORT_SIZE, fit_for_appearance, image_terms,
+    FIT_SIZE, ImageError, Judge, REPORT_SIZE, fit_for_appearance_with, image_terms,
 };
 use brdf_fit::image_objective::ImageTarget;
 use brdf_fit::{Channels, Fit, FitOptions, Objective, pipeline};
@@ -311,7 +311,9 @@ fn fit_target(
         // Every pair already lies inside the limit; 90 keeps them all.
         .limit_deg(90.0);
     let report = if opts.appearance {
-        fit_for_appearance(&fit, samples, source as &dyn Brdf)
+        // A conversion is judged by its render (its BRDF-space L2 is
+        // printed beside): no limit on the refinement's L2.
+        fit_for_appearance_with(&fit, samples, source as &dyn Brdf, f64::INFINITY)
             .map_err(|e| e.to_string())?
             .0
     } else {

@@ -273,6 +273,18 @@ pub fn fit_for_appearance(
     samples: &SampleSet,
     data: &dyn Brdf,
 ) -> Result<(FitReport, Vec<Candidate>), FitError> {
+    fit_for_appearance_with(fit, samples, data, REFINE_L2_GROWTH)
+}
+
+/// [`fit_for_appearance`] with another limit on the growth of Ngan's L2
+/// that the image refinement may bring (`f64::INFINITY`: judged by the
+/// render alone, as a conversion between renderer models is).
+pub fn fit_for_appearance_with(
+    fit: &Fit,
+    samples: &SampleSet,
+    data: &dyn Brdf,
+    refine_l2_growth: f64,
+) -> Result<(FitReport, Vec<Candidate>), FitError> {
     let judge = Judge::new(FIT_SIZE);
     let base = with_lobes(fit, &[]);
     let mut candidates: Vec<Candidate> = Vec::new();
@@ -315,7 +327,7 @@ pub fn fit_for_appearance(
     // kept only if it also stays a fit of the data (Ngan's L2 at most
     // REFINE_L2_GROWTH times the winner's), so it cannot trade the
     // unrendered directions for a lower image error.
-    let keeps_data = c.ngan_l2 <= REFINE_L2_GROWTH * candidates[k].ngan_l2;
+    let keeps_data = c.ngan_l2 <= refine_l2_growth * candidates[k].ngan_l2;
     if keeps_data && c.image.mean_flip() < flip(&candidates, k) {
         candidates[k].chosen = false;
         c.chosen = true;
