@@ -7,7 +7,7 @@
 //!   (UsdPreviewSurface, Blender's Principled BSDF; MaterialX's
 //!   `standard_surface` and `open_pbr_surface`): close, not identical.
 //! - *converted*: the target has no such material; a model it has is
-//!   fitted for appearance ([`crate::convert`]).
+//!   fitted for appearance ([`crate::convert`](mod@crate::convert)).
 
 use brdf_models::ModelConfig;
 

@@ -143,7 +143,7 @@ impl PyModel {
 /// ----------
 /// model : Model
 ///     The fitted model (the first channel's for ``channels="per-channel"``).
-/// models : list[Model]
+/// models : list of Model
 ///     One model per fit (three for ``channels="per-channel"``).
 /// report : dict
 ///     The report ``brdf fit --json`` prints.
