@@ -11,7 +11,9 @@ import sys
 
 
 def version(text):
-    return tuple(int(x) for x in text.split("."))
+    # "1.89" and "1.89.0" are the same version: pad to three parts.
+    parts = [int(x) for x in text.split(".")]
+    return tuple(parts + [0] * (3 - len(parts)))
 
 
 def needed():
