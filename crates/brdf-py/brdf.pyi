@@ -66,7 +66,7 @@ def fit(
     model: str,
     *,
     channels: str = "rgb",
-    metric: str = "ngan",
+    metric: str = "auto",
     limit_deg: float = 80.0,
     starts: int = 12,
     solver: str = "auto",

@@ -436,3 +436,16 @@ pub fn select_by_image(
         .ok_or_else(|| FitError::Usage("select by image: no model to fit".into()))?;
     Ok((rows, choice))
 }
+
+/// What a front end's `--metric` (or `metric=`) means for `model`:
+/// whether to fit for appearance, and the objective of the fit (of the
+/// candidates' first, for appearance). `auto` is the appearance fit for a
+/// renderer model on data that can be rendered, else Ngan's L2.
+pub fn metric_choice<'a>(metric: &'a str, model: &str, renderable: bool) -> (bool, &'a str) {
+    match metric {
+        "auto" if is_renderer_model(model) && renderable => (true, "ngan"),
+        "auto" => (false, "ngan"),
+        "appearance" => (true, "ngan"),
+        m => (false, m),
+    }
+}

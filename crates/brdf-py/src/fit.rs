@@ -27,7 +27,9 @@ use crate::fitted::{PyFit, PyModel};
 ///     ``"rgb"`` (shared non-linear, per-channel linear parameters),
 ///     ``"grey"`` or ``"per-channel"``.
 /// metric : str
-///     ngan, sopp, sopp-unweighted, lafortune or log.
+///     auto (as ``brdf fit``: the appearance fit for renderer models on data
+///     that can be rendered, else ngan), appearance, ngan, sopp,
+///     sopp-unweighted, lafortune, log, cube-root, relative or image.
 /// limit_deg : float
 ///     Drop samples with theta_i or theta_o above this angle.
 /// starts : int
@@ -50,7 +52,7 @@ use crate::fitted::{PyFit, PyModel};
 /// BrdfError
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
-#[pyo3(signature = (data, model, *, channels="rgb", metric="ngan", limit_deg=80.0,
+#[pyo3(signature = (data, model, *, channels="rgb", metric="auto", limit_deg=80.0,
     starts=12, solver="auto", lobes=1, order=8, degree=7, save=None))]
 pub fn fit<'py>(
     py: Python<'py>,
@@ -71,7 +73,16 @@ pub fn fit<'py>(
         .extract::<PathBuf>()
         .ok()
         .map(|p| p.display().to_string());
-    let fit = Fit::model(model)
+    let entry = brdf_fit::resolve(model).map_err(to_py)?;
+    // As `brdf fit`: data named by a path that can be rendered get image
+    // errors, and renderer models are fitted for appearance under `auto`.
+    let dense = match (&spec, channels) {
+        (Some(s), "rgb" | "grey") => py.detach(|| brdf_io::load_dense(s)).map_err(to_py)?,
+        _ => None,
+    };
+    let (appearance, metric) =
+        brdf_fit::appearance::metric_choice(metric, entry.name, dense.is_some());
+    let fit = Ok::<_, brdf_fit::FitError>(Fit::entry(entry))
         .and_then(|f| Ok(f.objective(Objective::parse(metric)?)))
         .and_then(|f| Ok(f.solver(Solver::parse(solver)?)))
         .map_err(to_py)?
@@ -86,7 +97,8 @@ pub fn fit<'py>(
             "save= needs one model: use channels=\"rgb\" or \"grey\"".into(),
         ));
     }
-    let (reports, saved) = py.detach(|| run_all(&fit, &sets, save.as_ref(), &name))?;
+    let judged = (dense.as_deref(), appearance);
+    let (reports, saved) = py.detach(|| run_all(&fit, &sets, judged, save.as_ref(), &name))?;
     let report = brdf_fit::fit_json(&reports, &set).map_err(to_py)?;
     Ok(PyFit {
         models: saved.into_iter().map(|saved| PyModel { saved }).collect(),
@@ -135,13 +147,15 @@ fn channel_sets(data: &SampleSet, channels: &str) -> PyResult<Vec<(SampleSet, Ch
 fn run_all(
     fit: &Fit,
     sets: &[(SampleSet, Channels)],
+    (dense, appearance): (Option<&dyn brdf_core::Brdf>, bool),
     save: Option<&PathBuf>,
     name: &str,
 ) -> PyResult<(Vec<FitReport>, Vec<SavedModel>)> {
     let mut reports = Vec::new();
     let mut models = Vec::new();
     for (set, channels) in sets {
-        let report = fit.clone().channels(*channels).run(set).map_err(to_py)?;
+        let f = fit.clone().channels(*channels);
+        let report = brdf_fit::appearance::fit_judged(&f, set, dense, appearance).map_err(to_py)?;
         let saved = report.saved_model(name).map_err(to_py)?;
         if let Some(path) = save {
             saved.save(path).map_err(to_py)?;

@@ -93,12 +93,7 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
     let entry = brdf_fit::resolve(&args.model)?;
     // Per-channel fits are grey models of one channel: not rendered.
     let dense = dense.as_deref().filter(|_| args.channels != "per-channel");
-    let (appearance, metric) = match args.metric.as_str() {
-        "auto" if appearance::is_renderer_model(entry.name) && dense.is_some() => (true, "ngan"),
-        "auto" => (false, "ngan"),
-        "appearance" => (true, "ngan"),
-        m => (false, m),
-    };
+    let (appearance, metric) = appearance::metric_choice(&args.metric, entry.name, dense.is_some());
     let mut reports = Vec::new();
     brdf_study::context::progress::set_quiet(args.quiet);
     let bar = brdf_study::context::progress::bar(sets.len(), "fit");
