@@ -24,24 +24,29 @@ import math
 import os
 import sys
 from decimal import Decimal
+from typing import Any, Optional, Union
 
 import brdf
 import ray
 
 FITS = "fits.jsonl"
 TITLE = "brdf batch: every material x model fit"
+Fits = dict[tuple[str, str], dict[str, Any]]
+Cell = tuple[Any, ...]
+
 COLUMNS = ["data", "model", "samples used", "samples present", "Ngan L2",
            "termination", "seconds"]
 
 
 @ray.remote
-def fit_material(material, name, models, channels, limit, starts):
+def fit_material(material: str, name: str, models: list[str], channels: str, limit: float,
+                 starts: int) -> list[Union[str, dict[str, Any]]]:
     """Load one material and fit every model: batch lines, or error strings."""
     try:
         samples = brdf.load(material)
     except brdf.BrdfError as e:
         return [str(e) for _ in models]
-    out = []
+    out: list[Union[str, dict[str, Any]]] = []
     for model in models:
         try:
             report = brdf.fit(samples, model, channels=channels,
@@ -61,10 +66,10 @@ def fit_material(material, name, models, channels, limit, starts):
     return out
 
 
-def read_fits(path):
+def read_fits(path: str) -> Fits:
     """The fits already in a fits.jsonl by (data, model); a truncated last
     line (a killed run) is ignored."""
-    fits = {}
+    fits: Fits = {}
     if not os.path.exists(path):
         return fits
     with open(path) as f:
@@ -77,12 +82,12 @@ def read_fits(path):
     return fits
 
 
-def read_bytes(path):
+def read_bytes(path: str) -> bytes:
     with open(path, "rb") as f:
         return f.read()
 
 
-def rust_display(x):
+def rust_display(x: Optional[float]) -> str:
     """A number as Rust's `{}` prints an f64 (shortest digits, no exponent)."""
     if x is None or math.isnan(x):
         return "NaN"
@@ -94,7 +99,7 @@ def rust_display(x):
     return s
 
 
-def fmt_sig(x, digits):
+def fmt_sig(x: Optional[float], digits: int) -> str:
     """`x` to `digits` significant digits, as the study's Markdown tables."""
     if x is None or not math.isfinite(x):
         return rust_display(x)
@@ -107,9 +112,9 @@ def fmt_sig(x, digits):
     return f"{x:.{max(digits - 1 - mag, 0)}f}"
 
 
-def summary_rows(fits):
+def summary_rows(fits: Fits) -> list[list[Cell]]:
     """Rows of the summary: (text cells, numbers with their digits)."""
-    rows = []
+    rows: list[list[Cell]] = []
     for (data, model) in sorted(fits):
         v = fits[(data, model)]
         f = v["fit"]
@@ -124,7 +129,7 @@ def summary_rows(fits):
     return rows
 
 
-def write_summary(out, fits):
+def write_summary(out: str, fits: Fits) -> None:
     """summary.csv (numbers in full) and summary.md, as `brdf batch`."""
     rows = summary_rows(fits)
     with open(os.path.join(out, "summary.csv"), "w", newline="") as f:
@@ -141,8 +146,8 @@ def write_summary(out, fits):
         f.write("\n".join(lines) + "\n")
 
 
-def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def main(argv: Optional[list[str]] = None) -> int:
+    p = argparse.ArgumentParser(description=(__doc__ or "").split("\n\n")[0])
     p.add_argument("--data", nargs="+", required=True,
                    help="folders, files, or a CUReT abrdf.dat (every sample)")
     p.add_argument("--models", required=True, help="comma-separated model names")
@@ -159,7 +164,7 @@ def main(argv=None):
     os.makedirs(a.out, exist_ok=True)
     path = os.path.join(a.out, FITS)
     done = read_fits(path)
-    todo = {}
+    todo: dict[str, list[str]] = {}
     for m in materials:
         left = [x for x in models if (brdf.data_name(m), x) not in done]
         if left:
@@ -170,7 +175,7 @@ def main(argv=None):
     ray.init(address=a.address)
     tasks = [fit_material.remote(m, brdf.data_name(m), x, a.channels, a.limit, a.starts)
              for m, x in todo.items()]
-    failures = []
+    failures: list[str] = []
     # A killed run may have left half a line: end it first.
     half_line = os.path.exists(path) and not read_bytes(path).endswith(b"\n") \
         and os.path.getsize(path) > 0
