@@ -70,6 +70,12 @@ pub fn models(
 /// str
 ///     The catalogue name (``"blinn-phong"``); a ``BrdfError`` suggesting
 ///     the nearest names for an unknown one.
+///
+/// Examples
+/// --------
+/// >>> import brdf
+/// >>> brdf.canonical_name("GGX")
+/// 'ggx'
 #[pyfunction]
 pub fn canonical_name(name: &str) -> PyResult<&'static str> {
     brdf_fit::resolve(name).map(|e| e.name).map_err(to_py)

@@ -23,9 +23,9 @@
 //! | [`json`] | JSON values to Python objects and back |
 //! | [`error`] | `BrdfError`, carrying the Rust message |
 //!
-//! Build and install: `pip install maturin && maturin build --release -m
-//! crates/brdf-py/Cargo.toml`, then `pip install` the wheel it names (or
-//! `maturin develop --release` inside a virtual environment).
+//! Build and install in a virtual environment: `pip install ./crates/brdf-py`
+//! (maturin is the PEP 517 backend of `pyproject.toml`; the wheel ships the
+//! stubs `brdf.pyi` and `py.typed`).
 //!
 //! ## Layering
 //!
@@ -45,7 +45,25 @@ pub mod samples;
 
 use pyo3::prelude::*;
 
-/// The module `brdf`.
+/// Fit analytic BRDF models to measured reflectance data, from Python.
+///
+/// The fits, models and exports of the ``brdf`` command with NumPy arrays
+/// in and out: ``load`` reads a data set, ``fit`` returns a ``Fit`` (its
+/// ``model`` evaluates, saves, exports and renders), ``eval`` evaluates a
+/// catalogue or saved model, ``export`` writes a renderer's material,
+/// ``models`` lists the catalogue. Relative data paths that do not exist
+/// from the working directory are looked up under ``$BRDF_DATA``. Errors
+/// raise ``BrdfError`` with a message naming the argument and the fix.
+///
+/// Examples
+/// --------
+/// >>> import numpy as np
+/// >>> import brdf
+/// >>> brdf.canonical_name("Blinn_Phong")
+/// 'blinn-phong'
+/// >>> up = np.array([0.0, 0.0, 1.0])
+/// >>> float(brdf.eval("lambert", up, up, params={"kd": 0.5})[0])  # kd / pi
+/// 0.15915494309189535
 #[pymodule]
 #[pyo3(name = "brdf")]
 fn brdf_module(m: &Bound<'_, PyModule>) -> PyResult<()> {

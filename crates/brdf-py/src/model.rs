@@ -101,6 +101,14 @@ fn no_params(params: &Option<BTreeMap<String, f64>>, what: &str) -> PyResult<()>
 /// numpy.ndarray
 ///     ``(n, channels)`` values in 1/sr, or ``(channels,)`` for two single
 ///     vectors.
+///
+/// Examples
+/// --------
+/// >>> import numpy as np
+/// >>> import brdf
+/// >>> wi = np.array([[0.0, 0.0, 1.0], [0.6, 0.0, 0.8]])
+/// >>> brdf.eval("lambert", wi, np.array([0.0, 0.0, 1.0]), params={"kd": 0.5}).shape
+/// (2, 1)
 #[pyfunction]
 #[pyo3(signature = (model, wi, wo, *, params=None, channels=1, lobes=1, order=8, degree=7))]
 pub fn eval<'py>(
