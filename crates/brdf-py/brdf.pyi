@@ -38,6 +38,9 @@ class Model:
         """The model as a mitsuba, pbrt, gltf or materialx material."""
     def save(self, path: StrPath) -> None:
         """Write the model (JSON)."""
+    def render(self, *, light: str = "studio", size: int = 128) -> npt.NDArray[np.float64]:
+        """The judge's sphere under ``light`` ("studio", "sky" or
+        "directional"): ``(size, size, 3)`` linear radiance."""
 
 class Fit:
     """The outcome of ``fit``."""

@@ -25,6 +25,8 @@ def main() -> None:
     wo = np.array([0.0, 0.0, 1.0])
     values = fit.model.eval(wi, wo)  # (5, channels), 1/sr
     print(values.shape)
+    image = fit.model.render(light="studio")  # the judge's sphere, linear radiance
+    print(image.shape, float(image.max()))
 
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "fit.json"

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use brdf_models::saved_model::SavedModel;
-use numpy::{AllowTypeChange, PyArrayLikeDyn};
+use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -124,6 +124,45 @@ impl PyModel {
     ///     The file to write.
     pub fn save(&self, path: PathBuf) -> PyResult<()> {
         self.saved.save(&path).map_err(to_py)
+    }
+
+    /// Render the model on the judge's sphere (``brdf render``'s camera:
+    /// a unit sphere seen from (0, 0, 6), 22 deg field of view).
+    ///
+    /// Parameters
+    /// ----------
+    /// light : str
+    ///     ``"studio"`` (constant 0.05 and a square key light), ``"sky"``
+    ///     (sky dome and sun) or ``"directional"`` (the study's light).
+    /// size : int
+    ///     Image width and height in pixels (16 to 1024).
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     ``(size, size, 3)`` linear radiance, row 0 at the top.
+    ///
+    /// Raises
+    /// ------
+    /// BrdfError
+    ///     For an unknown light set or a size out of range.
+    #[pyo3(signature = (*, light="studio", size=128))]
+    pub fn render<'py>(
+        &self,
+        py: Python<'py>,
+        light: &str,
+        size: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        if !(16..=1024).contains(&size) {
+            return Err(usage(format!(
+                "render: size={size} is out of range; give 16 to 1024 pixels"
+            )));
+        }
+        let lights = brdf_render::LightSet::parse(light).map_err(to_py)?;
+        let m = self.saved.build().map_err(to_py)?;
+        let image = py.detach(|| brdf_render::shading::render_judge(m.as_ref(), &lights, size));
+        let shape = [image.height, image.width, image.channels];
+        Ok(image.data.into_pyarray(py).reshape(shape)?.into_any())
     }
 
     fn __repr__(&self) -> String {

@@ -126,6 +126,25 @@ def test_fit_object_model_evaluates_saves_and_loads(tmp_path):
     assert brdf.Model.load(str(saved)).params == fitted
 
 
+def test_model_renders_the_judge_sphere():
+    fit = brdf.fit(data_file("curet/abrdf.dat#25"), "lambert")
+    kd = fit.model.params["kd"]
+    image = fit.model.render(light="directional", size=33)
+    assert image.shape == (33, 33, 3) and image.dtype == np.float64
+    # The centre pixel sees the sphere's pole (normal +z) lit by the
+    # study's light (0.5, 0.5, 0.707) of irradiance 1: kd / pi * cos.
+    light = np.array([0.5, 0.5, 0.707])
+    expected = kd / math.pi * light[2] / np.linalg.norm(light)
+    assert image[16, 16].tolist() == pytest.approx([expected] * 3, rel=1e-9)
+    assert image[0, 0].tolist() == [0.0, 0.0, 0.0]  # off the sphere, no background
+    studio = fit.model.render(size=32)
+    assert studio.shape == (32, 32, 3) and np.all(np.isfinite(studio)) and studio.max() > 0
+    with pytest.raises(brdf.BrdfError, match="moon"):
+        fit.model.render(light="moon")
+    with pytest.raises(brdf.BrdfError, match="size=8"):
+        fit.model.render(size=8)
+
+
 def test_per_channel_fit_has_a_model_per_channel():
     path = data_file("rgl/paper_white_rgb.bsdf")
     fit = brdf.fit(path, "lambert", channels="per-channel", starts=2)
@@ -148,7 +167,8 @@ def test_model_load_refuses_a_data_file():
 def test_every_function_has_a_numpy_style_docstring():
     functions = [brdf.load, brdf.save_samples, brdf.fit, brdf.eval, brdf.export, brdf.models,
                  brdf.materials, brdf.canonical_name, brdf.data_name,
-                 brdf.Model.load, brdf.Model.eval, brdf.Model.export, brdf.Model.save]
+                 brdf.Model.load, brdf.Model.eval, brdf.Model.export, brdf.Model.save,
+                 brdf.Model.render]
     for f in functions:
         doc = f.__doc__ or ""
         assert "Parameters" in doc or "Returns" in doc, f
