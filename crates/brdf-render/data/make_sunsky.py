@@ -166,11 +166,11 @@ def main():
         "/// Table columns: azimuth from the sun `dphi` uniform in [0, pi].",
         f"pub const COLS: usize = {COLS};",
         "/// Sky RGB radiance (sun excluded), row-major (`row * COLS + col`).",
-        f"pub const SKY: [[f64; 3]; {ROWS * COLS}] = [",
+        f"pub static SKY: [[f64; 3]; {ROWS * COLS}] = [",
         *[f"    {fmt(table[i, j])}," for i in range(ROWS) for j in range(COLS)],
         "];",
         "/// Mitsuba's sky radiance at random world directions: (direction, RGB).",
-        f"pub const CHECKS: [([f64; 3], [f64; 3]); {CHECKS}] = [",
+        f"pub static CHECKS: [([f64; 3], [f64; 3]); {CHECKS}] = [",
         *[f"    ({fmt(d)}, {fmt(v)})," for d, v in checks],
         "];",
     ]

@@ -30,7 +30,7 @@ pub const ROWS: usize = 46;
 /// Table columns: azimuth from the sun `dphi` uniform in [0, pi].
 pub const COLS: usize = 61;
 /// Sky RGB radiance (sun excluded), row-major (`row * COLS + col`).
-pub const SKY: [[f64; 3]; 2806] = [
+pub static SKY: [[f64; 3]; 2806] = [
     [1.903019e-02, 3.503595e-02, 7.067960e-02],
     [1.903019e-02, 3.503595e-02, 7.067960e-02],
     [1.903019e-02, 3.503595e-02, 7.067960e-02],
@@ -2839,7 +2839,7 @@ pub const SKY: [[f64; 3]; 2806] = [
     [1.631351e-01, 1.958574e-01, 1.797116e-01],
 ];
 /// Mitsuba's sky radiance at random world directions: (direction, RGB).
-pub const CHECKS: [([f64; 3], [f64; 3]); 64] = [
+pub static CHECKS: [([f64; 3], [f64; 3]); 64] = [
     ([9.485536e-01, -1.661244e-01, 2.695344e-01], [7.535762e-02, 1.188803e-01, 1.811130e-01]),
     ([2.914161e-01, -2.804189e-01, 9.145720e-01], [2.042678e-02, 3.798724e-02, 7.569883e-02]),
     ([-1.021793e-01, -6.108200e-01, 7.851486e-01], [2.088598e-02, 4.069608e-02, 8.132024e-02]),
