@@ -74,9 +74,16 @@ impl Camera {
     /// Unit direction of the ray through the centre of pixel `(px, py)` of a
     /// `size x size` image.
     pub fn ray(&self, px: usize, py: usize, size: usize) -> Vector3<f64> {
+        self.ray_at(px as f64 + 0.5, py as f64 + 0.5, size)
+    }
+
+    /// Unit direction of the ray through the film position `(x, y)` in
+    /// pixels (`(px + 0.5, py + 0.5)` is the centre of pixel `(px, py)`) of
+    /// a `size x size` image.
+    pub fn ray_at(&self, x: f64, y: f64, size: usize) -> Vector3<f64> {
         let s = size as f64;
-        let x = ((px as f64 + 0.5) / s * 2.0 - 1.0) * self.tan_half_fov;
-        let y = (1.0 - (py as f64 + 0.5) / s * 2.0) * self.tan_half_fov;
+        let x = (x / s * 2.0 - 1.0) * self.tan_half_fov;
+        let y = (1.0 - y / s * 2.0) * self.tan_half_fov;
         (self.forward + self.right * x + self.up * y).normalize()
     }
 }

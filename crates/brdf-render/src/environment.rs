@@ -10,7 +10,7 @@
 use nalgebra::Vector3;
 
 use crate::quadrature::fibonacci_sphere;
-use crate::sky::ClearSky;
+use crate::sky::SunSky;
 
 /// Number of quadrature directions over the whole sphere (about half of them
 /// light a given surface point).
@@ -32,8 +32,8 @@ pub struct Incident {
 pub enum EnvRadiance {
     /// the same RGB radiance from every direction
     Constant([f64; 3]),
-    /// a clear sky dome ([`ClearSky`])
-    ClearSky(ClearSky),
+    /// Mitsuba's `sunsky` sky dome without the sun ([`SunSky`])
+    SunSky(SunSky),
 }
 
 impl EnvRadiance {
@@ -41,7 +41,7 @@ impl EnvRadiance {
     pub fn radiance(&self, dir: &Vector3<f64>) -> [f64; 3] {
         match self {
             EnvRadiance::Constant(rgb) => *rgb,
-            EnvRadiance::ClearSky(sky) => sky.radiance(dir),
+            EnvRadiance::SunSky(sky) => sky.radiance(dir),
         }
     }
 }

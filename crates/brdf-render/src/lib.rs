@@ -23,6 +23,8 @@
 //!   directions;
 //! - [`shading`]: [`ShadingPoints`], the precomputed `(pixel, l, v, weight)`
 //!   terms of a scene, and the batched render of any BRDF from them;
+//! - [`film`]: Mitsuba's film (antialiased silhouette, Gaussian pixel
+//!   filter) for pictures compared with the judge's;
 //! - [`tonemap`], [`openexr`]: exposure `1 / p99`, gamma 2.2, PNG and EXR;
 //! - [`flip`], [`psnr`], [`colour`]: LDR- and HDR-FLIP (NVIDIA's FLIP through
 //!   `nv-flip`), PSNR, mean colour and CIEDE2000 (through `palette`);
@@ -40,6 +42,7 @@ pub mod colour;
 pub mod compare;
 pub mod environment;
 pub mod error;
+pub mod film;
 pub mod flip;
 pub mod grid;
 pub mod image;

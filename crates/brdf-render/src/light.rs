@@ -5,7 +5,8 @@
 //!
 //! - `directional`: one distant light of irradiance 1 (the study's light,
 //!   `(0.5, 0.5, 0.707)` normalised, unless another direction is given);
-//! - `sky`: a CIE clear sky dome plus a sun ([`crate::sky`]);
+//! - `sky`: Mitsuba's `sunsky` (Hosek-Wilkie sky dome plus a sun), tabulated
+//!   from Mitsuba ([`crate::sky`]);
 //! - `studio`: a constant surround of radiance 0.05 plus a 1.2 x 1.2 square
 //!   light of radiance 12 at `(3, 3, 4)` facing the sphere
 //!   ([`crate::area_light`], 8 x 8 points). The square's occlusion of the

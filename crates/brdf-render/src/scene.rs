@@ -49,6 +49,19 @@ pub fn intersect_unit_sphere(origin: &Vector3<f64>, dir: &Vector3<f64>) -> Optio
     (t > 0.0).then(|| origin + dir * t)
 }
 
+/// The hit of the ray from `camera` in unit direction `dir`, credited to
+/// `pixel`, if the ray meets the sphere.
+pub fn hit_of(camera: &Camera, pixel: usize, dir: &Vector3<f64>) -> Option<SphereHit> {
+    let p = intersect_unit_sphere(&camera.origin, dir)?;
+    let n = p.normalize();
+    Some(SphereHit {
+        pixel,
+        point: n,
+        frame: sphere_frame(n),
+        view: -dir,
+    })
+}
+
 /// Every pixel of a `size x size` image from `camera` that sees the unit
 /// sphere, in pixel order (row by row, top row first).
 pub fn sphere_hits(camera: &Camera, size: usize) -> Vec<SphereHit> {
@@ -56,16 +69,7 @@ pub fn sphere_hits(camera: &Camera, size: usize) -> Vec<SphereHit> {
     for py in 0..size {
         for px in 0..size {
             let dir = camera.ray(px, py, size);
-            let Some(p) = intersect_unit_sphere(&camera.origin, &dir) else {
-                continue;
-            };
-            let n = p.normalize();
-            hits.push(SphereHit {
-                pixel: py * size + px,
-                point: n,
-                frame: sphere_frame(n),
-                view: -dir,
-            });
+            hits.extend(hit_of(camera, py * size + px, &dir));
         }
     }
     hits

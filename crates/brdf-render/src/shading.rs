@@ -15,7 +15,12 @@
 //!
 //! Optionally ([`ShadingPoints::with_background`]) the pixels that miss the
 //! sphere show the environment, as in the judge's Mitsuba renders; that
-//! radiance does not depend on the BRDF and is simply added.
+//! radiance does not depend on the BRDF and is simply added. The judge's
+//! pictures ([`ShadingPoints::film`], [`ShadingPoints::judge_with_background`])
+//! also follow Mitsuba's film ([`crate::film`]): the silhouette's pixels are
+//! supersampled (a pixel then has several entries in
+//! [`ShadingPoints::pixels`], one per sub-pixel ray, its weights scaled by
+//! the ray's share) and renders are filtered by Mitsuba's Gaussian.
 //!
 //! Rendering sums each pixel's terms in a fixed order, in parallel over image
 //! rows, so the image is identical for any number of threads.
@@ -26,8 +31,9 @@ use rayon::prelude::*;
 
 use crate::Image;
 use crate::camera::Camera;
+use crate::film::{SILHOUETTE_SAMPLES, filter};
 use crate::light::LightSet;
-use crate::scene::{SphereHit, intersect_unit_sphere, sphere_hits};
+use crate::scene::{SphereHit, hit_of, intersect_unit_sphere, sphere_hits};
 
 /// One pixel that sees the sphere: its index, its local view direction and
 /// the range of its terms.
@@ -72,6 +78,10 @@ pub struct ShadingPoints {
     /// `size * size * 3`, zero on the sphere), or empty for a black
     /// background (see [`ShadingPoints::with_background`])
     pub background: Vec<f64>,
+    /// Mitsuba's film ([`ShadingPoints::film`]): the pixels whose centre
+    /// ray hits the sphere (row-major, `size * size`), and renders are
+    /// filtered; empty: one ray per pixel centre, no filter.
+    pub film_mask: Vec<bool>,
 }
 
 impl ShadingPoints {
@@ -108,15 +118,26 @@ impl ShadingPoints {
 
     /// The terms of `hits` (term ranges counted from 0).
     fn from_hits(hits: &[SphereHit], lights: &LightSet, size: usize) -> ShadingPoints {
+        let scaled: Vec<(SphereHit, f64)> = hits.iter().map(|h| (*h, 1.0)).collect();
+        ShadingPoints::from_scaled_hits(&scaled, lights, size)
+    }
+
+    /// The terms of `hits`, each hit's weights multiplied by its scale.
+    fn from_scaled_hits(
+        hits: &[(SphereHit, f64)],
+        lights: &LightSet,
+        size: usize,
+    ) -> ShadingPoints {
         let mut sp = ShadingPoints {
             size,
             pixels: Vec::new(),
             l_local: Vec::new(),
             weight: Vec::new(),
             background: Vec::new(),
+            film_mask: Vec::new(),
         };
         let mut incident = Vec::new();
-        for hit in hits {
+        for (hit, scale) in hits {
             let v_local = hit.frame.to_local(&hit.view);
             if v_local.z <= 0.0 {
                 continue;
@@ -128,7 +149,7 @@ impl ShadingPoints {
                 let l = hit.frame.to_local(&inc.dir);
                 if l.z > 0.0 {
                     sp.l_local.push(l);
-                    sp.weight.push(inc.weight.map(|w| w * l.z));
+                    sp.weight.push(inc.weight.map(|w| w * l.z * scale));
                 }
             }
             let end = sp.l_local.len();
@@ -142,10 +163,82 @@ impl ShadingPoints {
         sp
     }
 
-    /// The judge camera's terms with the environment seen behind the sphere
-    /// (as in the judge's Mitsuba renders).
+    /// The judge camera's picture as Mitsuba's film makes it: the
+    /// environment seen behind the sphere, the silhouette antialiased and
+    /// renders filtered ([`ShadingPoints::film`]).
     pub fn judge_with_background(lights: &LightSet, size: usize) -> ShadingPoints {
-        ShadingPoints::judge(lights, size).with_background(&Camera::judge(), lights)
+        ShadingPoints::film(&Camera::judge(), lights, size)
+    }
+
+    /// The terms of `camera` under `lights` at `size x size` as Mitsuba's
+    /// film sees them ([`crate::film`]): pixels the silhouette crosses
+    /// shaded at `SILHOUETTE_SAMPLES^2` sub-pixel rays, the background seen
+    /// by the rays that miss, renders filtered by Mitsuba's Gaussian.
+    /// Built row by row in parallel; independent of the thread count.
+    pub fn film(camera: &Camera, lights: &LightSet, size: usize) -> ShadingPoints {
+        let k = SILHOUETTE_SAMPLES;
+        let share = 1.0 / (k * k) as f64;
+        type Row = (Vec<(SphereHit, f64)>, Vec<f64>, Vec<bool>);
+        let rows: Vec<Row> = (0..size)
+            .into_par_iter()
+            .map(|py| {
+                let mut hits = Vec::new();
+                let mut bg = vec![0.0; size * 3];
+                let mut centre = vec![false; size];
+                for px in 0..size {
+                    let pixel = py * size + px;
+                    let centre_hit = hit_of(camera, pixel, &camera.ray(px, py, size));
+                    centre[px] = centre_hit.is_some();
+                    let subs: Vec<(Vector3<f64>, Option<SphereHit>)> = (0..k * k)
+                        .map(|s| {
+                            let x = px as f64 + ((s % k) as f64 + 0.5) / k as f64;
+                            let y = py as f64 + ((s / k) as f64 + 0.5) / k as f64;
+                            let dir = camera.ray_at(x, y, size);
+                            (dir, hit_of(camera, pixel, &dir))
+                        })
+                        .collect();
+                    let n_hit = subs.iter().filter(|s| s.1.is_some()).count();
+                    match (centre_hit, n_hit) {
+                        (Some(h), n) if n == k * k => hits.push((h, 1.0)),
+                        (None, 0) => bg[px * 3..px * 3 + 3]
+                            .copy_from_slice(&lights.background(&camera.ray(px, py, size))),
+                        _ => {
+                            for (dir, hit) in subs {
+                                match hit {
+                                    Some(h) => hits.push((h, share)),
+                                    None => {
+                                        let l = lights.background(&dir);
+                                        for c in 0..3 {
+                                            bg[px * 3 + c] += share * l[c];
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                (hits, bg, centre)
+            })
+            .collect();
+        let mut sp = ShadingPoints::from_hits(&[], lights, size);
+        let mut background = Vec::with_capacity(size * size * 3);
+        let mut mask = Vec::with_capacity(size * size);
+        for (hits, bg, centre) in rows {
+            let row = ShadingPoints::from_scaled_hits(&hits, lights, size);
+            let offset = sp.l_local.len();
+            sp.pixels.extend(row.pixels.iter().map(|p| ShadedPixel {
+                start: p.start + offset,
+                end: p.end + offset,
+                ..*p
+            }));
+            sp.l_local.extend(row.l_local);
+            sp.weight.extend(row.weight);
+            background.extend(bg);
+            mask.extend(centre);
+        }
+        sp.background = background;
+        sp.film_mask = mask;
+        sp
     }
 
     /// Add the background: pixels whose ray misses the sphere show the light
@@ -189,8 +282,12 @@ impl ShadingPoints {
         })
     }
 
-    /// `true` at the pixels that see the sphere (row-major, `size * size`).
+    /// `true` at the pixels that see the sphere (row-major, `size * size`;
+    /// with Mitsuba's film, those whose centre ray hits it).
     pub fn mask(&self) -> Vec<bool> {
+        if self.film_mask.len() == self.size * self.size {
+            return self.film_mask.clone();
+        }
         let mut m = vec![false; self.size * self.size];
         for p in &self.pixels {
             m[p.pixel] = true;
@@ -227,15 +324,21 @@ impl ShadingPoints {
                 for p in &self.pixels[row_start[row]..row_start[row + 1]] {
                     let rgb = self.shade_pixel(brdf, p, swap, &mut f);
                     let x = p.pixel % size;
-                    out[x * 3..x * 3 + 3].copy_from_slice(&rgb);
+                    for c in 0..3 {
+                        out[x * 3 + c] += rgb[c];
+                    }
                 }
             });
-        Image {
+        let mut image = Image {
             width: size,
             height: size,
             channels: 3,
             data,
+        };
+        if !self.film_mask.is_empty() {
+            filter(&mut image);
         }
+        image
     }
 
     fn shade_pixel(

@@ -163,17 +163,33 @@ fn compare_a_model_with_itself_and_with_a_darker_one() -> Result<(), RenderError
 fn the_background_shows_the_environment() {
     let studio =
         ShadingPoints::judge_with_background(&LightSet::studio(), 16).render(&Lambert(vec![0.5]));
-    assert_eq!(&studio.data[0..3], &[0.05; 3]);
+    assert!(studio.data[0..3].iter().all(|v| (v - 0.05).abs() < 1e-15));
+    // The judge camera looks down from the sky's zenith (+z): every ray that
+    // misses the sphere goes below the horizon, to Mitsuba's black ground.
     let sp = ShadingPoints::judge_with_background(&LightSet::sky(), 16);
     let sky = sp.render(&Lambert(vec![0.5]));
-    // Top row looks above the horizon (blue sky), bottom row below it.
-    assert!(sky.data[2] > sky.data[0] && sky.data[0] > 0.0);
+    assert_eq!(&sky.data[0..3], &[0.0; 3]);
     assert_eq!(&sky.data[(16 * 16 - 1) * 3..], &[0.0; 3]);
+    // A camera looking at the horizon sees blue sky in its top row and the
+    // ground in its bottom row.
+    let camera = Camera::look_at(
+        Vector3::new(0.0, -6.0, 0.0),
+        Vector3::zeros(),
+        Vector3::z(),
+        22.0,
+    )
+    .expect("a valid camera");
+    let side = ShadingPoints::new(&camera, &LightSet::sky(), 16)
+        .with_background(&camera, &LightSet::sky())
+        .render(&Lambert(vec![0.5]));
+    assert!(side.data[2] > side.data[0] && side.data[0] > 0.0);
+    assert_eq!(&side.data[(16 * 16 - 1) * 3..], &[0.0; 3]);
     // Without the background the same pixels are black; sphere pixels agree.
-    let plain = ShadingPoints::judge(&LightSet::sky(), 16).render(&Lambert(vec![0.5]));
+    let plain = ShadingPoints::new(&camera, &LightSet::sky(), 16).render(&Lambert(vec![0.5]));
     assert_eq!(plain.data[2], 0.0);
+    let sp = ShadingPoints::new(&camera, &LightSet::sky(), 16);
     for p in &sp.pixels {
-        assert_eq!(plain.data[p.pixel * 3], sky.data[p.pixel * 3]);
+        assert_eq!(plain.data[p.pixel * 3], side.data[p.pixel * 3]);
     }
 }
 
