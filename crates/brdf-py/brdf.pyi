@@ -34,8 +34,18 @@ class Model:
         """Parameter values by name."""
     def eval(self, wi: ArrayLike, wo: ArrayLike) -> npt.NDArray[np.float64]:
         """Values at ``(n, 3)`` direction pairs: ``(n, channels)`` in 1/sr."""
-    def export(self, *, to: str) -> str:
-        """The model as a mitsuba, pbrt, gltf or materialx material."""
+    def export(
+        self,
+        *,
+        to: str,
+        name: str = "fitted",
+        scene: bool = False,
+        light: str = "studio",
+        surface: str = "gltf_pbr",
+        convert: bool = False,
+        force: bool = False,
+    ) -> str:
+        """The model as a mitsuba, pbrt, gltf, materialx, usd or blender material."""
     def save(self, path: StrPath) -> None:
         """Write the model (JSON)."""
     def render(self, *, light: str = "studio", size: int = 128) -> npt.NDArray[np.float64]:
@@ -102,8 +112,14 @@ def export(
     lobes: int = 1,
     order: int = 8,
     degree: int = 7,
+    name: str = "fitted",
+    scene: bool = False,
+    light: str = "studio",
+    surface: str = "gltf_pbr",
+    convert: bool = False,
+    force: bool = False,
 ) -> str:
-    """A model as a renderer's material."""
+    """A model as a renderer's material, as ``brdf export`` writes it."""
 
 def models(
     *, channels: int = 1, lobes: int = 1, order: int = 8, degree: int = 7

@@ -1,7 +1,8 @@
 //! Render a saved model with `brdf-render` on the judge sphere under each
 //! light set (128 px, background shown) and write `OUT_DIR/LIGHT.exr`, for
-//! `tests/reference/mitsuba_render_check.py`, which renders the model's
-//! Mitsuba export in Mitsuba's judge scene and compares the two by FLIP:
+//! `tests/reference/render_check.py` (run by `check_exports.sh`), which
+//! renders the model's exports in Mitsuba and Blender Cycles and compares
+//! them with these by HDR-FLIP:
 //!
 //! `cargo run --release -p brdf-export --example judge_exr -- MODEL.json OUT_DIR`
 

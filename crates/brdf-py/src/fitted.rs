@@ -97,23 +97,43 @@ impl PyModel {
         crate::model::eval_model(py, m.as_ref(), wi, wo)
     }
 
-    /// The model as a renderer's material.
+    /// The model as a renderer's material, as ``brdf export`` writes it.
     ///
     /// Parameters
     /// ----------
     /// to : str
-    ///     ``"mitsuba"``, ``"pbrt"``, ``"gltf"`` or ``"materialx"``.
+    ///     ``"mitsuba"``, ``"pbrt"``, ``"gltf"``, ``"materialx"``, ``"usd"``
+    ///     or ``"blender"``.
+    /// name, scene, light, surface, convert, force
+    ///     As for ``brdf.export``.
     ///
     /// Returns
     /// -------
     /// str
     ///     The material's text; a ``BrdfError`` when there is no exact
-    ///     equivalent.
-    #[pyo3(signature = (*, to))]
-    pub fn export(&self, to: &str) -> PyResult<String> {
+    ///     equivalent and ``convert`` is false.
+    #[pyo3(signature = (*, to, name="fitted", scene=false, light="studio", surface="gltf_pbr",
+                        convert=false, force=false))]
+    pub fn export(
+        &self,
+        to: &str,
+        name: &str,
+        scene: bool,
+        light: &str,
+        surface: &str,
+        convert: bool,
+        force: bool,
+    ) -> PyResult<String> {
         let m = self.saved.build().map_err(to_py)?;
-        let target: brdf_export::Target = to.parse().map_err(to_py)?;
-        brdf_export::export(m.as_ref(), target).map_err(to_py)
+        let opts = crate::model::ExportOptions {
+            scene,
+            light,
+            surface,
+            name,
+            convert,
+            force,
+        };
+        crate::model::export_text(m.as_ref(), to, &opts)
     }
 
     /// Write the model (JSON) for ``Model.load`` and ``brdf eval --load``.

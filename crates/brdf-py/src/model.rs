@@ -171,26 +171,90 @@ pub fn eval_model<'py>(
     Ok(out.into_pyarray(py).into_any())
 }
 
-/// A model as a renderer's material.
+/// The CLI's `brdf export` options, as keyword arguments.
+#[derive(Clone, Debug)]
+pub struct ExportOptions<'a> {
+    /// Mitsuba: a complete judge scene instead of a `<bsdf>` snippet.
+    pub scene: bool,
+    /// Mitsuba scene: `"studio"` or `"sky"`.
+    pub light: &'a str,
+    /// MaterialX: `"gltf_pbr"`, `"standard_surface"` or `"openpbr"`.
+    pub surface: &'a str,
+    /// The material's name (made an identifier).
+    pub name: &'a str,
+    /// Convert by fitting where the target has no exact equivalent.
+    pub convert: bool,
+    /// Write a conversion even when it renders unlike the model.
+    pub force: bool,
+}
+
+/// `m` in `to`'s format as `brdf export` writes it: exact, or (with
+/// `opts.convert`) converted for appearance with the conversion's error in
+/// the file.
+pub fn export_text(m: &dyn Parametric, to: &str, opts: &ExportOptions<'_>) -> PyResult<String> {
+    let target: brdf_export::Target = to.parse().map_err(to_py)?;
+    if opts.scene && target != brdf_export::Target::Mitsuba {
+        return Err(usage(format!(
+            "scene=True: only Mitsuba scenes are written (to=\"mitsuba\"), not {target}"
+        )));
+    }
+    let write = brdf_export::WriteOptions {
+        name: brdf_export::identifier(opts.name),
+        scene: opts.scene,
+        light: opts.light.parse().map_err(to_py)?,
+        surface: opts.surface.parse().map_err(to_py)?,
+    };
+    if !opts.convert {
+        return brdf_export::export_with(m, target, None, &write).map_err(to_py);
+    }
+    let convert = brdf_export::ConvertOptions {
+        force: opts.force,
+        ..brdf_export::ConvertOptions::default()
+    };
+    brdf_export::export_or_convert_with(m, target, &convert, &write)
+        .map(|e| e.text)
+        .map_err(to_py)
+}
+
+/// A model as a renderer's material, as ``brdf export`` writes it.
 ///
 /// Parameters
 /// ----------
 /// model : str, os.PathLike or dict
 ///     As for ``eval``.
 /// to : str
-///     ``"mitsuba"``, ``"pbrt"``, ``"gltf"`` or ``"materialx"``.
+///     ``"mitsuba"``, ``"pbrt"``, ``"gltf"``, ``"materialx"``, ``"usd"`` or
+///     ``"blender"``.
 /// params : dict of str to float, optional
 ///     A catalogue model's parameters.
 /// channels, lobes, order, degree : int
 ///     A catalogue model's structure.
+/// name : str
+///     The material's name (``--name``; made an identifier).
+/// scene : bool
+///     Mitsuba: a complete judge scene instead of a paste-in ``<bsdf>``
+///     snippet (``--scene``).
+/// light : str
+///     The Mitsuba scene's light set, ``"studio"`` or ``"sky"``.
+/// surface : str
+///     MaterialX: ``"gltf_pbr"``, ``"standard_surface"`` or ``"openpbr"``.
+/// convert : bool
+///     Where the target has no exact equivalent, convert by fitting for
+///     appearance (the error noted in the file), as ``brdf export`` does;
+///     by default such a model is refused (``--exact``).
+/// force : bool
+///     With ``convert``: write a conversion that renders unlike the model.
 ///
 /// Returns
 /// -------
 /// str
-///     The material; a ``BrdfError`` says why when there is no exact
-///     equivalent.
+///     The material (for ``"blender"``, a Python script for Blender); a
+///     ``BrdfError`` says why when there is no exact equivalent and
+///     ``convert`` is false.
 #[pyfunction]
-#[pyo3(signature = (model, to, *, params=None, channels=1, lobes=1, order=8, degree=7))]
+#[pyo3(signature = (model, to, *, params=None, channels=1, lobes=1, order=8, degree=7,
+                    name="fitted", scene=false, light="studio", surface="gltf_pbr",
+                    convert=false, force=false))]
 pub fn export(
     model: &Bound<'_, PyAny>,
     to: &str,
@@ -199,6 +263,12 @@ pub fn export(
     lobes: usize,
     order: usize,
     degree: usize,
+    name: &str,
+    scene: bool,
+    light: &str,
+    surface: &str,
+    convert: bool,
+    force: bool,
 ) -> PyResult<String> {
     let structure = Structure {
         channels,
@@ -207,6 +277,13 @@ pub fn export(
         degree,
     };
     let m = resolve(model, params, structure)?;
-    let target: brdf_export::Target = to.parse().map_err(to_py)?;
-    brdf_export::export(m.as_ref(), target).map_err(to_py)
+    let opts = ExportOptions {
+        scene,
+        light,
+        surface,
+        name,
+        convert,
+        force,
+    };
+    export_text(m.as_ref(), to, &opts)
 }

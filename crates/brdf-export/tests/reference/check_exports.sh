@@ -8,9 +8,19 @@
 #   materialx_check.py      MaterialX's validate() on paper_white/*.mtlx
 #   usd_check.py            USD opens paper_white/*.usda (UsdShade, UsdPreviewSurface inputs)
 #   blender_check.py        Blender's bpy runs paper_white/*.py, saves and rereads a .blend
-# Needs PYTHON (with mitsuba, numpy, materialx, usd-core) and NODE_PATH
-# holding gltf-validator; BLENDER_PYTHON (with bpy) for the Blender check,
-# which is skipped with a message without it. Takes about 30 seconds.
+#   render_check.py         checks by rendering (paper_white/render_check.json): each
+#                           Mitsuba snippet and scene rendered in Mitsuba, each Blender
+#                           script and USD file rendered in Cycles (cycles_render.py;
+#                           the .usda through Blender's USD importer) under the judge's
+#                           studio light, against brdf-render's render of the model the
+#                           file holds (examples/judge_exr.rs), by HDR-FLIP
+# Needs PYTHON (with mitsuba, numpy, materialx, usd-core, flip-evaluator) and
+# NODE_PATH holding gltf-validator; BLENDER_PYTHON (with bpy) for the Blender
+# checks, which are skipped with a message without it (render_check.json then
+# keeps the committed Cycles answers). JUDGE_EXR: the judge_exr example's
+# binary (default: cargo run --release). RENDER_LIGHTS: the light sets of the
+# Mitsuba render checks (default studio; studio,sky once brdf-render's sky is
+# Mitsuba's sunsky). Takes about three minutes.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 py="${PYTHON:-python3}"
@@ -33,3 +43,44 @@ if [ -n "${BLENDER_PYTHON:-}" ]; then
 else
     echo "blender check skipped: set BLENDER_PYTHON to a python with bpy; the tests read the committed answers"
 fi
+
+# Checks by rendering. brdf-render's renders of every saved model here (the
+# fits and their conversions), then the renderers' renders of the exports.
+exr_dir="$(mktemp -d)"
+trap 'rm -rf "$exr_dir"' EXIT
+for m in paper_white/*.json; do
+    b=$(basename "$m" .json)
+    case $b in *.report | *_validation | *_values | *_scenes | *_check) continue ;; esac
+    if [ -n "${JUDGE_EXR:-}" ]; then
+        "$JUDGE_EXR" "$m" "$exr_dir/brdf-render/$b"
+    else
+        (cd "$here/../../../.." && cargo run --release -q -p brdf-export --example judge_exr -- \
+            "$here/$m" "$exr_dir/brdf-render/$b")
+    fi
+done
+render_files=(paper_white/*.xml)
+if [ -n "${BLENDER_PYTHON:-}" ]; then
+    "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 paper_white/*.py paper_white/*.usda >&2
+    render_files+=(paper_white/*.py paper_white/*.usda)
+else
+    echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy; the committed Cycles answers are kept"
+    # Keep the committed Cycles answers (the tests check they are for the files as they are).
+    "$py" - "$exr_dir" <<'PY'
+import json, sys
+old = json.load(open("paper_white/render_check.json"))
+json.dump({"cycles": old.get("cycles"), "checks": [c for c in old["checks"] if c["renderer"] == "cycles"]},
+          open(sys.argv[1] + "/cycles_kept.json", "w"))
+PY
+fi
+"$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio}" "${render_files[@]}" >paper_white/render_check.json.new
+if [ -f "$exr_dir/cycles_kept.json" ]; then
+    "$py" - "$exr_dir/cycles_kept.json" paper_white/render_check.json.new <<'PY'
+import json, sys
+kept, new = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+if kept["cycles"]:
+    new["cycles"] = kept["cycles"]
+new["checks"] += kept["checks"]
+json.dump(new, open(sys.argv[2], "w"), indent=1)
+PY
+fi
+mv paper_white/render_check.json.new paper_white/render_check.json
