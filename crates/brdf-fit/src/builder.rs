@@ -227,7 +227,7 @@ impl Fit {
             ));
         }
         let options = self.options_for(&config, &mut notes)?;
-        let mut model = self.entry.build_for(&config, data.pairs())?;
+        let mut model = self.entry.build_from(&config, &data)?;
         if !self.boxes.is_empty() {
             let boxes: Vec<(&str, f64, f64)> = self
                 .boxes
@@ -320,12 +320,12 @@ impl Fit {
         if options.solver != Solver::Sopp {
             return fit(model, data, options);
         }
-        let grey = self.entry.build_for(
+        let grey = self.entry.build_from(
             &ModelConfig {
                 channels: 1,
                 ..*config
             },
-            data.pairs(),
+            &data.mean_channel(),
         )?;
         // The one-channel stage sees the same boxes as the full model.
         if scale != 1.0 {

@@ -6,7 +6,8 @@
 //!   parameters (`kd`, `ks` per channel, ...) are projected out by
 //!   non-negative least squares (variable projection), the bounded
 //!   SQP-style solver optimises the non-linear ones inside their box from
-//!   deterministic Halton multi-starts (exponents on a log scale), and the
+//!   deterministic Halton multi-starts (exponents on a log scale; after
+//!   the starts a model's catalogue entry suggests, if any), and the
 //!   best result is polished by the bounded solver on all parameters (which
 //!   also enforces the linear parameters' upper bounds and reports every
 //!   parameter on a bound).
@@ -523,11 +524,23 @@ fn fit_nonlinear(
     if opts.objective == Objective::Image {
         return crate::image_objective::fit_image(model, opts, &full);
     }
+    if !opts.objective.is_transformed()
+        && let Some(blocks) = brdf_models::channel_slice::channel_blocks(model)
+    {
+        return fit_per_channel(model, data, opts, &blocks);
+    }
     let log_problem;
     let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
     let nonlinear = mp.nonlinear_indices().to_vec();
     let sb = start_box(model, &nonlinear);
-    let starts = sb.starts(opts.starts.max(1))?;
+    // The model's own suggestions (its catalogue entry's) first, then the
+    // Halton points of its box.
+    let mut starts: Vec<Vec<f64>> = brdf_models::suggested_starts(model)
+        .into_iter()
+        .filter(|s| s.len() == model.n_params())
+        .map(|s| nonlinear.iter().map(|k| s[*k]).collect())
+        .collect();
+    starts.extend(sb.starts(opts.starts.max(1))?);
     let nl_box = Constraints::boxed(
         nonlinear.iter().map(|k| full.lower()[*k]).collect(),
         nonlinear.iter().map(|k| full.upper()[*k]).collect(),
@@ -589,11 +602,18 @@ fn fit_nonlinear(
         })?
     };
     let info = (starts.len(), ms.n_converged, ms.n_at_best);
+    // The polish's iteration cap: the model's factor of the solver's.
+    let factor = brdf_models::polish_factor(model);
+    let polish_lm = LmOptions {
+        max_iterations: opts.lm.max_iterations * factor,
+        max_evaluations: opts.lm.max_evaluations * factor,
+        ..opts.lm.clone()
+    };
     let (p, rep, how) = if use_varpro {
         // Polish on all parameters (enforces the linear upper bounds and
         // reports every parameter's bound status).
         let p0 = project(&ms.best.params)?;
-        let polish = bounded_least_squares(problem, &p0, &full, &opts.lm)?;
+        let polish = bounded_least_squares(problem, &p0, &full, &polish_lm)?;
         let rep = SolverReport {
             iterations: ms.best.iterations + polish.iterations,
             evaluations: ms.best.evaluations + polish.evaluations,
@@ -609,7 +629,7 @@ fn fit_nonlinear(
         )
     } else {
         // Polish the best start to the full tolerances.
-        let polish = repolish(problem, &full, &opts.lm, &ms.best.params)?;
+        let polish = repolish(problem, &full, &polish_lm, &ms.best.params)?;
         let rep = SolverReport {
             iterations: ms.best.iterations + polish.iterations,
             evaluations: ms.best.evaluations + polish.evaluations,
@@ -632,6 +652,66 @@ fn fit_nonlinear(
         )
     };
     Ok((p, rep, info, how))
+}
+
+/// A model whose channels share no parameter ([`channel_blocks`]), fitted
+/// channel by channel: each channel's block is a one-channel problem
+/// ([`ChannelSlice`]) with its own starts and the objective's rows of that
+/// channel; the reports are summed (iterations, evaluations, cost), the
+/// termination is the first channel's that did not converge, else the
+/// last channel's.
+///
+/// [`channel_blocks`]: brdf_models::channel_slice::channel_blocks
+/// [`ChannelSlice`]: brdf_models::channel_slice::ChannelSlice
+fn fit_per_channel(
+    model: &dyn Parametric,
+    data: &SampleSet,
+    opts: &FitOptions,
+    blocks: &[Vec<usize>],
+) -> Result<NonlinearFit, FitError> {
+    use brdf_models::channel_slice::ChannelSlice;
+    let mut p = model.params().to_vec();
+    let mut bounds = vec![BoundStatus::Free; p.len()];
+    let mut total: Option<SolverReport> = None;
+    let mut info = (0, 0, 0);
+    let mut how = String::new();
+    for (c, block) in blocks.iter().enumerate() {
+        let slice = ChannelSlice::new(model, c, block.clone())?;
+        let single = data.single_channel(c);
+        let scales = opts.objective.row_scales(&single);
+        let values = single.values_channel_major();
+        let (pc, rep, i, h) = fit_nonlinear(&slice, &single, &values, &scales, opts)?;
+        for (j, &k) in block.iter().enumerate() {
+            p[k] = pc[j];
+            bounds[k] = rep.bounds.get(j).copied().unwrap_or(BoundStatus::Free);
+        }
+        info = (info.0 + i.0, info.1 + i.1, info.2 + i.2);
+        how = h;
+        total = Some(match total {
+            None => rep,
+            Some(t) => SolverReport {
+                ssr: t.ssr + rep.ssr,
+                iterations: t.iterations + rep.iterations,
+                evaluations: t.evaluations + rep.evaluations,
+                gradient_norm: t.gradient_norm.max(rep.gradient_norm),
+                termination: if t.termination.is_converged() {
+                    rep.termination
+                } else {
+                    t.termination
+                },
+                ..t
+            },
+        });
+    }
+    let mut rep = total.ok_or_else(|| FitError::Usage("a model without channels".into()))?;
+    rep.params = p.clone();
+    rep.bounds = bounds;
+    Ok((
+        p,
+        rep,
+        info,
+        format!("per channel (no parameter shared): {how}"),
+    ))
 }
 
 /// The bounded solve from `p0` to the full tolerances; when it stops on

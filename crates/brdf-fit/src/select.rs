@@ -114,9 +114,15 @@ impl Among {
     }
 }
 
-/// Stored numbers of a model of `name` with `n_params` parameters.
+/// Stored numbers of a model of `name` with `n_params` parameters: the
+/// polynomial's PCA transform and Dupuy's table of `D` count too.
 fn stored_numbers(name: &str, n_params: usize) -> usize {
-    n_params + if name == "polynomial" { 4 } else { 0 }
+    n_params
+        + match name {
+            "polynomial" => 4,
+            brdf_models::dupuy::NAME => brdf_models::dupuy::DUPUY_NODES,
+            _ => 0,
+        }
 }
 
 /// Fit every candidate to `data` and return the rows and the index of the
@@ -151,7 +157,26 @@ pub fn select_among(
         let Some(e) = brdf_models::entry(name) else {
             continue;
         };
-        let model = e.build_for(&config, data.pairs())?;
+        // A model read off the data (Dupuy's table) may not be buildable
+        // from these samples (too few back-scattering ones): a failed row.
+        let model = match e.build_from(&config, data) {
+            Ok(m) => m,
+            Err(err) if e.from_samples.is_some() => {
+                rows.push(SelectRow {
+                    label,
+                    model: name.to_string(),
+                    stored_numbers: 0,
+                    error: f64::NAN,
+                    ssr: f64::NAN,
+                    aic: f64::NAN,
+                    bic: f64::NAN,
+                    seconds: 0.0,
+                    termination: format!("failed: {err}"),
+                });
+                continue;
+            }
+            Err(err) => return Err(err.into()),
+        };
         if model.n_params() >= data.len() * data.channels() {
             continue;
         }

@@ -1,8 +1,12 @@
 //! The catalogue: every model by name, with a constructor from a
 //! [`ModelConfig`], so the command line, the study and the tests can build
-//! any model without naming its type.
+//! any model without naming its type. Models whose structure depends on
+//! the data are built for them: Kurt's polynomial for the direction pairs
+//! (`build_for_data`), Dupuy's tabulated microfacet model for the samples
+//! (`from_samples`: its normal distribution is extracted from their
+//! back-scattering values before the fit solves its free parameters).
 
-use brdf_core::{DirPairs, ParamError, Parametric};
+use brdf_core::{DirPairs, ParamError, Parametric, SampleSet};
 
 use crate::Lambert;
 
@@ -34,6 +38,17 @@ impl Default for ModelConfig {
 /// Constructor of a model whose structure depends on the data.
 pub type BuildForData = fn(&ModelConfig, &DirPairs) -> Result<Box<dyn Parametric>, ParamError>;
 
+/// Constructor of a model built from the samples it will be fitted to: its
+/// structure is read off the measured values (Dupuy et al.'s normal
+/// distribution, extracted from the back-scattering samples), its free
+/// parameters are then fitted.
+pub type BuildFromSamples = fn(&ModelConfig, &SampleSet) -> Result<Box<dyn Parametric>, ParamError>;
+
+/// Start points a model proposes for its fit, beside the pipeline's own
+/// (full parameter vectors inside the box, for the model as built: the
+/// pipeline takes their non-linear entries).
+pub type SuggestStarts = fn(&dyn Parametric) -> Vec<Vec<f64>>;
+
 /// A catalogue entry.
 #[derive(Clone, Copy)]
 pub struct ModelEntry {
@@ -53,6 +68,19 @@ pub struct ModelEntry {
     /// structure depends on the data (Kurt's polynomial: its PCA transform).
     /// `None`: the data do not matter, use `build`.
     pub build_for_data: Option<BuildForData>,
+    /// Build the model from the samples it will be fitted to, for models
+    /// whose structure is read off the measured values (Dupuy's tabulated
+    /// normal distribution). `None`: [`ModelEntry::build_for`] serves.
+    pub from_samples: Option<BuildFromSamples>,
+    /// Start points the model suggests for its fit (Bagher's SGD, whose
+    /// shadowing term switches the lobe off from most points of its box).
+    pub starts: Option<SuggestStarts>,
+    /// Multiple of the solver's iteration cap the final polish of a fit
+    /// may take (1 for most models). Bagher's SGD crawls along a narrow
+    /// valley (`ks` against `F0`, whose grazing term `(1 - V.H)^5` few
+    /// pairs see): on synthetic data its best start needed about 2000
+    /// iterations to converge, past the pipeline's cap of 300.
+    pub polish_factor: usize,
 }
 
 impl ModelEntry {
@@ -68,6 +96,45 @@ impl ModelEntry {
             Some(f) => f(config, pairs),
             None => (self.build)(config),
         }
+    }
+}
+
+impl ModelEntry {
+    /// Build the model for the samples it will be fitted to: through
+    /// `from_samples` where the model is read off the data (Dupuy), else
+    /// [`ModelEntry::build_for`] on their direction pairs. `config.channels`
+    /// must be the samples' channel count for a model read off them.
+    pub fn build_from(
+        &self,
+        config: &ModelConfig,
+        samples: &SampleSet,
+    ) -> Result<Box<dyn Parametric>, ParamError> {
+        match self.from_samples {
+            Some(f) => f(config, samples),
+            None => self.build_for(config, samples.pairs()),
+        }
+    }
+
+    /// Whether the model depends on the data it is fitted to (its
+    /// direction pairs or its values).
+    pub fn is_data_dependent(&self) -> bool {
+        self.build_for_data.is_some() || self.from_samples.is_some()
+    }
+}
+
+/// The polish iteration factor of model `model` (its catalogue entry's
+/// [`ModelEntry::polish_factor`]; 1 for a model not in the catalogue).
+pub fn polish_factor(model: &dyn Parametric) -> usize {
+    entry(model.name()).map_or(1, |e| e.polish_factor.max(1))
+}
+
+/// The start points model `model` suggests (its catalogue entry's
+/// [`ModelEntry::starts`]); none for a model without, or not in the
+/// catalogue.
+pub fn suggested_starts(model: &dyn Parametric) -> Vec<Vec<f64>> {
+    match entry(model.name()).and_then(|e| e.starts) {
+        Some(f) => f(model),
+        None => Vec::new(),
     }
 }
 
@@ -90,6 +157,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
         has_lobes: false,
         build: |c| Ok(Box::new(Lambert::with_channels(c.channels)?)),
         build_for_data: None,
+        from_samples: None,
+        starts: None,
+        polish_factor: 1,
     }];
     macro_rules! lobe_model {
         ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
@@ -101,6 +171,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
                 has_lobes: false,
                 build: |c| Ok(Box::new(<$t>::with_channels(c.channels)?)),
                 build_for_data: None,
+                from_samples: None,
+                starts: None,
+                polish_factor: 1,
             })
         };
     }
@@ -192,6 +265,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: true,
             build: |c| Ok(Box::new(crate::CookTorrance::new(c.lobes, c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         v.push(ModelEntry {
             name: <crate::sgd::SgdShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -201,6 +277,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: false,
             build: |c| Ok(Box::new(crate::Sgd::with_channels(c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: Some(crate::sgd::suggested_starts),
+            polish_factor: 10,
         });
         v.push(ModelEntry {
             name: <crate::low::LowAbcShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -210,6 +289,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: false,
             build: |c| Ok(Box::new(crate::LowAbc::with_channels(c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         v.push(ModelEntry {
             name: <crate::low::LowSmoothShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -219,6 +301,21 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: false,
             build: |c| Ok(Box::new(crate::LowSmooth::with_channels(c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
+        });
+        v.push(ModelEntry {
+            name: crate::dupuy::NAME,
+            family: "microfacet",
+            summary: "kd/pi + (F + S (1 - V.H)^5) D G / (4 N.L N.V): D tabulated from the data's back-scattering by power iteration, Smith G from it",
+            paper: "Dupuy, Heitz, Iehl, Poulin & Ostromoukhov 2015, Computer Graphics Forum 34(4)",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::Dupuy::with_channels(c.channels)?)),
+            build_for_data: None,
+            from_samples: Some(|c, s| Ok(Box::new(crate::Dupuy::from_samples(c.channels, s)?))),
+            starts: None,
+            polish_factor: 1,
         });
     }
     #[cfg(feature = "lafortune")]
@@ -231,6 +328,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: true,
             build: |c| Ok(Box::new(crate::Lafortune::new(false, c.lobes, c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         v.push(ModelEntry {
             name: crate::Lafortune::NAME_ANISO,
@@ -240,6 +340,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: true,
             build: |c| Ok(Box::new(crate::Lafortune::new(true, c.lobes, c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
     }
     #[cfg(feature = "oren-nayar")]
@@ -251,6 +354,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
         has_lobes: false,
         build: |c| Ok(Box::new(crate::OrenNayar::with_channels(c.channels)?)),
         build_for_data: None,
+        from_samples: None,
+        starts: None,
+        polish_factor: 1,
     });
     #[cfg(feature = "oren-nayar")]
     v.push(ModelEntry {
@@ -261,6 +367,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
         has_lobes: false,
         build: |c| Ok(Box::new(crate::OrenNayarFull::with_channels(c.channels)?)),
         build_for_data: None,
+        from_samples: None,
+        starts: None,
+        polish_factor: 1,
     });
     #[cfg(feature = "sopp")]
     {
@@ -289,6 +398,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
                 )?))
             },
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
     }
     #[cfg(feature = "koenderink")]
@@ -300,6 +412,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
         has_lobes: false,
         build: |c| Ok(Box::new(crate::Koenderink::new(c.order, c.channels)?)),
         build_for_data: None,
+        from_samples: None,
+        starts: None,
+        polish_factor: 1,
     });
     #[cfg(feature = "polynomial")]
     {
@@ -322,6 +437,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
                 let pca = Pca::from_pairs(PolyVariant::Isotropic, pairs)?;
                 Ok(Box::new(KurtPolynomial::new(PolyVariant::Isotropic, c.degree, c.channels, pca)?))
             }),
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         v.push(ModelEntry {
             name: KurtPolynomial::NAME_ANISO,
@@ -341,6 +459,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
                 let pca = Pca::from_pairs(PolyVariant::Anisotropic, pairs)?;
                 Ok(Box::new(KurtPolynomial::new(PolyVariant::Anisotropic, c.degree, c.channels, pca)?))
             }),
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
     }
     #[cfg(feature = "renderer")]
@@ -353,6 +474,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: true,
             build: |c| Ok(Box::new(crate::Ggx::new(c.lobes, c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         v.push(ModelEntry {
             name: <crate::ggx::GgxSeparableLobe as crate::combinators::Lobe>::NAME,
@@ -362,6 +486,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: true,
             build: |c| Ok(Box::new(crate::GgxSeparable::new(c.lobes, c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         lobe_model!(
             crate::GgxAniso,
@@ -431,6 +558,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: false,
             build: |c| Ok(Box::new(crate::Principled::with_channels(c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfFormula as crate::dual_model::DualFormula>::NAME,
@@ -440,6 +570,9 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: false,
             build: |c| Ok(Box::new(crate::GltfPbr::with_channels(c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfExtFormula as crate::dual_model::DualFormula>::NAME,
@@ -449,9 +582,22 @@ pub fn catalogue() -> Vec<ModelEntry> {
             has_lobes: false,
             build: |c| Ok(Box::new(crate::GltfPbrExt::with_channels(c.channels)?)),
             build_for_data: None,
+            from_samples: None,
+            starts: None,
+            polish_factor: 1,
         });
     }
     v
+}
+
+/// Build a model by name for the samples it will be fitted to
+/// ([`ModelEntry::build_from`]).
+pub fn build_from(
+    name: &str,
+    config: &ModelConfig,
+    samples: &SampleSet,
+) -> Result<Box<dyn Parametric>, ParamError> {
+    entry_or_error(name).and_then(|e| e.build_from(config, samples))
 }
 
 /// Look up a model by name.

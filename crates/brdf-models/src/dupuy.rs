@@ -35,13 +35,34 @@
 //! form under which `G(w, w) = G1(w)`, the extraction's assumption). Its
 //! parameters are the per-channel factors `F_c` (linear, `[0, inf)`), the
 //! product of Fresnel and scale (a Fresnel curve in `V.H` cannot be read
-//! from back-scattering, where `V.H = 1`). Fitting is the extraction, so the
-//! model is not in the catalogue (whose models are built before the data);
-//! it implements [`Parametric`] in the `F_c` so a solver can refine them on
-//! the full data.
+//! from back-scattering, where `V.H = 1`). It implements [`Parametric`] in
+//! the `F_c` so a solver can refine them on the full data.
+//!
+//! [`Dupuy`] is the catalogue's model (`dupuy`): the table extracted from
+//! the samples it is fitted to (the catalogue's data-dependent build,
+//! [`ModelEntry::from_samples`](crate::ModelEntry::from_samples)), with
+//! the free parameters a fit then solves, all linear:
+//!
+//! `f_c = kd_c / pi + (F_c + S_c (1 - V.H)^5) D(H) G(L, V) / (4 (N.L)(N.V))`,
+//!
+//! | parameter (per channel) | meaning | default box | linear |
+//! | --- | --- | --- | --- |
+//! | `kd` | diffuse albedo | `[0, 1]` | yes |
+//! | `F` | Fresnel factor and scale at normal incidence (`V.H = 1`) | `[0, inf)` | yes |
+//! | `S` | Schlick's grazing Fresnel rise, `(1 - F0) scale` | `[0, inf)` | yes |
+//!
+//! `F_c + S_c (1 - x)^5` is Schlick's `scale (F0 + (1 - F0)(1 - x)^5)`
+//! written linearly; at back-scattering (`x = 1`) it is `F_c`, so the
+//! extraction stays exact: for data of the assumed form the fit returns
+//! `kd = S = 0` and the extracted `F_c`. The table (256 nodes) is part of
+//! the model: its stored numbers are the parameters and the table.
+//! Before data the catalogue builds it with the table of a GGX `D`
+//! (`alpha = 0.3`).
 //!
 //! Properties: reciprocal; non-negative; finite above the horizon. Energy:
-//! `D` normalised, `G <= G1`, so the albedo is at most `max F_c`.
+//! `D` normalised, `G <= G1`, so the albedo of [`TabulatedMicrofacet`] is
+//! at most `max F_c`, and that of [`Dupuy`] at most `kd_c + F_c + S_c`
+//! (energy conserving where that sum is at most 1).
 //!
 //! ```
 //! use brdf_core::Brdf;
@@ -68,11 +89,18 @@ use brdf_core::params::per_channel_specs;
 use brdf_core::{Brdf, ParamError, ParamSpec, Parametric, SampleSet};
 use nalgebra::Vector3;
 
-const NAME: &str = "dupuy";
+/// Catalogue name of [`Dupuy`].
+pub const NAME: &str = "dupuy";
+/// Name of the bare [`TabulatedMicrofacet`] (not a catalogue model: its
+/// parameters are only the `F_c`).
+const TABLE_NAME: &str = "dupuy-table";
 /// Largest tabulated angle: `D = rho cos(theta) sigma` vanishes at `pi/2`.
 const THETA_MAX: f64 = FRAC_PI_2 * (1.0 - 1e-4);
 /// Simpson sub-steps per table interval.
 const SUB: usize = 4;
+/// Distinct back-scattering angles below which [`TabulatedMicrofacet::from_samples`]
+/// widens its search to near-back-scattering pairs.
+pub const MIN_BACK_SAMPLES: usize = 8;
 
 fn config_error(reason: String) -> ParamError {
     ParamError::Config {
@@ -459,33 +487,84 @@ impl TabulatedMicrofacet {
         Self::extract(theta, &rho, opts)
     }
 
-    /// Extract from the back-scattering samples (`|L - V| <= 1e-6`) of a
-    /// sample set, averaged where angles repeat and interpolated linearly
-    /// in `theta` onto the nodes (constant beyond the measured range).
+    /// Extract from the back-scattering samples of a sample set:
+    /// those with `|L - V| <= 1e-6` (gridded data, Sopp's grid, synthetic
+    /// sets), or, where fewer than [`MIN_BACK_SAMPLES`] are exact
+    /// (scattered measurements), those within 2 deg of it, then within
+    /// 5 deg, at the polar angle of their half vector. Samples are averaged
+    /// in groups spanning at most `1e-9` rad (exact) or 0.5 deg (near),
+    /// and interpolated linearly in `theta` onto the nodes (constant beyond
+    /// the measured range).
     pub fn from_samples(
         samples: &SampleSet,
         opts: &ExtractOptions,
     ) -> Result<Extraction, ParamError> {
         let pairs = samples.pairs();
         let nc = samples.channels();
-        let mut back: Vec<(f64, Vec<f64>)> = (0..samples.len())
-            .filter(|&j| (pairs.l(j) - pairs.v(j)).norm() <= 1e-6 && pairs.l(j).z > 0.0)
-            .map(|j| {
-                let l = pairs.l(j);
-                (
-                    l.x.hypot(l.y).atan2(l.z),
-                    (0..nc).map(|c| samples.channel(c)[j]).collect(),
-                )
-            })
-            .collect();
+        let collect = |max_angle: f64| -> Vec<(f64, Vec<f64>)> {
+            let chord = if max_angle == 0.0 {
+                1e-6
+            } else {
+                2.0 * (0.5 * max_angle).sin()
+            };
+            let mut back: Vec<(f64, Vec<f64>)> = (0..samples.len())
+                .filter(|&j| {
+                    let (l, v) = (pairs.l(j), pairs.v(j));
+                    (l - v).norm() <= chord && l.z > 0.0 && v.z > 0.0
+                })
+                .map(|j| {
+                    let h = (pairs.l(j) + pairs.v(j)).normalize();
+                    (
+                        h.x.hypot(h.y).atan2(h.z),
+                        (0..nc).map(|c| samples.channel(c)[j]).collect(),
+                    )
+                })
+                .collect();
+            back.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let width = if max_angle == 0.0 {
+                1e-9
+            } else {
+                0.5f64.to_radians()
+            };
+            let mut merged: Vec<(f64, Vec<f64>)> = Vec::new();
+            let mut count = 0usize;
+            let mut first = f64::NEG_INFINITY;
+            for (t, vals) in back {
+                match merged.last_mut() {
+                    Some(m) if t - first <= width => {
+                        count += 1;
+                        let w = 1.0 / count as f64;
+                        m.0 += (t - m.0) * w;
+                        for (a, b) in m.1.iter_mut().zip(&vals) {
+                            *a += (b - *a) * w;
+                        }
+                    }
+                    _ => {
+                        first = t;
+                        count = 1;
+                        merged.push((t, vals));
+                    }
+                }
+            }
+            merged
+        };
+        let exact = collect(0.0);
+        let back = if exact.len() >= MIN_BACK_SAMPLES {
+            exact
+        } else {
+            [2.0f64, 5.0]
+                .iter()
+                .map(|a| collect(a.to_radians()))
+                .find(|b| b.len() >= MIN_BACK_SAMPLES)
+                .unwrap_or(exact)
+        };
         if back.len() < 2 {
             return Err(config_error(format!(
-                "{} back-scattering samples (L = V) in `{}`; at least 2 are needed",
+                "{} back-scattering samples (L = V, or within 5 deg of it) in `{}`; at least 2 are needed",
                 back.len(),
                 samples.name
             )));
         }
-        back.sort_by(|a, b| a.0.total_cmp(&b.0));
         let theta = TabulatedNdf::nodes(opts.nodes)?;
         let mut rho = vec![vec![0.0; theta.len()]; nc];
         for (j, &t) in theta.iter().enumerate() {
@@ -535,7 +614,7 @@ impl Brdf for TabulatedMicrofacet {
 impl Parametric for TabulatedMicrofacet {
     brdf_core::param_accessors!();
     fn name(&self) -> &str {
-        NAME
+        TABLE_NAME
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         let s = self.shape(l, v);
@@ -557,6 +636,152 @@ impl Parametric for TabulatedMicrofacet {
         for c in 0..nc {
             out[c] = p[c] * s;
             grad[c * nc + c] = s;
+        }
+    }
+}
+
+/// Nodes of the catalogue model's table.
+pub const DUPUY_NODES: usize = 256;
+
+/// Dupuy et al.'s model as the catalogue fits it (see the module doc): the
+/// table extracted from the data, `kd_c`, `F_c` and `S_c` per channel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dupuy {
+    table: TabulatedMicrofacet,
+    specs: Vec<ParamSpec>,
+    params: Vec<f64>,
+}
+
+impl Dupuy {
+    fn from_table(table: TabulatedMicrofacet) -> Result<Self, ParamError> {
+        let nc = table.channels();
+        let mut specs = per_channel_specs("kd", "diffuse albedo", nc, 0.0, 1.0, 0.0);
+        specs.extend(per_channel_specs(
+            "F",
+            "Fresnel factor and scale at normal incidence",
+            nc,
+            0.0,
+            f64::INFINITY,
+            1.0,
+        ));
+        specs.extend(per_channel_specs(
+            "S",
+            "Schlick's grazing Fresnel rise",
+            nc,
+            0.0,
+            f64::INFINITY,
+            0.0,
+        ));
+        let mut params: Vec<f64> = specs.iter().map(|s| s.default).collect();
+        params[nc..2 * nc].copy_from_slice(table.params());
+        Ok(Self {
+            table,
+            specs,
+            params,
+        })
+    }
+
+    /// The model before data: the table of a GGX `D` with `alpha = 0.3`,
+    /// `kd = S = 0`, `F = 1`.
+    pub fn with_channels(channels: usize) -> Result<Self, ParamError> {
+        let a2 = 0.09;
+        let ndf = TabulatedNdf::from_fn(DUPUY_NODES, |t| {
+            let c2 = t.cos() * t.cos();
+            a2 / (PI * (c2 * (a2 - 1.0) + 1.0).powi(2))
+        })?;
+        Self::from_table(TabulatedMicrofacet::new(ndf, &vec![1.0; channels])?)
+    }
+
+    /// The model for `samples`: its table extracted from their
+    /// back-scattering ([`TabulatedMicrofacet::from_samples`], 256 nodes),
+    /// `F_c` the extraction's, `kd = S = 0`; the error of the extraction
+    /// (too few back-scattering samples), or one for a channel count other
+    /// than `channels`, or an iteration that did not converge.
+    pub fn from_samples(channels: usize, samples: &SampleSet) -> Result<Self, ParamError> {
+        if samples.channels() != channels {
+            return Err(config_error(format!(
+                "`{}` has {} channels, the model {channels}",
+                samples.name,
+                samples.channels()
+            )));
+        }
+        let opts = ExtractOptions {
+            nodes: DUPUY_NODES,
+            ..ExtractOptions::default()
+        };
+        let ex = TabulatedMicrofacet::from_samples(samples, &opts)?;
+        if !ex.converged {
+            return Err(config_error(format!(
+                "the power iteration on `{}` did not converge in {} iterations",
+                samples.name, ex.iterations
+            )));
+        }
+        Self::from_table(ex.model)
+    }
+
+    /// The tabulated microfacet part (table and `G1`).
+    pub fn table(&self) -> &TabulatedMicrofacet {
+        &self.table
+    }
+}
+
+impl Brdf for Dupuy {
+    fn channels(&self) -> usize {
+        self.table.channels()
+    }
+    fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        self.eval_at(&self.params, l, v, out)
+    }
+}
+
+/// `(D G / (4 N.L N.V), (1 - V.H)^5)`, both 0 below the horizon.
+fn dupuy_terms(t: &TabulatedMicrofacet, l: &Vector3<f64>, v: &Vector3<f64>) -> (f64, f64) {
+    let s = t.shape(l, v);
+    if s == 0.0 {
+        return (0.0, 0.0);
+    }
+    let h = (l + v).normalize();
+    (s, (1.0 - v.dot(&h)).clamp(0.0, 1.0).powi(5))
+}
+
+impl Parametric for Dupuy {
+    brdf_core::param_accessors!();
+    fn name(&self) -> &str {
+        NAME
+    }
+    fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        let nc = self.table.channels();
+        if !(l.z > 0.0 && v.z > 0.0) {
+            out[..nc].fill(0.0);
+            return;
+        }
+        let (s, x) = dupuy_terms(&self.table, l, v);
+        for c in 0..nc {
+            out[c] = p[c] / PI + (p[nc + c] + p[2 * nc + c] * x) * s;
+        }
+    }
+    fn eval_grad_at(
+        &self,
+        p: &[f64],
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [f64],
+        grad: &mut [f64],
+    ) {
+        let nc = self.table.channels();
+        let np = 3 * nc;
+        grad[..nc * np].fill(0.0);
+        if !(l.z > 0.0 && v.z > 0.0) {
+            out[..nc].fill(0.0);
+            return;
+        }
+        let (s, x) = dupuy_terms(&self.table, l, v);
+        for c in 0..nc {
+            out[c] = p[c] / PI + (p[nc + c] + p[2 * nc + c] * x) * s;
+            let row = &mut grad[c * np..(c + 1) * np];
+            row[c] = 1.0 / PI;
+            row[nc + c] = s;
+            row[2 * nc + c] = s * x;
         }
     }
 }

@@ -34,6 +34,7 @@ pub mod ashikhmin_shirley;
 #[cfg(feature = "phong")]
 pub mod blinn_phong;
 pub mod catalogue;
+pub mod channel_slice;
 #[cfg(feature = "sopp")]
 pub mod clear_coat;
 pub mod combinators;
@@ -89,14 +90,17 @@ pub use ashikhmin_shirley::{
 };
 #[cfg(feature = "phong")]
 pub use blinn_phong::BlinnPhong;
-pub use catalogue::{ModelConfig, ModelEntry, build, build_for, catalogue, entry};
+pub use catalogue::{
+    ModelConfig, ModelEntry, build, build_for, build_from, catalogue, entry, polish_factor,
+    suggested_starts,
+};
 #[cfg(feature = "sopp")]
 pub use clear_coat::ClearCoat;
 #[cfg(feature = "microfacet")]
 pub use cook_torrance::CookTorrance;
 #[cfg(feature = "microfacet")]
 #[cfg(feature = "microfacet")]
-pub use dupuy::{TabulatedMicrofacet, TabulatedNdf};
+pub use dupuy::{Dupuy, TabulatedMicrofacet, TabulatedNdf};
 #[cfg(feature = "microfacet")]
 pub use fitted_lobes::FittedLobe;
 #[cfg(feature = "renderer")]

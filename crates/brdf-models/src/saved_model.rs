@@ -275,6 +275,11 @@ impl SavedModel {
         };
         let e = crate::entry(model.name()).ok_or_else(|| model_err("not a catalogue model"))?;
         let data_bound = "depends on the fitted data; saving it is not supported";
+        if e.from_samples.is_some() {
+            return Err(model_err(
+                "is read off the fitted data (its tabulated normal distribution); the saved-model schema does not hold the table yet, so saving it is not supported",
+            ));
+        }
         #[cfg(feature = "polynomial")]
         let pca = match (e.build_for_data.is_some(), poly_variant(model.name())) {
             (false, _) => None,

@@ -222,3 +222,47 @@ impl FittedShape for SgdShape {
 
 /// Bagher et al.'s SGD model with a Lambertian term, parameters per channel.
 pub type Sgd = FittedLobe<SgdShape>;
+
+/// The lobe shapes [`suggested_starts`] proposes, `[alpha, p, f0, f1,
+/// lambda, c, k, theta0]`: the defaults (shadowing practically off:
+/// `c x^k <= 1e-4` above the horizon), then widths `0.02, 0.1, 0.4` and
+/// shifts `0.3, 1.2` with a mild shadowing term (`G1` 1 up to 0.5 rad,
+/// 0.86 at 1 rad, 0.38 at 1.4 rad), whose derivatives in
+/// `Lambda, c, k, theta0` are all non-zero above the onset.
+pub const SGD_START_SHAPES: [[f64; 8]; 7] = [
+    [0.1, 0.5, 0.1, 0.0, 3.0, 1e-7, 20.0, 0.0],
+    [0.02, 0.3, 0.5, 0.0, 0.5, 1.0, 2.0, 0.5],
+    [0.1, 0.3, 0.5, 0.0, 0.5, 1.0, 2.0, 0.5],
+    [0.4, 0.3, 0.5, 0.0, 0.5, 1.0, 2.0, 0.5],
+    [0.02, 1.2, 0.5, 0.0, 0.5, 1.0, 2.0, 0.5],
+    [0.1, 1.2, 0.5, 0.0, 0.5, 1.0, 2.0, 0.5],
+    [0.4, 1.2, 0.5, 0.0, 0.5, 1.0, 2.0, 0.5],
+];
+
+/// Starts of an SGD fit (the catalogue's [`SuggestStarts`](crate::catalogue::SuggestStarts)):
+/// every channel with the same shape from [`SGD_START_SHAPES`], `kd` and
+/// `ks` at their defaults (the solver projects them). Most points of the
+/// box switch the lobe off: with `k` and `c` drawn over `[1, 1e3]` and
+/// `theta0 < 0`, `c (theta - theta0)^k` overflows and the clamp sets `G1`
+/// to 0 everywhere, where every derivative of the shape vanishes; the
+/// pipeline's Halton starts on the RGL materials all ended with `ks = 0`.
+/// These starts keep the lobe on; the fit then moves the shadowing.
+/// Models other than an [`Sgd`] layout (a parameter count that is not
+/// `10 * channels`) get none.
+pub fn suggested_starts(model: &dyn brdf_core::Parametric) -> Vec<Vec<f64>> {
+    let nc = model.channels();
+    let specs = model.param_specs();
+    if specs.len() != 10 * nc {
+        return Vec::new();
+    }
+    SGD_START_SHAPES
+        .iter()
+        .map(|shape| {
+            let mut p: Vec<f64> = specs.iter().take(2 * nc).map(|s| s.default).collect();
+            for q in shape {
+                p.extend(std::iter::repeat_n(*q, nc));
+            }
+            p
+        })
+        .collect()
+}

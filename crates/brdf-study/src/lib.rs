@@ -27,6 +27,7 @@ pub mod dense_tables;
 pub mod error;
 pub mod figures;
 pub mod kurt;
+pub mod new_models;
 pub mod nist;
 pub mod parts;
 pub mod readme;

@@ -7,7 +7,7 @@
 
 use brdf_core::{Parametric, SampleSet};
 use brdf_fit::{BoxedModel, FitOptions, FitSummary, Objective, Solver};
-use brdf_models::{ModelConfig, build_for};
+use brdf_models::{ModelConfig, build_from};
 use serde::Deserialize;
 
 use crate::StudyError;
@@ -58,7 +58,8 @@ pub const KURT_LAFORTUNE_BOX: [(&str, f64, f64); 2] = [("cxy", -1.0, 0.0), ("cz"
 
 /// The renderer models and the most accurate models of the literature
 /// (Löw et al. 2012's ABC and smooth-surface models, Ribardière et al.
-/// 2017's STD, Bagher et al. 2012's SGD) set beside Kurt's nine (Table 9.3
+/// 2017's STD, Bagher et al. 2012's SGD, Dupuy et al. 2015's normal
+/// distribution extracted from the data) set beside Kurt's nine (Table 9.3
 /// stand-in, error against time): `(label, catalogue name, config)`, GGX
 /// with `lobes` lobes as Cook-Torrance.
 pub fn renderer_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelConfig)> {
@@ -76,6 +77,7 @@ pub fn renderer_models(lobes: usize) -> Vec<(&'static str, &'static str, ModelCo
         ("ABC smooth (Löw)", "abc-smooth", c),
         ("STD (Ribardière)", "std", c),
         ("SGD (Bagher)", "sgd", c),
+        ("Dupuy (extracted D)", "dupuy", c),
     ]
 }
 
@@ -87,7 +89,7 @@ pub fn build_model(
     set: &SampleSet,
     lbox: LafortuneBox,
 ) -> Result<Box<dyn Parametric>, StudyError> {
-    let model = build_for(name, &config, set.pairs())?;
+    let model = build_from(name, &config, set)?;
     if name == "lafortune" && lbox == LafortuneBox::Kurt {
         return Ok(Box::new(BoxedModel::narrowed(model, &KURT_LAFORTUNE_BOX)?));
     }
