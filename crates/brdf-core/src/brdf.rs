@@ -229,6 +229,14 @@ macro_rules! impl_brdf_via_params {
             ) {
                 $crate::Parametric::eval_at(self, $crate::Parametric::params(self), l, v, out)
             }
+            fn eval_pairs(&self, pairs: &$crate::DirPairs, out: &mut [f64]) {
+                $crate::Parametric::eval_batch_at(
+                    self,
+                    $crate::Parametric::params(self),
+                    pairs,
+                    out,
+                )
+            }
         }
     };
 }

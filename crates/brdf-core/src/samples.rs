@@ -64,6 +64,20 @@ impl DirPairs {
         self.vz.push(v.z);
     }
 
+    /// Remove every pair, keeping the storage.
+    pub fn clear(&mut self) {
+        for a in [
+            &mut self.lx,
+            &mut self.ly,
+            &mut self.lz,
+            &mut self.vx,
+            &mut self.vy,
+            &mut self.vz,
+        ] {
+            a.clear();
+        }
+    }
+
     /// Number of pairs.
     pub fn len(&self) -> usize {
         self.lx.len()

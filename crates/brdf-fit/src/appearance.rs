@@ -29,11 +29,11 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use brdf_core::{Brdf, DirPairs, SampleSet};
-use brdf_render::compare::compare_with;
 use brdf_render::{LightSet, ShadingPoints};
 use serde::Serialize;
 
 use crate::image_objective::{ImageTarget, ImageTerms};
+use crate::render_batch::Reference;
 use crate::{Fit, FitError, FitReport, Objective};
 
 /// Mean-colour CIEDE2000 above which a report warns.
@@ -126,10 +126,14 @@ pub fn standard_lights() -> Vec<LightSet> {
     vec![LightSet::sky(), LightSet::studio()]
 }
 
-/// Renders data and fits under the standard light sets and compares them.
+/// Renders data and fits under the standard light sets and compares them
+/// (renders by batch evaluation, [`crate::render_batch`]).
 pub struct Judge {
     size: usize,
     points: Vec<(LightSet, ShadingPoints)>,
+    /// The data's renders, one per light set, when made once
+    /// ([`Judge::with_data`]).
+    reference: Vec<Reference>,
 }
 
 impl Judge {
@@ -143,14 +147,52 @@ impl Judge {
                 (l, sp)
             })
             .collect();
-        Judge { size, points }
+        Judge {
+            size,
+            points,
+            reference: Vec::new(),
+        }
+    }
+
+    /// The judge with `data` rendered once, for [`Judge::fit_errors`] of
+    /// many fits of the same data.
+    pub fn with_data(size: usize, data: &dyn Brdf) -> Result<Self, FitError> {
+        let mut judge = Judge::new(size);
+        judge.reference = judge
+            .points
+            .iter()
+            .map(|(_, sp)| Reference::new(sp, data).map_err(|e| FitError::Usage(e.to_string())))
+            .collect::<Result<_, _>>()?;
+        Ok(judge)
     }
 
     /// The image errors of `fit` against `data`.
     pub fn errors(&self, data: &dyn Brdf, fit: &dyn Brdf) -> Result<ImageError, FitError> {
+        let refs = self
+            .points
+            .iter()
+            .map(|(_, sp)| Reference::new(sp, data).map_err(|e| FitError::Usage(e.to_string())))
+            .collect::<Result<Vec<_>, _>>()?;
+        self.errors_against(&refs, fit)
+    }
+
+    /// The image errors of `fit` against the data of [`Judge::with_data`].
+    pub fn fit_errors(&self, fit: &dyn Brdf) -> Result<ImageError, FitError> {
+        if self.reference.len() != self.points.len() {
+            return Err(FitError::Usage(
+                "Judge::fit_errors needs the data's renders: build the judge with Judge::with_data"
+                    .into(),
+            ));
+        }
+        self.errors_against(&self.reference, fit)
+    }
+
+    fn errors_against(&self, refs: &[Reference], fit: &dyn Brdf) -> Result<ImageError, FitError> {
         let mut lights = Vec::with_capacity(self.points.len());
-        for (light, sp) in &self.points {
-            let e = compare_with(sp, data, fit).map_err(|e| FitError::Usage(e.to_string()))?;
+        for ((light, sp), r) in self.points.iter().zip(refs) {
+            let e = r
+                .errors(sp, fit)
+                .map_err(|e| FitError::Usage(e.to_string()))?;
             lights.push(LightError {
                 light: light.name().to_string(),
                 flip: e.flip,
@@ -236,12 +278,11 @@ fn candidate(
     objective: Objective,
     lobes: Vec<String>,
     samples: &SampleSet,
-    data: &dyn Brdf,
     judge: &Judge,
 ) -> Result<(FitReport, Candidate), FitError> {
     let t0 = Instant::now();
     let report = f.clone().objective(objective).run(samples)?;
-    let image = judge.errors(data, report.model.as_ref())?;
+    let image = judge.fit_errors(report.model.as_ref())?;
     let c = Candidate {
         objective: objective.name().to_string(),
         lobes,
@@ -285,12 +326,12 @@ pub fn fit_for_appearance_with(
     data: &dyn Brdf,
     refine_l2_growth: f64,
 ) -> Result<(FitReport, Vec<Candidate>), FitError> {
-    let judge = Judge::new(FIT_SIZE);
+    let judge = Judge::with_data(FIT_SIZE, data)?;
     let base = with_lobes(fit, &[]);
     let mut candidates: Vec<Candidate> = Vec::new();
     let mut best: Option<(FitReport, usize)> = None;
     for objective in CANDIDATE_OBJECTIVES {
-        let (r, c) = candidate(&base, objective, Vec::new(), samples, data, &judge)?;
+        let (r, c) = candidate(&base, objective, Vec::new(), samples, &judge)?;
         candidates.push(c);
         let k = candidates.len() - 1;
         if best
@@ -304,7 +345,7 @@ pub fn fit_for_appearance_with(
     let objective = Objective::parse(&candidates[k].objective)?;
     for on in optional_lobes(fit.model_name()) {
         let on = vec![on.to_string()];
-        let (r, c) = candidate(&with_lobes(fit, &on), objective, on, samples, data, &judge)?;
+        let (r, c) = candidate(&with_lobes(fit, &on), objective, on, samples, &judge)?;
         candidates.push(c);
         let j = candidates.len() - 1;
         if flip(&candidates, j) < flip(&candidates, k) * (1.0 - LOBE_MARGIN) {
@@ -322,7 +363,7 @@ pub fn fit_for_appearance_with(
         report.model.params().to_vec(),
     );
     let refine = with_lobes(fit, &lobes).image_target(Arc::new(target));
-    let (refined, mut c) = candidate(&refine, Objective::Image, lobes, samples, data, &judge)?;
+    let (refined, mut c) = candidate(&refine, Objective::Image, lobes, samples, &judge)?;
     // The refinement sees the BRDF only through the sphere's pixels; it is
     // kept only if it also stays a fit of the data (Ngan's L2 at most
     // REFINE_L2_GROWTH times the winner's), so it cannot trade the

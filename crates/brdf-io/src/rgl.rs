@@ -268,6 +268,34 @@ fn locate(values: &[f64], x: f64) -> (usize, f64) {
     (i, ((x - a) / (b - a)).clamp(0.0, 1.0))
 }
 
+/// Most conditioning parameters of an [`Interp2D`] (RGL files use up to
+/// three: `phi_i`, `theta_i` and the channel or wavelength).
+const MAX_PARAMS: usize = 3;
+
+/// The corners of a parameter cell: slice offsets from `base` and their
+/// weights (`len` of them, at most `2^MAX_PARAMS`).
+#[derive(Clone, Copy)]
+struct Corners {
+    base: usize,
+    len: usize,
+    offset: [usize; 1 << MAX_PARAMS],
+    weight: [f64; 1 << MAX_PARAMS],
+}
+
+impl Corners {
+    /// No parameter: one corner of weight 1.
+    fn one() -> Self {
+        let mut c = Corners {
+            base: 0,
+            len: 1,
+            offset: [0; 1 << MAX_PARAMS],
+            weight: [0.0; 1 << MAX_PARAMS],
+        };
+        c.weight[0] = 1.0;
+        c
+    }
+}
+
 impl Interp2D {
     fn new(
         nx: usize,
@@ -276,7 +304,7 @@ impl Interp2D {
         params: Vec<Vec<f64>>,
         density: bool,
     ) -> Option<Self> {
-        if nx < 2 || ny < 2 {
+        if nx < 2 || ny < 2 || params.len() > MAX_PARAMS {
             return None;
         }
         let mut strides = vec![0; params.len()];
@@ -328,30 +356,49 @@ impl Interp2D {
         Some(s)
     }
 
-    /// Corner offsets and weights of the parameter cell of `p`.
-    fn weights(&self, p: &[f64]) -> (usize, Vec<(usize, f64)>) {
-        let mut base = 0;
-        let mut corners = vec![(0usize, 1.0f64)];
-        for (d, vals) in self.params.iter().enumerate() {
-            let (i, w) = locate(vals, p[d]);
-            base += self.strides[d] * i;
-            if self.strides[d] == 0 {
-                continue;
-            }
-            let mut next = Vec::with_capacity(corners.len() * 2);
-            for (o, cw) in corners {
-                next.push((o, cw * (1.0 - w)));
-                next.push((o + self.strides[d], cw * w));
-            }
-            corners = next;
+    /// Corner offsets and weights of the parameter cell of `p` (on the
+    /// stack: an evaluation of an RGL file computes five of them).
+    fn weights(&self, p: &[f64]) -> Corners {
+        let mut c = Corners::one();
+        for d in 0..self.params.len() {
+            self.extend(&mut c, d, p[d]);
         }
-        (base, corners)
+        c
     }
 
-    fn look(table: &[f64], i: usize, size: usize, base: usize, corners: &[(usize, f64)]) -> f64 {
-        corners
+    /// `c` extended by parameter dimension `d` at `x` (the corners of the
+    /// earlier dimensions each split into two, in order).
+    #[inline]
+    fn extend(&self, c: &mut Corners, d: usize, x: f64) {
+        let (i, w) = locate(&self.params[d], x);
+        c.base += self.strides[d] * i;
+        if self.strides[d] == 0 {
+            return;
+        }
+        let n = c.len;
+        // A weight of exactly 0 or 1 (a tabulated node, such as each
+        // channel of the RGB table) keeps one corner of each pair: the
+        // other would add `0 * value`, which leaves every sum unchanged.
+        if w == 0.0 || w == 1.0 {
+            let shift = if w == 0.0 { 0 } else { self.strides[d] };
+            c.offset[..n].iter_mut().for_each(|o| *o += shift);
+            return;
+        }
+        for k in (0..n).rev() {
+            let (o, cw) = (c.offset[k], c.weight[k]);
+            c.offset[2 * k] = o;
+            c.weight[2 * k] = cw * (1.0 - w);
+            c.offset[2 * k + 1] = o + self.strides[d];
+            c.weight[2 * k + 1] = cw * w;
+        }
+        c.len = 2 * n;
+    }
+
+    fn look(table: &[f64], i: usize, size: usize, c: &Corners) -> f64 {
+        c.offset[..c.len]
             .iter()
-            .map(|(o, w)| w * table[(base + o) * size + i])
+            .zip(&c.weight[..c.len])
+            .map(|(o, w)| w * table[(c.base + o) * size + i])
             .sum()
     }
 
@@ -365,11 +412,15 @@ impl Interp2D {
 
     /// Bilinear value at `u` (density scale for normalised tables).
     fn eval(&self, u: [f64; 2], p: &[f64]) -> f64 {
-        let (base, corners) = self.weights(p);
+        self.eval_at(u, &self.weights(p))
+    }
+
+    /// [`Interp2D::eval`] in the parameter cell `corners`.
+    fn eval_at(&self, u: [f64; 2], corners: &Corners) -> f64 {
         let (ix, iy, fx, fy) = self.cell(u);
         let n = self.nx * self.ny;
         let i = iy * self.nx + ix;
-        let v = |k: usize| Self::look(&self.data, k, n, base, &corners);
+        let v = |k: usize| Self::look(&self.data, k, n, corners);
         let (v00, v10, v01, v11) = (v(i), v(i + 1), v(i + self.nx), v(i + self.nx + 1));
         let val = (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
         if self.marginal.is_empty() {
@@ -382,12 +433,12 @@ impl Interp2D {
     /// Map a point of the warped domain back to the sample space (the
     /// inverse of [`Interp2D::sample`]).
     fn invert(&self, u: [f64; 2], p: &[f64]) -> [f64; 2] {
-        let (base, corners) = self.weights(p);
+        let corners = self.weights(p);
         let (ix, iy, fx, fy) = self.cell(u);
         let n = self.nx * self.ny;
         let i = iy * self.nx + ix;
-        let d = |k: usize| Self::look(&self.data, k, n, base, &corners);
-        let cc = |k: usize| Self::look(&self.conditional, k, n, base, &corners);
+        let d = |k: usize| Self::look(&self.data, k, n, &corners);
+        let cc = |k: usize| Self::look(&self.conditional, k, n, &corners);
         let c0 = (1.0 - fy) * d(i) + fy * d(i + self.nx);
         let c1 = (1.0 - fy) * d(i + 1) + fy * d(i + self.nx + 1);
         let mut x = fx * (c0 + 0.5 * fx * (c1 - c0));
@@ -395,21 +446,21 @@ impl Interp2D {
         let r0 = cc(iy * self.nx + self.nx - 1);
         let r1 = cc((iy + 1) * self.nx + self.nx - 1);
         x /= (1.0 - fy) * r0 + fy * r1;
-        let y = fy * (r0 + 0.5 * fy * (r1 - r0))
-            + Self::look(&self.marginal, iy, self.ny, base, &corners);
+        let y =
+            fy * (r0 + 0.5 * fy * (r1 - r0)) + Self::look(&self.marginal, iy, self.ny, &corners);
         [x.clamp(0.0, 1.0), y.clamp(0.0, 1.0)]
     }
 
     /// Map a sample-space point into the warped domain (marginal row, then
     /// conditional column, each by inverting a piecewise-quadratic CDF).
     fn sample(&self, s: [f64; 2], p: &[f64]) -> [f64; 2] {
-        let (base, corners) = self.weights(p);
+        let corners = self.weights(p);
         let n = self.nx * self.ny;
         let eps = 1e-12;
         let (mut sx, mut sy) = (s[0].clamp(eps, 1.0 - eps), s[1].clamp(eps, 1.0 - eps));
-        let mc = |k: usize| Self::look(&self.marginal, k, self.ny, base, &corners);
-        let cc = |k: usize| Self::look(&self.conditional, k, n, base, &corners);
-        let d = |k: usize| Self::look(&self.data, k, n, base, &corners);
+        let mc = |k: usize| Self::look(&self.marginal, k, self.ny, &corners);
+        let cc = |k: usize| Self::look(&self.conditional, k, n, &corners);
+        let d = |k: usize| Self::look(&self.data, k, n, &corners);
         let row = (0..self.ny - 1).rev().find(|r| mc(*r) <= sy).unwrap_or(0);
         sy -= mc(row);
         let (r0, r1) = (
@@ -706,10 +757,17 @@ impl Brdf for Rgl {
         if !(k.is_finite()) {
             return;
         }
+        // The (phi_i, theta_i) cell once, then each channel's corners
+        // (the same weights, in the same order, as a whole-cell lookup).
+        let mut angles = Corners::one();
+        self.rgb.extend(&mut angles, 0, phi_i);
+        self.rgb.extend(&mut angles, 1, theta_i);
         for c in 0..3 {
+            let mut corners = angles;
+            self.rgb.extend(&mut corners, 2, c as f64);
             // Negative values come from out-of-gamut spectra: clamped, as
             // the format's authors do.
-            out[c] = self.rgb.eval(s, &[phi_i, theta_i, c as f64]).max(0.0) * k;
+            out[c] = self.rgb.eval_at(s, &corners).max(0.0) * k;
         }
     }
 }

@@ -29,7 +29,7 @@
 //! ```
 
 use brdf_core::fresnel::fresnel_dielectric;
-use brdf_core::{Brdf, ParamError, ParamSpec, Parametric, SampleSet};
+use brdf_core::{Brdf, DirPairs, ParamError, ParamSpec, Parametric, SampleSet};
 use nalgebra::Vector3;
 
 /// A base model under a clear coat of index `eta`.
@@ -96,6 +96,9 @@ impl Brdf for ClearCoat {
     }
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.eval_at(self.base.params(), l, v, out)
+    }
+    fn eval_pairs(&self, pairs: &DirPairs, out: &mut [f64]) {
+        self.eval_batch_at(self.base.params(), pairs, out)
     }
 }
 

@@ -161,6 +161,9 @@ impl<S: Lobe> Brdf for DiffuseLobe<S> {
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.eval_at(&self.params, l, v, out)
     }
+    fn eval_pairs(&self, pairs: &DirPairs, out: &mut [f64]) {
+        self.eval_batch_at(&self.params, pairs, out)
+    }
 }
 
 impl<S: Lobe> Parametric for DiffuseLobe<S> {
@@ -336,8 +339,11 @@ impl<S: Lobe> MultiLobe<S> {
         self.lobes
     }
 
+    /// Parameters per lobe (strengths per channel, then the shape's),
+    /// from the stored specs: `S::specs()` builds named specs, too slow
+    /// for a per-evaluation call.
     fn block(&self) -> usize {
-        self.channels + S::specs().len()
+        (self.specs.len() - self.channels) / self.lobes
     }
 }
 
@@ -347,6 +353,9 @@ impl<S: Lobe> Brdf for MultiLobe<S> {
     }
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.eval_at(&self.params, l, v, out)
+    }
+    fn eval_pairs(&self, pairs: &DirPairs, out: &mut [f64]) {
+        self.eval_batch_at(&self.params, pairs, out)
     }
 }
 

@@ -136,6 +136,9 @@ impl<F: DualFormula> Brdf for DualModel<F> {
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.eval_at(&self.params, l, v, out)
     }
+    fn eval_pairs(&self, pairs: &DirPairs, out: &mut [f64]) {
+        self.eval_batch_at(&self.params, pairs, out)
+    }
 }
 
 impl<F: DualFormula> Parametric for DualModel<F> {

@@ -134,6 +134,9 @@ impl<S: FittedShape> Brdf for FittedLobe<S> {
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.eval_at(&self.params, l, v, out)
     }
+    fn eval_pairs(&self, pairs: &DirPairs, out: &mut [f64]) {
+        self.eval_batch_at(&self.params, pairs, out)
+    }
 }
 
 impl<S: FittedShape> Parametric for FittedLobe<S> {
