@@ -340,7 +340,7 @@ pub fn export_with(
     match target {
         Target::Mitsuba => mitsuba::write(&fit, note, opts),
         Target::Pbrt => pbrt::write(&fit, note),
-        Target::Gltf => gltf::write(&fit, note),
+        Target::Gltf => gltf::write(&fit, note, opts),
         Target::MaterialX => materialx::write(&fit, note, opts),
         Target::Usd => usd::write(&fit, note, opts),
         Target::Blender => blender::write(&fit, note, opts),
