@@ -12,9 +12,10 @@
 //! [`markdown`] also prints what was measured on the reference material,
 //! the fits of RGL's `paper_white_rgb` committed with their exports in
 //! `tests/reference/paper_white/` (written by its `make.sh`, checked by its
-//! `check_exports.sh`): each conversion's image error as the conversion
-//! reported it ([`REFERENCE_CONVERSIONS`]), and each export rendered in its
-//! renderer against `brdf-render` ([`REFERENCE_RENDERS`]).
+//! `check_exports.sh`) and `tests/reference/table/` (the other models'
+//! fits): each conversion's image error as the conversion reported it
+//! ([`REFERENCE_CONVERSIONS`]), and each export rendered in its renderer
+//! against `brdf-render` ([`REFERENCE_RENDERS`]).
 
 use brdf_models::ModelConfig;
 
@@ -113,8 +114,62 @@ pub fn markdown() -> String {
 }
 
 /// The conversion reports of the reference material: (fitted model, the
-/// export's kind, `brdf export --json` report).
-pub const REFERENCE_CONVERSIONS: [(&str, &str, &str); 13] = [
+/// export's kind, `brdf export --json` report). The ggx and principled
+/// fits are those of the committed exports (`tests/reference/paper_white/`),
+/// the other rows' fits and conversions are in `tests/reference/table/`
+/// (its `make.sh`); a conversion to `gltf` is the one MaterialX, USD and
+/// Blender write too.
+pub const REFERENCE_CONVERSIONS: [(&str, &str, &str); 23] = [
+    (
+        "principled",
+        "pbrt",
+        include_str!("../tests/reference/paper_white/principled.pbrt.report.json"),
+    ),
+    (
+        "principled",
+        "gltf",
+        include_str!("../tests/reference/paper_white/principled.gltf.report.json"),
+    ),
+    (
+        "principled",
+        "materialx",
+        include_str!("../tests/reference/paper_white/principled.materialx.report.json"),
+    ),
+    (
+        "principled",
+        "openpbr",
+        include_str!("../tests/reference/paper_white/principled.openpbr.report.json"),
+    ),
+    (
+        "principled",
+        "usd",
+        include_str!("../tests/reference/paper_white/principled.usd.report.json"),
+    ),
+    (
+        "principled",
+        "blender",
+        include_str!("../tests/reference/paper_white/principled.blender.report.json"),
+    ),
+    (
+        "gltf",
+        "mitsuba",
+        include_str!("../tests/reference/table/gltf.mitsuba.report.json"),
+    ),
+    (
+        "gltf",
+        "pbrt",
+        include_str!("../tests/reference/table/gltf.pbrt.report.json"),
+    ),
+    (
+        "gltf-ext",
+        "mitsuba",
+        include_str!("../tests/reference/table/gltf-ext.mitsuba.report.json"),
+    ),
+    (
+        "gltf-ext",
+        "pbrt",
+        include_str!("../tests/reference/table/gltf-ext.pbrt.report.json"),
+    ),
     (
         "ggx",
         "mitsuba",
@@ -151,34 +206,34 @@ pub const REFERENCE_CONVERSIONS: [(&str, &str, &str); 13] = [
         include_str!("../tests/reference/paper_white/ggx.blender.report.json"),
     ),
     (
-        "principled",
+        "ggx-separable",
         "pbrt",
-        include_str!("../tests/reference/paper_white/principled.pbrt.report.json"),
+        include_str!("../tests/reference/table/ggx-separable.pbrt.report.json"),
     ),
     (
-        "principled",
+        "ggx-separable",
         "gltf",
-        include_str!("../tests/reference/paper_white/principled.gltf.report.json"),
+        include_str!("../tests/reference/table/ggx-separable.gltf.report.json"),
     ),
     (
-        "principled",
-        "materialx",
-        include_str!("../tests/reference/paper_white/principled.materialx.report.json"),
+        "ggx-dielectric",
+        "mitsuba",
+        include_str!("../tests/reference/table/ggx-dielectric.mitsuba.report.json"),
     ),
     (
-        "principled",
-        "openpbr",
-        include_str!("../tests/reference/paper_white/principled.openpbr.report.json"),
+        "ggx-dielectric",
+        "gltf",
+        include_str!("../tests/reference/table/ggx-dielectric.gltf.report.json"),
     ),
     (
-        "principled",
-        "usd",
-        include_str!("../tests/reference/paper_white/principled.usd.report.json"),
+        "ggx-conductor",
+        "mitsuba",
+        include_str!("../tests/reference/table/ggx-conductor.mitsuba.report.json"),
     ),
     (
-        "principled",
-        "blender",
-        include_str!("../tests/reference/paper_white/principled.blender.report.json"),
+        "ggx-conductor",
+        "gltf",
+        include_str!("../tests/reference/table/ggx-conductor.gltf.report.json"),
     ),
 ];
 
@@ -203,7 +258,7 @@ fn num(v: &serde_json::Value) -> f64 {
 /// The image error of each conversion of the reference material's fits.
 pub fn conversions_markdown() -> String {
     let mut s = String::from(
-        "Conversions of the reference material's fits (RGL `paper_white_rgb`, `brdf fit --metric ngan`), image error at 128 px:\n\n",
+        "Conversions of the reference material's fits (RGL `paper_white_rgb`, `brdf fit --metric ngan` in each model), image error at 128 px (MaterialX, USD and Blender write the `gltf` conversion):\n\n",
     );
     s += "| fit | target | converted to | HDR-FLIP sky | HDR-FLIP studio | CIEDE2000 (max) | relative L2 |\n";
     s += "| --- | --- | --- | --- | --- | --- | --- |\n";

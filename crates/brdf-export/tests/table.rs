@@ -10,13 +10,33 @@ fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference/paper_white")
 }
 
+fn table_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference/table")
+}
+
+/// The conversion reports committed in `d`.
+fn reports(d: &std::path::Path) -> Vec<PathBuf> {
+    std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            let n = p.file_name().unwrap().to_string_lossy();
+            n.ends_with(".report.json") && !n.ends_with(".scene.report.json")
+        })
+        .collect()
+}
+
 #[test]
 fn every_reference_conversion_is_listed_with_its_image_error() {
-    // The reports of make.sh (the scene's conversion is the snippet's).
-    let mut files: Vec<String> = std::fs::read_dir(dir())
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".report.json") && !n.ends_with(".scene.report.json"))
+    // The reports of the make.sh scripts (the scene's conversion is the
+    // snippet's).
+    let paths: Vec<PathBuf> = reports(&dir())
+        .into_iter()
+        .chain(reports(&table_dir()))
+        .collect();
+    let mut files: Vec<String> = paths
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
         .collect();
     files.sort();
     let mut listed: Vec<String> = REFERENCE_CONVERSIONS
@@ -27,8 +47,12 @@ fn every_reference_conversion_is_listed_with_its_image_error() {
     assert_eq!(listed, files);
     let table = markdown();
     for (m, k, text) in REFERENCE_CONVERSIONS {
-        let file = dir().join(format!("{m}.{k}.report.json"));
-        assert_eq!(text, std::fs::read_to_string(&file).unwrap());
+        let name = format!("{m}.{k}.report.json");
+        let file = paths
+            .iter()
+            .find(|p| p.file_name().unwrap().to_string_lossy() == name)
+            .unwrap();
+        assert_eq!(text, std::fs::read_to_string(file).unwrap());
         let r: serde_json::Value = serde_json::from_str(text).unwrap();
         let c = &r["conversion"];
         let flip = |light: &str| {
