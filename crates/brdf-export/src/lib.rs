@@ -44,7 +44,10 @@
 //!
 //! `brdf-export` sits on `brdf-models` (the models it writes) and
 //! `brdf-fit` (conversion by fitting); `brdf-study` and the `brdf` command
-//! (`brdf-cli`) call it. It never renders.
+//! (`brdf-cli`) call it. It never renders; its tests check the exports by
+//! rendering them in the renderers (`tests/reference/check_exports.sh`:
+//! Mitsuba 3, Blender Cycles through `bpy`) beside `brdf-render`'s render
+//! of the same model (`tests/render_check.rs`).
 //!
 //! ## Crate features
 //!
