@@ -12,13 +12,17 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 : "${BRDF_DATA:?set BRDF_DATA}"
-brdf="${BRDF:-brdf}"
+brdf="$(command -v "${BRDF:-brdf}" || true)"
+brdf="${brdf:-${BRDF:-brdf}}"
+case $brdf in /*) ;; *) brdf="$PWD/$brdf" ;; esac
 cd "$here"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
+# The material files are not kept (the reports are); written in a scratch
+# folder under their plain names.
 convert() {
     local m=$1 t=$2 ext=$3
-    "$brdf" export --from "$m.json" --to "$t" "$tmp/$m.$ext" --json >"$m.$t.report.json"
+    (cd "$tmp" && "$brdf" export --from "$here/$m.json" --to "$t" "$m.$ext" --json) >"$m.$t.report.json"
 }
 for m in gltf gltf-ext ggx-separable ggx-dielectric ggx-conductor; do
     "$brdf" fit --data "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --model "$m" --metric ngan --starts 4 --save "$m.json" >/dev/null
