@@ -14,7 +14,7 @@
 use serde_json::{Value, json};
 
 use crate::fitted::Fitted;
-use crate::{ExportError, Target};
+use crate::{ExportError, Target, WriteOptions};
 
 /// The material object and the extensions it uses.
 pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError> {
@@ -78,9 +78,11 @@ pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError>
     Ok((m, used))
 }
 
-/// A glTF 2.0 asset holding the material, with `note` in `asset.extras`.
-pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
-    let (m, used) = material(fit)?;
+/// A glTF 2.0 asset holding the material (named `opts.name`), with `note`
+/// in `asset.extras`.
+pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+    let (mut m, used) = material(fit)?;
+    m["name"] = json!(opts.name);
     let mut asset = json!({
         "asset": { "version": "2.0", "generator": "brdf-export" },
         "materials": [m],

@@ -44,7 +44,10 @@
 //!
 //! `brdf-export` sits on `brdf-models` (the models it writes) and
 //! `brdf-fit` (conversion by fitting); `brdf-study` and the `brdf` command
-//! (`brdf-cli`) call it. It never renders.
+//! (`brdf-cli`) call it. It never renders; its tests check the exports by
+//! rendering them in the renderers (`tests/reference/check_exports.sh`:
+//! Mitsuba 3, Blender Cycles through `bpy`) beside `brdf-render`'s render
+//! of the same model (`tests/render_check.rs`).
 //!
 //! ## Crate features
 //!
@@ -340,7 +343,7 @@ pub fn export_with(
     match target {
         Target::Mitsuba => mitsuba::write(&fit, note, opts),
         Target::Pbrt => pbrt::write(&fit, note),
-        Target::Gltf => gltf::write(&fit, note),
+        Target::Gltf => gltf::write(&fit, note, opts),
         Target::MaterialX => materialx::write(&fit, note, opts),
         Target::Usd => usd::write(&fit, note, opts),
         Target::Blender => blender::write(&fit, note, opts),

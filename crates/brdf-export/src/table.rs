@@ -8,6 +8,14 @@
 //!   `standard_surface` and `open_pbr_surface`): close, not identical.
 //! - *converted*: the target has no such material; a model it has is
 //!   fitted for appearance ([`crate::convert`](mod@crate::convert)).
+//!
+//! [`markdown`] also prints what was measured on the reference material,
+//! the fits of RGL's `paper_white_rgb` committed with their exports in
+//! `tests/reference/paper_white/` (written by its `make.sh`, checked by its
+//! `check_exports.sh`) and `tests/reference/table/` (the other models'
+//! fits): each conversion's image error as the conversion reported it
+//! ([`REFERENCE_CONVERSIONS`]), and each export rendered in its renderer
+//! against `brdf-render` ([`REFERENCE_RENDERS`]).
 
 use brdf_models::ModelConfig;
 
@@ -98,5 +106,209 @@ pub fn markdown() -> String {
     }
     s += "\nMaterialX `--surface standard_surface` or `openpbr`: the glTF rows are mapped, not exact.\n";
     s += "Conversions are fitted for appearance and refused above mean HDR-FLIP 0.05 or CIEDE2000 3 (`--force`).\n";
+    s += "\n";
+    s += &conversions_markdown();
+    s += "\n";
+    s += &renders_markdown();
+    s
+}
+
+/// The conversion reports of the reference material: (fitted model, the
+/// export's kind, `brdf export --json` report). The ggx and principled
+/// fits are those of the committed exports (`tests/reference/paper_white/`),
+/// the other rows' fits and conversions are in `tests/reference/table/`
+/// (its `make.sh`); a conversion to `gltf` is the one MaterialX, USD and
+/// Blender write too.
+pub const REFERENCE_CONVERSIONS: [(&str, &str, &str); 23] = [
+    (
+        "principled",
+        "pbrt",
+        include_str!("../tests/reference/paper_white/principled.pbrt.report.json"),
+    ),
+    (
+        "principled",
+        "gltf",
+        include_str!("../tests/reference/paper_white/principled.gltf.report.json"),
+    ),
+    (
+        "principled",
+        "materialx",
+        include_str!("../tests/reference/paper_white/principled.materialx.report.json"),
+    ),
+    (
+        "principled",
+        "openpbr",
+        include_str!("../tests/reference/paper_white/principled.openpbr.report.json"),
+    ),
+    (
+        "principled",
+        "usd",
+        include_str!("../tests/reference/paper_white/principled.usd.report.json"),
+    ),
+    (
+        "principled",
+        "blender",
+        include_str!("../tests/reference/paper_white/principled.blender.report.json"),
+    ),
+    (
+        "gltf",
+        "mitsuba",
+        include_str!("../tests/reference/table/gltf.mitsuba.report.json"),
+    ),
+    (
+        "gltf",
+        "pbrt",
+        include_str!("../tests/reference/table/gltf.pbrt.report.json"),
+    ),
+    (
+        "gltf-ext",
+        "mitsuba",
+        include_str!("../tests/reference/table/gltf-ext.mitsuba.report.json"),
+    ),
+    (
+        "gltf-ext",
+        "pbrt",
+        include_str!("../tests/reference/table/gltf-ext.pbrt.report.json"),
+    ),
+    (
+        "ggx",
+        "mitsuba",
+        include_str!("../tests/reference/paper_white/ggx.mitsuba.report.json"),
+    ),
+    (
+        "ggx",
+        "pbrt",
+        include_str!("../tests/reference/paper_white/ggx.pbrt.report.json"),
+    ),
+    (
+        "ggx",
+        "gltf",
+        include_str!("../tests/reference/paper_white/ggx.gltf.report.json"),
+    ),
+    (
+        "ggx",
+        "materialx",
+        include_str!("../tests/reference/paper_white/ggx.materialx.report.json"),
+    ),
+    (
+        "ggx",
+        "openpbr",
+        include_str!("../tests/reference/paper_white/ggx.openpbr.report.json"),
+    ),
+    (
+        "ggx",
+        "usd",
+        include_str!("../tests/reference/paper_white/ggx.usd.report.json"),
+    ),
+    (
+        "ggx",
+        "blender",
+        include_str!("../tests/reference/paper_white/ggx.blender.report.json"),
+    ),
+    (
+        "ggx-separable",
+        "pbrt",
+        include_str!("../tests/reference/table/ggx-separable.pbrt.report.json"),
+    ),
+    (
+        "ggx-separable",
+        "gltf",
+        include_str!("../tests/reference/table/ggx-separable.gltf.report.json"),
+    ),
+    (
+        "ggx-dielectric",
+        "mitsuba",
+        include_str!("../tests/reference/table/ggx-dielectric.mitsuba.report.json"),
+    ),
+    (
+        "ggx-dielectric",
+        "gltf",
+        include_str!("../tests/reference/table/ggx-dielectric.gltf.report.json"),
+    ),
+    (
+        "ggx-conductor",
+        "mitsuba",
+        include_str!("../tests/reference/table/ggx-conductor.mitsuba.report.json"),
+    ),
+    (
+        "ggx-conductor",
+        "gltf",
+        include_str!("../tests/reference/table/ggx-conductor.gltf.report.json"),
+    ),
+];
+
+/// The checks by rendering of the reference material's exports
+/// (`tests/reference/render_check.py`).
+pub const REFERENCE_RENDERS: &str =
+    include_str!("../tests/reference/paper_white/render_check.json");
+
+/// `x` to three significant digits (`2.73`, `0.0755`).
+fn sig3(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return format!("{x}");
+    }
+    let decimals = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+fn num(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or(f64::NAN)
+}
+
+/// The image error of each conversion of the reference material's fits.
+pub fn conversions_markdown() -> String {
+    let mut s = String::from(
+        "Conversions of the reference material's fits (RGL `paper_white_rgb`, `brdf fit --metric ngan` in each model), image error at 128 px (MaterialX, USD and Blender write the `gltf` conversion):\n\n",
+    );
+    s += "| fit | target | converted to | HDR-FLIP sky | HDR-FLIP studio | CIEDE2000 (max) | relative L2 |\n";
+    s += "| --- | --- | --- | --- | --- | --- | --- |\n";
+    for (model, kind, text) in REFERENCE_CONVERSIONS {
+        let Ok(report) = serde_json::from_str::<serde_json::Value>(text) else {
+            continue;
+        };
+        let c = &report["conversion"];
+        let flip = |light: &str| {
+            c["image"]["lights"]
+                .as_array()
+                .and_then(|v| v.iter().find(|l| l["light"] == light))
+                .map_or(f64::NAN, |l| num(&l["flip"]))
+        };
+        s += &format!(
+            "| `{model}` | {kind} | `{}` | {:.4} | {:.4} | {:.2} | {} |\n",
+            c["via"].as_str().unwrap_or("?"),
+            flip("sky"),
+            flip("studio"),
+            num(&c["max_delta_e"]),
+            sig3(num(&c["relative_l2"]))
+        );
+    }
+    s
+}
+
+/// Each reference export rendered in its renderer beside `brdf-render`.
+pub fn renders_markdown() -> String {
+    let Ok(r) = serde_json::from_str::<serde_json::Value>(REFERENCE_RENDERS) else {
+        return String::new();
+    };
+    let mut s = String::from(
+        "Checks by rendering: each export rendered in its renderer (Mitsuba 3; Blender Cycles, the `.usda` and `.gltf` through Blender's importers) against `brdf-render`'s render of the model it holds, studio light, HDR-FLIP (bounds: Mitsuba 0.02, Cycles 0.03), and against the fit itself for conversions:\n\n",
+    );
+    s +=
+        "| file | renderer | holds | HDR-FLIP vs brdf-render | renderer re-seeded | vs the fit |\n";
+    s += "| --- | --- | --- | --- | --- | --- |\n";
+    for c in r["checks"].as_array().into_iter().flatten() {
+        let l = &c["lights"]["studio"];
+        let file = c["file"].as_str().unwrap_or("?");
+        let holds = c["model"].as_str().unwrap_or("?");
+        s += &format!(
+            "| `{}` | {} | `{}` | {:.4} | {:.4} | {:.4} |\n",
+            file.trim_start_matches("paper_white/"),
+            c["renderer"].as_str().unwrap_or("?"),
+            holds.trim_start_matches("paper_white/"),
+            num(&l["flip_held"]),
+            num(&l["flip_reseeded"]),
+            num(&l["flip_source"])
+        );
+    }
     s
 }

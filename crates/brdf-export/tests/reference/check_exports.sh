@@ -10,8 +10,8 @@
 #   blender_check.py        Blender's bpy runs paper_white/*.py, saves and rereads a .blend
 #   render_check.py         checks by rendering (paper_white/render_check.json): each
 #                           Mitsuba snippet and scene rendered in Mitsuba, each Blender
-#                           script and USD file rendered in Cycles (cycles_render.py;
-#                           the .usda through Blender's USD importer) under the judge's
+#                           script, USD and glTF file rendered in Cycles (cycles_render.py;
+#                           the .usda and .gltf through Blender's importers) under the judge's
 #                           studio light, against brdf-render's render of the model the
 #                           file holds (examples/judge_exr.rs), by HDR-FLIP
 # Needs PYTHON (with mitsuba, numpy, materialx, usd-core, flip-evaluator) and
@@ -60,8 +60,8 @@ for m in paper_white/*.json; do
 done
 render_files=(paper_white/*.xml)
 if [ -n "${BLENDER_PYTHON:-}" ]; then
-    "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 paper_white/*.py paper_white/*.usda >&2
-    render_files+=(paper_white/*.py paper_white/*.usda)
+    "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 paper_white/*.py paper_white/*.usda paper_white/*.gltf >&2
+    render_files+=(paper_white/*.py paper_white/*.usda paper_white/*.gltf)
 else
     echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy; the committed Cycles answers are kept"
     # Keep the committed Cycles answers (the tests check they are for the files as they are).

@@ -2,7 +2,10 @@
 scene of shared/spec/appearance.md, studio light set, and write linear
 radiance EXRs for render_check.py to compare with brdf-render.
 
-  python cycles_render.py OUT_DIR [--spp N] FILE...      (with bpy installed)
+  python cycles_render.py OUT_DIR [--spp N] [--antialias] FILE...   (with bpy)
+
+--antialias: Cycles' Gaussian pixel filter (width 1.5 px) instead of rays
+through the pixel centres, for pictures (results/renderers/), not checks.
 
 FILE is loaded the way a Blender user loads it:
   *.py    the `brdf export --to blender` script, run (its build() makes the
@@ -11,8 +14,9 @@ FILE is loaded the way a Blender user loads it:
           `import_all_materials`, the file binds nothing); usd-core has no
           renderer, Cycles is the USD route here
   *.gltf  Blender's glTF importer (io_scene_gltf2, glTF material ->
-          Principled BSDF); the file has no mesh, so the material is taken
-          from the importer's placeholder
+          Principled BSDF); the asset has a material and no mesh, which the
+          importer skips, so a copy with one triangle using material 0 is
+          imported (the material itself untouched)
 and put on the sphere. OUT_DIR/NAME.studio.seed2.exr and .seed3.exr (two
 seeds, for the noise floor) are written per file
 (NAME = the file name with `.` for `/`), plus OUT_DIR/cycles.json: Blender's
@@ -39,11 +43,13 @@ The scene (shared/spec/appearance.md):
     scene-linear radiance.
 """
 
+import base64
 import json
 import math
 import os
 import runpy
 import sys
+import tempfile
 
 import bpy
 import numpy as np
@@ -63,7 +69,7 @@ def look_at(origin, target, up):
     return left, new_up, d
 
 
-def reset(spp, seed):
+def reset(spp, seed, antialias=False):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
@@ -82,8 +88,12 @@ def reset(spp, seed):
     c.sample_clamp_direct = 0.0
     c.sample_clamp_indirect = 0.0
     c.use_light_tree = False
-    c.filter_width = 0.01
-    c.pixel_filter_type = "BOX"
+    if antialias:
+        c.pixel_filter_type = "GAUSSIAN"
+        c.filter_width = 1.5
+    else:
+        c.pixel_filter_type = "BOX"
+        c.filter_width = 0.01
     scene.render.threads_mode = "FIXED"
     scene.render.threads = 2
     scene.render.resolution_x = SIZE
@@ -205,6 +215,25 @@ def principled_of(mat):
     return {"principled_nodes": 1, "distribution": n.distribution, "inputs": inputs, "linked_inputs": linked}
 
 
+def with_triangle(path):
+    """The glTF asset of `path` with one triangle (a data-URI buffer) using
+    its material 0, so that the importer makes the material."""
+    with open(path) as fh:
+        g = json.load(fh)
+    assert not g.get("meshes"), f"{path}: expected a material-only asset"
+    pos = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype="<f4").tobytes()
+    g["buffers"] = [{"byteLength": len(pos),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(pos).decode()}]
+    g["bufferViews"] = [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)}]
+    g["accessors"] = [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}]
+    g["meshes"] = [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}]
+    g["nodes"] = [{"mesh": 0}]
+    g["scenes"] = [{"nodes": [0]}]
+    g["scene"] = 0
+    return g
+
+
 def load_material(path):
     """The material `path` makes in Blender, loaded as a user loads it."""
     before = set(bpy.data.materials)
@@ -220,12 +249,16 @@ def load_material(path):
     if path.endswith(".usda") or path.endswith(".usd"):
         bpy.ops.wm.usd_import(filepath=os.path.abspath(path), import_all_materials=True)
         route = "wm.usd_import(import_all_materials=True)"
-    elif path.endswith(".gltf") or path.endswith(".glb"):
-        bpy.ops.import_scene.gltf(filepath=os.path.abspath(path))
-        route = "import_scene.gltf"
+    elif path.endswith(".gltf"):
+        with tempfile.TemporaryDirectory() as d:
+            copy = os.path.join(d, os.path.basename(path))
+            with open(copy, "w") as fh:
+                json.dump(with_triangle(path), fh)
+            bpy.ops.import_scene.gltf(filepath=copy)
+        route = "import_scene.gltf (a triangle added to use the material)"
     else:
         raise ValueError(f"{path}: not a .py, .usda or .gltf export")
-    new = [m for m in bpy.data.materials if m not in before]
+    new = [m for m in bpy.data.materials if m not in before and m.name != "key"]
     if len(new) != 1:
         raise RuntimeError(f"{path}: the importer made {len(new)} materials: {[m.name for m in new]}")
     # Imported objects (none for these files, but be safe) are removed.
@@ -261,6 +294,9 @@ def units_check(out_dir, spp):
 def main():
     args = sys.argv[1:]
     spp = 256
+    antialias = "--antialias" in args
+    if antialias:
+        args.remove("--antialias")
     if "--spp" in args:
         i = args.index("--spp")
         spp = int(args[i + 1])
@@ -272,13 +308,13 @@ def main():
     stdout = os.dup(1)
     os.dup2(2, 1)
     report = {"blender": bpy.app.version_string, "spp": spp, "size": SIZE, "light": "studio",
-              "pixel_filter_width": 0.01, "max_bounces": 0, "view_transform": "Standard",
+              "pixel_filter_width": 1.5 if antialias else 0.01, "max_bounces": 0, "view_transform": "Standard",
               "units": units_check(out_dir, 16), "files": []}
     for f in files:
         name = os.path.relpath(f).replace("/", ".")
         # Two seeds: the second render is the noise floor.
         for seed in (2, 3):
-            scene = reset(spp, seed)
+            scene = reset(spp, seed, antialias)
             camera(scene)
             studio(scene)
             mat, route = load_material(f)

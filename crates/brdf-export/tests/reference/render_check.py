@@ -11,13 +11,15 @@ FILE is an export; what renders it:
                of the judge scene (benches/judge/scene.py), per light set
   M.scene.xml  Mitsuba 3: the complete scene, loaded with mi.load_file as
                `mitsuba scene.xml` does (its own light: studio)
-  M.py, M.usda Blender Cycles: the EXRs cycles_render.py wrote in EXR_DIR
+  M.py, M.usda, M.gltf
+               Blender Cycles: the EXRs cycles_render.py wrote in EXR_DIR
                (the script's material; the .usda through Blender's USD
-               importer), studio light
+               importer, the .gltf through its glTF importer), studio light
 EXR_DIR also holds brdf-render's renders (examples/judge_exr.rs):
 EXR_DIR/brdf-render/MODEL/LIGHT.exr for MODEL = M and M.KIND (the saved
 models M.json, M.KIND.json). The model a file holds is M.KIND.json where
-the export was converted (KIND: mitsuba, scene, blender, usd), else M.json.
+the export was converted (KIND: mitsuba, scene, blender, usd, gltf), else
+M.json.
 
 Per file and light: flip_held (the renderer against brdf-render of the model
 the file holds: the export is exact, or mapped, when this is at the noise
@@ -62,6 +64,8 @@ def kind_of(path):
         return stem, "blender", "cycles"
     if base.endswith(".usda"):
         return stem, "usd", "cycles"
+    if base.endswith(".gltf"):
+        return stem, "gltf", "cycles"
     raise ValueError(f"{path}: no renderer checks this kind of export here")
 
 

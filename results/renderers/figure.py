@@ -1,0 +1,58 @@
+"""The README's renderer figure: a measured material rendered by Mitsuba 3's
+`measured` plugin (the reference of shared/spec/appearance.md), its
+principled fit exported to Mitsuba (`brdf export --to mitsuba`, exact)
+rendered by Mitsuba, and its glTF fit exported to Blender (`brdf export
+--to blender`: Principled BSDF, single-scatter GGX) rendered by Blender
+Cycles (cycles_render.py's EXR, Gaussian pixel filter), in the judge scene under the
+studio light. Writes three PNG tiles (one exposure, 1 / p99 of the
+measurement, gamma 2.2) and renderers.md with the HDR-FLIP of each render
+against the measurement.
+
+    python figure.py MATERIAL.bsdf FIT.xml CYCLES.exr OUT_DIR
+Needs mitsuba, numpy, flip-evaluator (run by make.sh)."""
+
+import json
+import os
+import sys
+
+import flip_evaluator as flip
+import mitsuba as mi
+import numpy as np
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, "..", "..", "benches", "judge"))
+import scene as S  # noqa: E402
+
+
+def png(img, exposure, path):
+    ldr = np.clip(img * exposure, 0.0, 1.0) ** (1.0 / 2.2)
+    out = np.ascontiguousarray((ldr * 255.0 + 0.5).astype(np.uint8))
+    mi.Bitmap(out, pixel_format=mi.Bitmap.PixelFormat.RGB).write(path)
+
+
+def main():
+    measured, xml, exr, out = sys.argv[1:5]
+    S.set_variant("scalar_rgb")
+    name = os.path.basename(measured).removesuffix(".bsdf")
+    ref = S.render(S.bsdf_of(measured), "studio", seed=1)
+    mitsuba = S.render(S.bsdf_of(xml), "studio", seed=2)
+    cycles = np.array(mi.Bitmap(exr), dtype=np.float32)[:, :, :3]
+    exposure = 1.0 / float(np.percentile(ref, 99))
+    tiles = {"measured": ref, "mitsuba": mitsuba, "cycles": cycles}
+    for k, img in tiles.items():
+        png(img, exposure, os.path.join(out, f"{name}.{k}.studio.png"))
+    f = {k: float(flip.evaluate(ref, tiles[k], "HDR")[1]) for k in ("mitsuba", "cycles")}
+    md = f"""| measurement (Mitsuba `measured`) | Mitsuba 3: `brdf export --to mitsuba` | Blender Cycles: `brdf export --to blender` |
+| --- | --- | --- |
+| ![measured](results/renderers/{name}.measured.studio.png) | ![Mitsuba](results/renderers/{name}.mitsuba.studio.png) | ![Blender](results/renderers/{name}.cycles.studio.png) |
+| `rgl/{name}.bsdf` | `principled` fit (exact): HDR-FLIP {f['mitsuba']:.3f} | `gltf` fit (Principled BSDF, GGX): HDR-FLIP {f['cycles']:.3f} |
+"""
+    with open(os.path.join(out, "renderers.md"), "w") as fh:
+        fh.write(md)
+    json.dump({"material": name, "light": "studio", "exposure": exposure, "flip_vs_measured": f,
+               "mitsuba": mi.__version__}, open(os.path.join(out, "renderers.json"), "w"), indent=1)
+    print(md)
+
+
+if __name__ == "__main__":
+    main()
