@@ -12,15 +12,15 @@
 #                           Mitsuba snippet and scene rendered in Mitsuba, each Blender
 #                           script, USD and glTF file rendered in Cycles (cycles_render.py;
 #                           the .usda and .gltf through Blender's importers) under the judge's
-#                           studio light, against brdf-render's render of the model the
+#                           studio light (Mitsuba also under its sky), against brdf-render's render of the model the
 #                           file holds (examples/judge_exr.rs), by HDR-FLIP
 # Needs PYTHON (with mitsuba, numpy, materialx, usd-core, flip-evaluator) and
 # NODE_PATH holding gltf-validator; BLENDER_PYTHON (with bpy) for the Blender
 # checks, which are skipped with a message without it (render_check.json then
 # keeps the committed Cycles answers). JUDGE_EXR: the judge_exr example's
 # binary (default: cargo run --release). RENDER_LIGHTS: the light sets of the
-# Mitsuba render checks (default studio; studio,sky once brdf-render's sky is
-# Mitsuba's sunsky). Takes about three minutes.
+# Mitsuba render checks (default studio,sky: brdf-render's sky is Mitsuba's
+# sunsky, tabulated; Cycles checks studio only). Takes about three minutes.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 py="${PYTHON:-python3}"
@@ -72,7 +72,7 @@ json.dump({"cycles": old.get("cycles"), "checks": [c for c in old["checks"] if c
           open(sys.argv[1] + "/cycles_kept.json", "w"))
 PY
 fi
-"$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio}" "${render_files[@]}" >paper_white/render_check.json.new
+"$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio,sky}" --spp 1024 "${render_files[@]}" >paper_white/render_check.json.new
 if [ -f "$exr_dir/cycles_kept.json" ]; then
     "$py" - "$exr_dir/cycles_kept.json" paper_white/render_check.json.new <<'PY'
 import json, sys
