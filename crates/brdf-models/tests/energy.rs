@@ -500,6 +500,21 @@ fn fitted_linear_models_conserve_energy() {
     }
 }
 
+/// Dupuy (the catalogue's table before data, a GGX `D` with `alpha` 0.3):
+/// `kd + F + S <= 1` over the whole hemisphere of incidence. With `G <=
+/// G1(L) = cos_i / sigma(L)` the lobe's albedo is at most
+/// `integral D (L.H)+ / cos_i dH G1(L) = 1` times the largest Fresnel factor
+/// `F + S`; just outside (`kd` 0.1 over `F = 1`) it exceeds 1.
+#[test]
+fn dupuy_domain() {
+    // (The table is piecewise linear: the adaptive quadrature works hard,
+    // so two points of the domain's edge, not four.)
+    for p in [[0.0, 0.999, 0.0], [0.3, 0.35, 0.349]] {
+        assert_within("dupuy", &p, 1, AlbedoFrame::Normal, 90.0);
+    }
+    assert_exceeds("dupuy", &[0.1, 1.0, 0.0], 1, AlbedoFrame::Normal, 45.0);
+}
+
 /// Every catalogue model has an energy test in this file (a new model
 /// must get one).
 #[test]
@@ -533,6 +548,7 @@ fn every_model_has_an_energy_test() {
         "abc",
         "abc-smooth",
         "std",
+        "dupuy",
     ];
     // The renderer family (GGX, principled, glTF) has its energy tests in
     // renderer_models.rs.
