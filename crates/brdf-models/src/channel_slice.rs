@@ -14,7 +14,7 @@
 //! Jacobian at probe directions; a model that fails the check gets `None`.
 //!
 //! ```
-//! use brdf_core::{Brdf, Parametric};
+//! use brdf_core::Brdf;
 //! use brdf_models::channel_slice::{ChannelSlice, channel_blocks};
 //! use brdf_models::Sgd;
 //! use nalgebra::Vector3;

@@ -14,7 +14,7 @@
 //! | `ward` | [`Ward`], [`WardAniso`], [`WardDuer`], [`WardDuerAniso`] |
 //! | `lafortune` | [`Lafortune`] (isotropic and anisotropic, K lobes) |
 //! | `microfacet` | [`AshikhminShirley`] (+ anisotropic, coupled diffuse), [`TorranceSparrow`], [`CookTorrance`] (K lobes) |
-//! | `microfacet` (fitted-data models) | [`Sgd`] (Bagher 2012), [`LowSmooth`] and [`LowAbc`] (Löw 2012), [`Std`] (Ribardière 2017), [`TabulatedMicrofacet`] (Dupuy 2015, extracted from data) |
+//! | `microfacet` (fitted-data models) | [`Sgd`] (Bagher 2012), [`LowSmooth`] and [`LowAbc`] (Löw 2012), [`Std`] (Ribardière 2017), [`Dupuy`] and its [`TabulatedMicrofacet`] (Dupuy 2015, normal distribution extracted from the data) |
 //! | `oren-nayar` | [`OrenNayar`] (qualitative), [`OrenNayarFull`] (with interreflection) |
 //! | `sopp` | [`PhongFresnel`], [`AsPaint`] / [`PaintShader`] (with the `Rs` conversion), [`ClearCoat`] over any base |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |

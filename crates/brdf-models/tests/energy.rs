@@ -500,6 +500,39 @@ fn fitted_linear_models_conserve_energy() {
     }
 }
 
+/// Dupuy (the catalogue's table before data, a GGX `D` with `alpha` 0.3):
+/// `kd + F + S <= 1` over the whole hemisphere of incidence. With `G <=
+/// G1(L) = cos_i / sigma(L)` the lobe's albedo is at most
+/// `integral D (L.H)+ / cos_i dH G1(L) = 1` times the largest Fresnel factor
+/// `F + S`. The bound is not tight (at normal incidence the lobe alone
+/// reflects 0.88 with `F = 1`: shadowing and the horizon take the rest),
+/// but outside it the albedo can exceed 1 (`kd` 0.2 over `F = 1`). The table
+/// is piecewise linear, so the adaptive quadrature runs at a looser
+/// tolerance (its error estimate is still added to the albedo) at the
+/// pole, 45, 85 and 89.9 deg.
+#[test]
+fn dupuy_domain() {
+    let opts = QuadratureOptions {
+        rel_tol: 1e-4,
+        abs_tol: 1e-7,
+        max_intervals: 100,
+    };
+    let albedo = |p: &[f64], deg: f64| {
+        let m = model("dupuy", 1, p);
+        let l = spherical_to_cartesian(f64::to_radians(deg), 0.3);
+        let a = directional_albedo(m.as_ref(), &l, AlbedoFrame::Normal, &opts);
+        (a.value[0], a.error[0])
+    };
+    for p in [[0.0, 0.999, 0.0], [0.3, 0.35, 0.349]] {
+        for deg in [0.0, 45.0, 85.0, 89.9] {
+            let (a, e) = albedo(&p, deg);
+            assert!(a + e <= 1.0, "dupuy {p:?} at {deg} deg: {a} + {e}");
+        }
+    }
+    let (a, e) = albedo(&[0.2, 1.0, 0.0], 0.0);
+    assert!(a - e > 1.0, "dupuy just outside: {a} - {e}");
+}
+
 /// Every catalogue model has an energy test in this file (a new model
 /// must get one).
 #[test]
@@ -533,6 +566,7 @@ fn every_model_has_an_energy_test() {
         "abc",
         "abc-smooth",
         "std",
+        "dupuy",
     ];
     // The renderer family (GGX, principled, glTF) has its energy tests in
     // renderer_models.rs.

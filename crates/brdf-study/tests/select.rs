@@ -40,10 +40,22 @@ fn tolerance_rule_aic_and_bic_on_noisy_lambert() {
     let (rows, choice) = select(&data, 1.0, &opts).unwrap();
     assert_eq!(rows[choice].model, "lambert", "{:?}", rows[choice]);
     assert_eq!(rows[choice].stored_numbers, 1);
-    // Every candidate was fitted (none failed or was dropped silently).
+    // Every candidate was fitted (none failed or was dropped silently),
+    // except Dupuy's, read off back-scattering samples these scattered
+    // pairs do not have: its row says so.
     for r in &rows {
+        if r.model == "dupuy" {
+            assert!(
+                r.error.is_nan() && r.termination.contains("back-scattering samples"),
+                "{}: {}",
+                r.label,
+                r.termination
+            );
+            continue;
+        }
         assert!(r.error.is_finite(), "{}: {}", r.label, r.termination);
     }
+    assert!(rows.iter().any(|r| r.model == "dupuy"));
     assert!(rows.iter().any(|r| r.label == "lafortune (2 lobes)"));
     assert!(rows.iter().any(|r| r.label == "koenderink order 8"));
 
@@ -80,8 +92,9 @@ fn tolerance_rule_aic_and_bic_on_noisy_lambert() {
     );
     let by_bic = rows.iter().min_by(|a, b| a.bic.total_cmp(&b.bic)).unwrap();
     assert_eq!(by_bic.model, "lambert", "BIC picks {}", by_bic.label);
-    // AIC and BIC of every row follow the stated formulas from its SSR.
-    for r in &rows {
+    // AIC and BIC of every fitted row follow the stated formulas from its
+    // SSR.
+    for r in rows.iter().filter(|r| r.error.is_finite()) {
         let ll = n * (r.ssr / n).ln();
         let k = r.stored_numbers as f64;
         assert!(
