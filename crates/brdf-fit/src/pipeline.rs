@@ -36,7 +36,7 @@ use brdf_solve::multistart::{StartBox, multistart};
 use brdf_solve::robust_weights::RobustWeight;
 use brdf_solve::{
     BoundStatus, Constraints, IrlsOptions, LeastSquaresProblem, LmOptions, ModelProblem,
-    ScaleConvention, SolverReport, Termination, VarPro, bounded_least_squares, irls,
+    RowTransform, ScaleConvention, SolverReport, Termination, VarPro, bounded_least_squares, irls,
 };
 use faer::Mat;
 use serde::Serialize;
@@ -523,7 +523,7 @@ fn fit_nonlinear(
     if opts.objective == Objective::Image {
         return crate::image_objective::fit_image(model, opts, &full);
     }
-    let log_problem;
+    let (rows, transformed);
     let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
     let nonlinear = mp.nonlinear_indices().to_vec();
     let sb = start_box(model, &nonlinear);
@@ -538,8 +538,9 @@ fn fit_nonlinear(
         && !opts.objective.is_transformed()
         && !mp.linear_indices().is_empty();
     let problem: &(dyn LeastSquaresProblem + Sync) = if opts.objective.is_transformed() {
-        log_problem = TransformedProblem::new(&mp, data, opts.objective)?;
-        &log_problem
+        rows = TransformedRows::new(data, opts.objective);
+        transformed = ModelProblem::new(model, data.pairs(), values, scales)?.with_transform(&rows);
+        &transformed
     } else {
         &mp
     };
@@ -978,27 +979,23 @@ impl Transform {
     }
 }
 
-/// A transformed objective (log, cube root) as a least-squares problem
-/// over all parameters: residual `s_j (T(M cos_i) - T(R cos_i))` with
-/// `s_j = 1` (log) or `sqrt(w_j / mean w)` (cube root).
-struct TransformedProblem<'a> {
-    inner: &'a ModelProblem<'a>,
+/// A transformed objective (log, cube root) as the row transform of a
+/// least-squares problem over all parameters: residual `s_j (T(M cos_i) -
+/// T(R cos_i))` with `s_j = 1` (log) or `sqrt(w_j / mean w)` (cube root),
+/// so the model problem forms it in its fused blocked pass.
+struct TransformedRows {
     transform: Transform,
+    /// `cos_i` of each sample (`n` of them; row `i` is sample `i % n`).
     cos_i: Vec<f64>,
     row: Vec<f64>,
     target: Vec<f64>,
-    values: Vec<f64>,
 }
 
-impl<'a> TransformedProblem<'a> {
-    fn new(
-        inner: &'a ModelProblem<'a>,
-        data: &SampleSet,
-        objective: Objective,
-    ) -> Result<Self, FitError> {
+impl TransformedRows {
+    fn new(data: &SampleSet, objective: Objective) -> Self {
         let n = data.len();
         let values = data.values_channel_major();
-        let cos_i: Vec<f64> = (0..values.len()).map(|i| data.pairs().lz[i % n]).collect();
+        let cos_i = data.pairs().lz.clone();
         let (transform, row) = match objective {
             Objective::CubeRoot => {
                 let w = data.weights();
@@ -1012,47 +1009,25 @@ impl<'a> TransformedProblem<'a> {
         };
         let target = values
             .iter()
-            .zip(&cos_i)
-            .zip(&row)
-            .map(|((r, c), s)| s * transform.value(r * c))
+            .enumerate()
+            .map(|(i, r)| row[i] * transform.value(r * cos_i[i % n]))
             .collect();
-        Ok(Self {
-            inner,
+        Self {
             transform,
             cos_i,
             row,
             target,
-            values,
-        })
+        }
     }
 }
 
-impl LeastSquaresProblem for TransformedProblem<'_> {
-    fn n_params(&self) -> usize {
-        self.inner.n_params()
-    }
-    fn n_residuals(&self) -> usize {
-        self.inner.n_residuals()
-    }
-    fn residuals(&self, p: &[f64], out: &mut [f64]) {
-        // The inner problem has unit row scales: its residual is M - R.
-        self.inner.residuals(p, out);
-        for i in 0..out.len() {
-            let m = out[i] + self.values[i];
-            out[i] = self.row[i] * self.transform.value(m * self.cos_i[i]) - self.target[i];
-        }
-    }
-    fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
-        let np = p.len();
-        let mut r = vec![0.0; self.n_residuals()];
-        self.inner.residuals(p, &mut r);
-        self.inner.jacobian(p, jac);
-        for i in 0..r.len() {
-            let m = r[i] + self.values[i];
-            let d = self.row[i] * self.cos_i[i] * self.transform.derivative(m * self.cos_i[i]);
-            for v in &mut jac[i * np..(i + 1) * np] {
-                *v *= d;
-            }
-        }
+impl RowTransform for TransformedRows {
+    fn apply(&self, i: usize, m: f64) -> (f64, f64) {
+        let c = self.cos_i[i % self.cos_i.len()];
+        let x = m * c;
+        (
+            self.row[i] * self.transform.value(x) - self.target[i],
+            self.row[i] * c * self.transform.derivative(x),
+        )
     }
 }
