@@ -78,5 +78,49 @@ fn kernels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, models, kernels);
+/// The renderer models' batch kernels (issue 28): value, and value and
+/// Jacobian, RGB, at a non-trivial parameter vector (every lobe on), as
+/// the solvers call them every pass (`renderer_kernels/<model>/<path>`).
+fn renderer_kernels(c: &mut Criterion) {
+    let pairs = brdf_benches::fixed_pairs(10_000);
+    let n = pairs.len();
+    let config = ModelConfig {
+        channels: 3,
+        ..ModelConfig::default()
+    };
+    let mut g = c.benchmark_group("renderer_kernels");
+    g.throughput(Throughput::Elements(n as u64));
+    for name in ["principled", "gltf"] {
+        let Ok(model) = brdf_models::catalogue::build(name, &config) else {
+            continue;
+        };
+        // Defaults moved inside the box so no lobe is off.
+        let p: Vec<f64> = model
+            .param_specs()
+            .iter()
+            .map(|s| {
+                let (lo, hi) = (s.lower.max(-1.0), s.upper.min(2.0));
+                lo + 0.37 * (hi - lo)
+            })
+            .collect();
+        let np = p.len();
+        let mut out = vec![0.0; 3 * n];
+        let mut jac = vec![0.0; 3 * n * np];
+        g.bench_function(format!("{name}/value"), |b| {
+            b.iter(|| {
+                model.eval_batch_at(black_box(&p), &pairs, &mut out);
+                black_box(out[0])
+            })
+        });
+        g.bench_function(format!("{name}/value+derivatives"), |b| {
+            b.iter(|| {
+                model.eval_grad_batch_at(black_box(&p), &pairs, &mut out, &mut jac);
+                black_box(jac[0])
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, models, kernels, renderer_kernels);
 criterion_main!(benches);

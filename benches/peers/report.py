@@ -331,6 +331,110 @@ def kernel_section(d):
     return out + [""]
 
 
+def issue28_section(d):
+    """Issue 28: where users wait (default fits, select, batch, kernels)."""
+    runs = jsonl(d / "runs.jsonl") if (d / "runs.jsonl").exists() else []
+    if not runs:
+        return []
+    out = ["## Issue 28: fast where users wait", "",
+           "Processor time (user + system of the whole command, loading and the report-size image errors "
+           "included; steadier than the wall clock on this shared machine) and wall clock, one thread unless "
+           "said. `auto` is what `brdf fit` runs by default for a renderer model on renderable data: the "
+           "appearance pipeline of `brdf_fit::appearance` (candidates under ngan, log and cube-root, optional "
+           "lobes, the image-objective refinement, image errors at 32 px for the ranking and 128 px for the "
+           "report); `ngan` is one fit (`--metric ngan`).", ""]
+    rgl = [r for r in runs if r["tag"]["kind"] == "rgl"]
+    if rgl:
+        out += ["### Renderer models on the RGL files (RGB, default options)", "",
+                "| file | model | metric | CPU s | wall s | fit s (own clock) | Ngan L2 | objective error | goal (CPU) | met |",
+                "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |"]
+        for r in rgl:
+            t, f = r["tag"], (r["result"] or {}).get("fits", [{}])[0]
+            goal = {"principled": 0.5, "gltf": 0.3}.get(t["model"]) if t["metric"] == "ngan" else 2.0
+            met = "yes" if r["cpu"] <= goal else "no"
+            out.append(f"| {t['file']} | {t['model']} | {t['metric']} | {r['cpu']:.2f} | {r['wall']:.2f} | "
+                       f"{f.get('seconds', float('nan')):.2f} | {f.get('ngan_l2', float('nan')):.6e} | "
+                       f"{f.get('error', float('nan')):.6e} | {goal} | {met} |")
+        out += ["", "Goals: one `--metric ngan` fit <= 0.5 s (principled) and <= 0.3 s (glTF) on one core; "
+                "the whole default command (issue 23) < 2 s.", ""]
+        out += ["### The render-fidelity pipeline per material (seconds of each candidate, fit and 32-px image errors)", "",
+                "| file | model | candidates (objective [lobes]: s, * chosen) |", "| --- | --- | --- |"]
+        for r in rgl:
+            t = r["tag"]
+            if t["metric"] != "auto" or not r["result"]:
+                continue
+            c = r["result"].get("candidates") or []
+            c = c[0] if c and isinstance(c[0], list) else c
+            cells = [f"{'*' if x.get('chosen') else ''}{x['objective']} [{','.join(x['lobes'])}]: {x['seconds']:.2f}" for x in c]
+            out.append(f"| {t['file']} | {t['model']} | {'; '.join(cells)} |")
+        out.append("")
+    merl = [r for r in runs if r["tag"]["kind"] in ("merl_as", "merl_principled")]
+    scipy = None
+    pr = d / "peers" / "paper_white_grey_as" / "python_results.json"
+    if pr.exists():
+        res = json.loads(pr.read_text())
+        scipy = next((x for x in res["scipy_fits"] if x["solver"].startswith("scipy trf (box, default")), None)
+    if merl:
+        out += ["### Full MERL grid (paper_white resampled onto every valid bin)", "",
+                "| fit | threads | wall s per fit | CPU s per fit | Ngan L2 | solver | wall / SciPy trf | CPU / SciPy trf |",
+                "| --- | ---: | ---: | ---: | ---: | --- | ---: | ---: |"]
+        for r in merl:
+            x = r["result"]
+            name = "default `brdf fit`, grey Ashikhmin-Shirley (12 starts)" if r["tag"]["kind"] == "merl_as" \
+                else "principled RGB, `--metric ngan`"
+            rw = f"{x['median_seconds'] / scipy['seconds']:.3f}" if scipy and r["tag"]["kind"] == "merl_as" else "-"
+            rc = f"{x['cpu_seconds'] / scipy['cpu_seconds']:.3f}" if scipy and r["tag"]["kind"] == "merl_as" else "-"
+            out.append(f"| {name} | {r['tag']['threads']} | {x['median_seconds']:.3f} | {x['cpu_seconds']:.3f} | "
+                       f"{x['ngan_l2']:.12e} | {x['solver']} | {rw} | {rc} |")
+        if scipy:
+            out += ["", f"SciPy `least_squares` trf (box, default tolerances, ONE start from the first `brdf fit` start) "
+                    f"on the same grey problem, same run: {scipy['seconds']:.3f} s wall, {scipy['cpu_seconds']:.3f} s CPU, "
+                    f"final cost {scipy['cost']:.12e} (its own cost function; the Ngan L2 above is sqrt-normalised). "
+                    "Goals: <= 0.10x SciPy's time on one thread, <= 0.06x with both cores; principled RGB <= 10 s."]
+        out.append("")
+    sel = [r for r in runs if r["tag"]["kind"] == "select"]
+    bat = [r for r in runs if r["tag"]["kind"] == "batch"]
+    if sel or bat:
+        out += ["### select and batch", "", "| command | threads | CPU s | wall s | note |", "| --- | ---: | ---: | ---: | --- |"]
+        for r in sel:
+            n = len((r["result"] or {}).get("candidates", []))
+            out.append(f"| `brdf select` paper_white | {r['tag']['threads']} | {r['cpu']:.2f} | {r['wall']:.2f} | {n} candidates; goal <= 5 s |")
+        for r in bat:
+            out.append(f"| `brdf batch` RGL folder x 5 models | {r['tag']['threads']} | {r['cpu']:.2f} | {r['wall']:.2f} | "
+                       f"{r['tag']['fits'] / r['wall']:.3f} fits/s |")
+        if len(bat) == 2:
+            out += ["", f"Batch throughput, 2 threads over 1 thread: {bat[0]['wall'] / bat[1]['wall']:.2f}x (goal >= 1.8x; "
+                    "wall clock, so other work on the shared machine counts against it)."]
+        if len(sel) == 2 and sel[0]["result"] and sel[1]["result"]:
+            strip = lambda v: [{k: x for k, x in c.items() if k != "seconds"} for c in v["candidates"]]
+            same = strip(sel[0]["result"]) == strip(sel[1]["result"])
+            out += ["", f"select: rows with 1 and 2 threads identical (seconds aside): {'yes' if same else 'NO'}."]
+        c1, c2 = d / "batch_1.csv", d / "batch_2.csv"
+        if c1.exists() and c2.exists():
+            def rows(p):
+                import csv
+                with open(p) as fh:
+                    return [{k: v for k, v in r.items() if "second" not in k} for r in csv.DictReader(fh)]
+            out += [f"batch: summary with 1 and 2 threads identical (seconds aside): {'yes' if rows(c1) == rows(c2) else 'NO'}."]
+        out.append("")
+    kd = d / "kernels"
+    files = sorted(kd.glob("*.estimates.json")) if kd.exists() else []
+    if files:
+        out += ["### Renderer kernels (criterion, one thread, RGB, 10,000 pairs)", "",
+                "| model/path | median per call (us) | M samples/s/core | goal |", "| --- | ---: | ---: | --- |"]
+        for f in files:
+            name = f.name[: -len(".estimates.json")]
+            est = json.loads(f.read_text())
+            bench = json.loads((kd / f"{name}.benchmark.json").read_text())
+            elems = (bench.get("throughput") or {}).get("Elements")
+            ns = est["median"]["point_estimate"]
+            rate = elems / (ns * 1e-9) / 1e6 if elems else float("nan")
+            goal = ">= 20 M/s" if name == "principled_value+derivatives" else "-"
+            out.append(f"| {name.replace('_', '/', 1)} | {ns / 1e3:.4g} | {rate:.4g} | {goal} |")
+        out.append("")
+    return out
+
+
 def main(argv):
     d = Path(argv[1])
     only = (d / "only.txt").read_text().strip() if (d / "only.txt").exists() else "all"
@@ -365,6 +469,20 @@ def main(argv):
     if only == "irls":
         # PEERS_ONLY=irls: the fit peers and the profiles were not run.
         print("\n".join(lines + irls_section(d / "irls")))
+        return
+    if only == "issue28":
+        # PEERS_ONLY=issue28: only the issue-28 section is new; it replaces
+        # the one of the report given as argv[2] (the rest kept as it was).
+        old = Path(argv[2]).read_text() if len(argv) > 2 and Path(argv[2]).exists() else ""
+        head, _, rest = old.partition("## Issue 28: fast where users wait")
+        tail = rest[rest.find("\n## ", 1):] if "\n## " in rest else ""
+        new = "\n".join(issue28_section(d / "issue28")).rstrip() + "\n"
+        note = (f"Issue 28 section regenerated alone (`PEERS_ONLY=issue28 benches/peers/run.sh`; its commands: "
+                f"`{(d / 'commands.txt').read_text().strip().splitlines()[0] if (d / 'commands.txt').exists() else ''}` ..., "
+                f"load before: `{(d / 'load_before.txt').read_text().strip() if (d / 'load_before.txt').exists() else '?'}`); "
+                "the sections above and below come from the last full run.\n\n")
+        print((head.rstrip() + "\n\n" if head else "") + "## Issue 28: fast where users wait\n\n" + note
+              + new.split("\n", 2)[2] + tail, end="")
         return
     res0 = None
     lines += [
@@ -431,6 +549,7 @@ def main(argv):
     lines += fit_loop_section(d / "fit_loop.jsonl")
     lines += kernel_section(d / "kernels")
     lines += irls_section(d / "irls")
+    lines += issue28_section(d / "issue28")
     lines += ["## Where the time goes", ""]
     prof = (d / "profiler.txt").read_text().strip() if (d / "profiler.txt").exists() else "none"
     if prof == "perf":

@@ -18,8 +18,13 @@
 # 5. profiles of the full-grid grey fit (perf, else callgrind on CUReT);
 # 6. report.py writes results/performance.md.
 #
+# 7. issue28.sh: the measurements of issue 28 (default `brdf fit` of the
+#    renderer models on every RGL file, the full MERL grid against SciPy,
+#    select, batch on 1 and 2 threads, the renderer kernels).
+#
 # PEERS_ONLY=irls runs step 4 alone (no fit peers, no profiles) and the
-# report then holds the IRLS section only.
+# report then holds the IRLS section only. PEERS_ONLY=issue28 runs step 7
+# alone and replaces only the issue-28 section of results/performance.md.
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -43,9 +48,9 @@ fi
 out="${PEERS_OUT:-$target/peers}"
 only="${PEERS_ONLY:-all}"
 case "$only" in
-all | irls) ;;
+all | irls | issue28) ;;
 *)
-	echo "run.sh: PEERS_ONLY must be all or irls, not $only" >&2
+	echo "run.sh: PEERS_ONLY must be all, irls or issue28, not $only" >&2
 	exit 1
 	;;
 esac
@@ -72,6 +77,15 @@ if [ "$only" = all ]; then
 	bin="$target/release/peer_fits"
 	"$bin" --out "$out" | tee "$out/rust.log"
 	"$py" benches/peers/peers.py "$out" | tee "$out/python.log"
+fi
+
+# Issue 28 alone: its measurements, spliced into the existing report.
+if [ "$only" = issue28 ]; then
+	PY="$py" benches/peers/issue28.sh "$out"
+	uptime >"$out/load_after.txt"
+	"$py" benches/peers/report.py "$out" results/performance.md >"$out/performance.md"
+	cp "$out/performance.md" results/performance.md
+	exit 0
 fi
 
 # IRLS side by side: the Rust side writes the designs and times itself, then
@@ -163,6 +177,8 @@ if [ "$only" = all ]; then
 			echo "rayon threads $t: $line" >>"$out/thread_check.txt"
 		done
 	fi
+	# Issue 28: default fits, select, batch, renderer kernels.
+	PY="$py" benches/peers/issue28.sh "$out"
 fi
 uptime >"$out/load_after.txt"
 

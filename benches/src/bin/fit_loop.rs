@@ -3,7 +3,7 @@
 //! timing of the automatic multi-start fits (issue 16).
 //!
 //! ```text
-//! fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--json]
+//! fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--metric M] [--json]
 //! ```
 //!
 //! DATA is anything `brdf_io::load` reads (`$BRDF_DATA/curet/abrdf.dat#25`).
@@ -18,20 +18,21 @@ use brdf_fit::{Channels, Fit};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let usage =
-        "fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--json]";
+    let usage = "fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--metric M] [--json]";
     let data = args.next().ok_or(usage)?;
     let model = args.next().ok_or(usage)?;
     let (mut reps, mut grey, mut lobes) = (10usize, false, 1usize);
     let mut lm = brdf_solve::LmOptions::default();
     let mut search = None;
     let mut json = false;
+    let mut metric = None;
     while let Some(a) = args.next() {
         match a.as_str() {
             "--grey" => grey = true,
             "--json" => json = true,
             "--reps" => reps = args.next().ok_or(usage)?.parse()?,
             "--lobes" => lobes = args.next().ok_or(usage)?.parse()?,
+            "--metric" => metric = Some(brdf_fit::Objective::parse(&args.next().ok_or(usage)?)?),
             "--search-tol" => search = Some(args.next().ok_or(usage)?.parse()?),
             "--tol" => {
                 let t: f64 = args.next().ok_or(usage)?.parse()?;
@@ -45,6 +46,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut fit = Fit::model(&model)?.channels(channels).lobes(lobes);
     if lm != brdf_solve::LmOptions::default() {
         fit = fit.lm_options(lm);
+    }
+    if let Some(o) = metric {
+        fit = fit.objective(o);
     }
     if let Some(t) = search {
         fit = fit.search_tolerance(t);
@@ -71,7 +75,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "model": model, "data": data, "channels": if grey { "grey" } else { "all" },
             "samples": s.samples, "samples_present": r.samples_present,
             "runs": times.len(), "median_seconds": median, "cpu_seconds": cpu,
-            "ngan_l2": s.ngan_l2, "iterations": s.iterations, "starts": s.starts,
+            "ngan_l2": s.ngan_l2, "error": s.error, "iterations": s.iterations, "starts": s.starts,
             "termination": s.termination, "solver": s.solver,
             "threads": rayon::current_num_threads(),
         });

@@ -407,6 +407,19 @@ pub fn fit_judged(
         report.image_note = Some(SCATTERED_NOTE.to_string());
         return Ok(report);
     };
+    fit_judged_by(fit, samples, data, for_appearance, None)
+}
+
+/// [`fit_judged`] on renderable data, with the report-size judge `report`
+/// already holding the data's renders ([`Judge::with_data`]) when several
+/// fits of the same data are judged (`None`: rendered here).
+fn fit_judged_by(
+    fit: &Fit,
+    samples: &SampleSet,
+    data: &dyn Brdf,
+    for_appearance: bool,
+    report_judge: Option<&Judge>,
+) -> Result<FitReport, FitError> {
     let mut report = if for_appearance {
         let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
         report.candidates = candidates;
@@ -414,7 +427,10 @@ pub fn fit_judged(
     } else {
         fit.run(samples)?
     };
-    let errors = Judge::new(REPORT_SIZE).errors(data, report.model.as_ref())?;
+    let errors = match report_judge {
+        Some(j) => j.fit_errors(report.model.as_ref())?,
+        None => Judge::new(REPORT_SIZE).errors(data, report.model.as_ref())?,
+    };
     report.notes.extend(errors.warnings());
     report.image_error = Some(errors);
     Ok(report)
@@ -450,23 +466,30 @@ pub fn select_by_image(
     samples: &SampleSet,
     data: &dyn Brdf,
 ) -> Result<(Vec<ImageChoice>, usize), FitError> {
-    let mut rows = Vec::with_capacity(models.len());
-    for name in models {
-        let t0 = Instant::now();
-        let report = fit_judged(&Fit::model(name)?, samples, Some(data), true)?;
-        let chosen = report.candidates.iter().find(|c| c.chosen);
-        rows.push(ImageChoice {
-            model: report.summary.model.clone(),
-            objective: chosen.map_or_else(String::new, |c| c.objective.clone()),
-            lobes: chosen.map_or_else(Vec::new, |c| c.lobes.clone()),
-            image: report.image_error.clone().ok_or_else(|| {
-                FitError::Usage(format!("`{}`: the fit has no image error", samples.name))
-            })?,
-            ngan_l2: report.summary.ngan_l2,
-            parameters: report.summary.parameters.len(),
-            seconds: t0.elapsed().as_secs_f64(),
-        });
-    }
+    // The data rendered once at the report size for every model; the
+    // models fitted in parallel (rows in the order of `models`, each fit
+    // the same for any number of threads).
+    let judge = Judge::with_data(REPORT_SIZE, data)?;
+    use rayon::prelude::*;
+    let rows = models
+        .par_iter()
+        .map(|name| {
+            let t0 = Instant::now();
+            let report = fit_judged_by(&Fit::model(name)?, samples, data, true, Some(&judge))?;
+            let chosen = report.candidates.iter().find(|c| c.chosen);
+            Ok(ImageChoice {
+                model: report.summary.model.clone(),
+                objective: chosen.map_or_else(String::new, |c| c.objective.clone()),
+                lobes: chosen.map_or_else(Vec::new, |c| c.lobes.clone()),
+                image: report.image_error.clone().ok_or_else(|| {
+                    FitError::Usage(format!("`{}`: the fit has no image error", samples.name))
+                })?,
+                ngan_l2: report.summary.ngan_l2,
+                parameters: report.summary.parameters.len(),
+                seconds: t0.elapsed().as_secs_f64(),
+            })
+        })
+        .collect::<Result<Vec<_>, FitError>>()?;
     let choice = (0..rows.len())
         .min_by(|a, b| {
             rows[*a]

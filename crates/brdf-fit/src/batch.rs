@@ -251,17 +251,19 @@ fn fit_all(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<String>, FitError> {
     let out = Mutex::new(open_fits(path)?);
-    // Materials in parallel; each one loaded once for all its models.
+    // Each material loaded once for all its models.
     let mut by_material: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
     for (m, x) in todo {
         by_material.entry(m.as_str()).or_default().push(x);
     }
+    // Materials in parallel, and each material's models in parallel too
+    // (a few materials would otherwise leave cores idle).
     let failures: Vec<String> = by_material
         .par_iter()
         .flat_map_iter(|(material, models)| {
             let samples = brdf_io::load(material);
             let lines: Vec<Result<Value, String>> = models
-                .iter()
+                .par_iter()
                 .map(|model| {
                     let r = match &samples {
                         Ok(s) => fit_one(s, material, model, opts),

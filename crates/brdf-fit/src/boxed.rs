@@ -120,6 +120,9 @@ impl Brdf for BoxedModel {
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.inner.eval_at(&self.params, l, v, out)
     }
+    fn eval_pairs(&self, pairs: &DirPairs, out: &mut [f64]) {
+        self.inner.eval_batch_at(&self.params, pairs, out)
+    }
 }
 
 impl Parametric for BoxedModel {

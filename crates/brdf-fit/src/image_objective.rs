@@ -99,8 +99,14 @@ impl ImageTerms {
         let mut f = vec![0.0; nb];
         let mut out = vec![0.0; channels * self.pixels()];
         let np = self.pixels();
+        // Every term at once (the model's batch kernel), then summed per
+        // pixel in term order.
+        let mut values = vec![0.0; nb * n];
+        brdf.eval_pairs(&self.pairs, &mut values);
         for k in 0..n {
-            brdf.eval(&self.pairs.l(k), &self.pairs.v(k), &mut f);
+            for (c, v) in f.iter_mut().enumerate() {
+                *v = values[c * n + k];
+            }
             for c in 0..channels {
                 let v = if channels == nb {
                     f[c]

@@ -148,8 +148,9 @@ pub fn select_among(
         )));
     }
     let names = among.names()?;
-    let n = (data.len() * data.channels()) as f64;
-    let mut rows = Vec::new();
+    // The admitted candidates, then their fits in parallel (rows in
+    // candidate order: the same table for any number of threads).
+    let mut todo = Vec::new();
     for (label, name, config) in candidates(data.channels()) {
         if names.as_ref().is_some_and(|v| !v.contains(&name)) {
             continue;
@@ -162,7 +163,7 @@ pub fn select_among(
         let model = match e.build_from(&config, data) {
             Ok(m) => m,
             Err(err) if e.from_samples.is_some() => {
-                rows.push(SelectRow {
+                todo.push(Err(SelectRow {
                     label,
                     model: name.to_string(),
                     stored_numbers: 0,
@@ -172,7 +173,7 @@ pub fn select_among(
                     bic: f64::NAN,
                     seconds: 0.0,
                     termination: format!("failed: {err}"),
-                });
+                }));
                 continue;
             }
             Err(err) => return Err(err.into()),
@@ -186,47 +187,16 @@ pub fn select_among(
         {
             continue;
         }
-        let n_params = model.n_params();
-        let scaled =
-            crate::scaling::fit_scaled(model, data, opts.objective, |m, d, _| fit(m, d, opts));
-        let r = match scaled {
-            Ok((_, r, _)) => r,
-            Err(e) => {
-                rows.push(SelectRow {
-                    label,
-                    model: name.to_string(),
-                    stored_numbers: n_params,
-                    error: f64::NAN,
-                    ssr: f64::NAN,
-                    aic: f64::NAN,
-                    bic: f64::NAN,
-                    seconds: 0.0,
-                    termination: format!("failed: {e}"),
-                });
-                continue;
-            }
-        };
-        let k = stored_numbers(name, n_params);
-        // SSR on Ngan's rows: E^2 times the weight sum (per channel averaged).
-        let wsum: f64 = data.weights().iter().sum();
-        let ssr = r.ngan_l2 * r.ngan_l2 * wsum * data.channels() as f64;
-        // ln(SSR / n) from the error itself: SSR of data near 1e300
-        // overflows, its logarithm does not.
-        let ll = n
-            * (2.0 * r.ngan_l2.ln() + (wsum * data.channels() as f64 / n).ln())
-                .max(f64::MIN_POSITIVE.ln());
-        rows.push(SelectRow {
-            label,
-            model: name.to_string(),
-            stored_numbers: k,
-            error: r.ngan_l2,
-            ssr,
-            aic: ll + 2.0 * k as f64,
-            bic: ll + k as f64 * n.ln(),
-            seconds: r.seconds,
-            termination: r.termination,
-        });
+        todo.push(Ok((label, name, model)));
     }
+    use rayon::prelude::*;
+    let rows: Vec<SelectRow> = todo
+        .into_par_iter()
+        .map(|t| match t {
+            Ok((label, name, model)) => select_row(data, opts, label, name, model),
+            Err(failed) => failed,
+        })
+        .collect();
     let best = rows
         .iter()
         .map(|r| r.error)
@@ -252,6 +222,56 @@ pub fn select_among(
             ))
         })?;
     Ok((rows, choice))
+}
+
+/// One candidate's fit as a row of [`select_among`] (a failed fit is a
+/// row with NaN errors saying why).
+fn select_row(
+    data: &SampleSet,
+    opts: &FitOptions,
+    label: String,
+    name: &'static str,
+    model: Box<dyn brdf_core::Parametric>,
+) -> SelectRow {
+    let n = (data.len() * data.channels()) as f64;
+    let n_params = model.n_params();
+    let scaled = crate::scaling::fit_scaled(model, data, opts.objective, |m, d, _| fit(m, d, opts));
+    let r = match scaled {
+        Ok((_, r, _)) => r,
+        Err(e) => {
+            return SelectRow {
+                label,
+                model: name.to_string(),
+                stored_numbers: n_params,
+                error: f64::NAN,
+                ssr: f64::NAN,
+                aic: f64::NAN,
+                bic: f64::NAN,
+                seconds: 0.0,
+                termination: format!("failed: {e}"),
+            };
+        }
+    };
+    let k = stored_numbers(name, n_params);
+    // SSR on Ngan's rows: E^2 times the weight sum (per channel averaged).
+    let wsum: f64 = data.weights().iter().sum();
+    let ssr = r.ngan_l2 * r.ngan_l2 * wsum * data.channels() as f64;
+    // ln(SSR / n) from the error itself: SSR of data near 1e300
+    // overflows, its logarithm does not.
+    let ll = n
+        * (2.0 * r.ngan_l2.ln() + (wsum * data.channels() as f64 / n).ln())
+            .max(f64::MIN_POSITIVE.ln());
+    SelectRow {
+        label,
+        model: name.to_string(),
+        stored_numbers: k,
+        error: r.ngan_l2,
+        ssr,
+        aic: ll + 2.0 * k as f64,
+        bic: ll + k as f64 * n.ln(),
+        seconds: r.seconds,
+        termination: r.termination,
+    }
 }
 
 /// The measured data `brdf select` fits: invalid samples and those beyond

@@ -205,12 +205,14 @@ impl Factored {
 
     /// The guarded normal equations; `None` where they are not accurate
     /// (or `J` is not finite: a non-finite entry makes the Gram matrix
-    /// non-finite, which the guard refuses).
+    /// non-finite, which the guard refuses). Exactly zero columns (a
+    /// parameter without influence at this point) do not send the step to
+    /// QR: they get zero rows and columns in `R`, as in QR's.
     fn by_normal_equations(jac: &[f64], r: &[f64], n: usize) -> Option<Self> {
         let m = r.len();
         let jm = faer::MatRef::from_row_major_slice(jac, m, n);
         let rm = faer::MatRef::from_column_major_slice(r, m, 1);
-        let (rr, qtr) = tall_qr::gram_triangle(jm, rm)?;
+        let (rr, qtr) = tall_qr::gram_triangle_with_zero_columns(jm, rm)?;
         Some(Self::from_triangle(
             rr,
             (0..n).map(|i| qtr[(i, 0)]).collect(),
@@ -224,7 +226,7 @@ impl Factored {
         let w = n + 1;
         let g = Mat::from_fn(n, n, |i, k| gram[i * w + k]);
         let h = Mat::from_fn(n, 1, |i, _| gram[i * w + n]);
-        let (rr, qtr) = tall_qr::triangle_from_gram(g.as_ref(), h)?;
+        let (rr, qtr) = tall_qr::triangle_from_gram_with_zero_columns(g.as_ref(), h)?;
         Some(Self::from_triangle(
             rr,
             (0..n).map(|i| qtr[(i, 0)]).collect(),

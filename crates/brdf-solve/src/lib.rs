@@ -63,7 +63,7 @@ pub use irls::{IrlsOptions, IrlsSolution, IrlsTermination, ScaleConvention, Stop
 pub use levenberg_marquardt::{Damping, LmOptions, Scaling, levenberg_marquardt};
 pub use linear::{LstsqMethod, LstsqSolution, lstsq};
 pub use lsi::lsi;
-pub use model_problem::ModelProblem;
+pub use model_problem::{ModelProblem, RowTransform};
 pub use multistart::{MultiStartReport, StartBox, multistart};
 pub use nnls::{NnlsSolution, NnlsTermination, nnls};
 pub use problem::{LeastSquaresProblem, fd_jacobian};

@@ -35,6 +35,16 @@ use crate::problem::LeastSquaresProblem;
 use crate::scratch::ScratchPool;
 use crate::varpro::SeparableProblem;
 
+/// A residual transform applied row by row (log, cube-root objectives):
+/// with one, row `i`'s residual is `apply(i, M_i).0` of the model value
+/// `M_i` (row `c * n + j`), and its Jacobian row is the model's gradient
+/// times `apply(i, M_i).1` (the row scales and targets are not used).
+pub trait RowTransform: Send + Sync {
+    /// Residual and its derivative in the model value, of row `row` at
+    /// model value `m`.
+    fn apply(&self, row: usize, m: f64) -> (f64, f64);
+}
+
 /// A model, samples and row scales: a least-squares problem.
 pub struct ModelProblem<'a> {
     model: &'a dyn Parametric,
@@ -53,6 +63,8 @@ pub struct ModelProblem<'a> {
     pool: ScratchPool,
     /// The samples in cache-sized blocks (empty for small sets).
     blocks: Vec<blocked::Block>,
+    /// Residual transform of every row ([`ModelProblem::with_transform`]).
+    transform: Option<&'a dyn RowTransform>,
 }
 
 impl<'a> ModelProblem<'a> {
@@ -113,7 +125,25 @@ impl<'a> ModelProblem<'a> {
             coefficients,
             pool: ScratchPool::new(),
             blocks,
+            transform: None,
         })
+    }
+
+    /// The problem with residuals transformed row by row ([`RowTransform`]);
+    /// evaluated through the model's batch gradient (not its shared basis),
+    /// with the fused blocked pass on large sets.
+    pub fn with_transform(mut self, transform: &'a dyn RowTransform) -> Self {
+        self.transform = Some(transform);
+        if !self.blocks.is_empty() {
+            self.blocks = blocked::blocks(self.pairs, false);
+        }
+        self
+    }
+
+    /// The channel-shared basis, when the problem is evaluated through it
+    /// (not under a row transform).
+    fn shared(&self) -> Option<&(&'a dyn SharedBasis, PairGeometry)> {
+        self.shared.as_ref().filter(|_| self.transform.is_none())
     }
 
     /// Parameter index of each linear coefficient in the order of the
@@ -217,11 +247,17 @@ impl LeastSquaresProblem for ModelProblem<'_> {
         if !self.blocks.is_empty() {
             return self.blocked_pass(p, out, None);
         }
-        if let Some(sb) = &self.shared {
+        if let Some(sb) = self.shared() {
             return self.shared_residuals(sb, p, out);
         }
         let n = self.pairs.len();
         self.model.eval_batch_at(p, self.pairs, out);
+        if let Some(t) = self.transform {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = t.apply(i, *o).0;
+            }
+            return;
+        }
         for (i, o) in out.iter_mut().enumerate() {
             *o = *o * self.scale[i % n] - self.targets[i];
         }
@@ -236,20 +272,23 @@ impl LeastSquaresProblem for ModelProblem<'_> {
     }
 
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
-        if let Some(sb) = &self.shared {
+        if let Some(sb) = self.shared() {
             return self.shared_jacobian(sb, p, jac);
         }
         let n = self.pairs.len();
         let np = p.len();
         self.pool.with(self.rows(), |val| {
             self.model.eval_grad_batch_at(p, self.pairs, val, jac);
-        });
-        for i in 0..self.rows() {
-            let s = self.scale[i % n];
-            for v in &mut jac[i * np..(i + 1) * np] {
-                *v *= s;
+            for i in 0..self.rows() {
+                let s = match self.transform {
+                    Some(t) => t.apply(i, val[i]).1,
+                    None => self.scale[i % n],
+                };
+                for v in &mut jac[i * np..(i + 1) * np] {
+                    *v *= s;
+                }
             }
-        }
+        });
     }
 }
 

@@ -162,6 +162,57 @@ pub fn triangle_from_gram(g: MatRef<'_, f64>, h: Mat<f64>) -> Option<(Mat<f64>, 
     qtb.as_ref().is_all_finite().then_some((r, qtb))
 }
 
+/// [`triangle_from_gram`] that also takes exactly zero columns of `A`
+/// (zero diagonal of `G`: a parameter the model at this point does not
+/// depend on, such as a tint whose lobe is off): the other columns are
+/// factored under the same guard and the zero ones get zero rows and
+/// columns in `R` and zero rows in `Q^T B`, so `R^T R = A^T A` and
+/// `R^T Q^T B = A^T B` still hold. `R` is then singular: for damped steps
+/// (`[R; sqrt(lambda) D]`), as the Householder `R` of such an `A` is, not
+/// for solving with `R` alone.
+pub fn triangle_from_gram_with_zero_columns(
+    g: MatRef<'_, f64>,
+    h: Mat<f64>,
+) -> Option<(Mat<f64>, Mat<f64>)> {
+    let k = g.nrows();
+    if g.ncols() != k || h.nrows() != k {
+        return None;
+    }
+    let keep: Vec<usize> = (0..k).filter(|&i| g[(i, i)] != 0.0).collect();
+    if keep.len() == k || keep.is_empty() {
+        return triangle_from_gram(g, h);
+    }
+    let c = h.ncols();
+    let gs = Mat::from_fn(keep.len(), keep.len(), |a, b| g[(keep[a], keep[b])]);
+    let hs = Mat::from_fn(keep.len(), c, |a, j| h[(keep[a], j)]);
+    let (rs, qs) = triangle_from_gram(gs.as_ref(), hs)?;
+    let mut r = Mat::<f64>::zeros(k, k);
+    let mut qtb = Mat::<f64>::zeros(k, c);
+    for (a, &ia) in keep.iter().enumerate() {
+        for (b, &ib) in keep.iter().enumerate() {
+            r[(ia, ib)] = rs[(a, b)];
+        }
+        for j in 0..c {
+            qtb[(ia, j)] = qs[(a, j)];
+        }
+    }
+    Some((r, qtb))
+}
+
+/// [`gram_triangle`] with exactly zero columns of `A` taken as
+/// [`triangle_from_gram_with_zero_columns`] takes them.
+pub fn gram_triangle_with_zero_columns(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+) -> Option<(Mat<f64>, Mat<f64>)> {
+    let k = a.ncols();
+    if k == 0 || a.nrows() < k || b.nrows() != a.nrows() {
+        return None;
+    }
+    let (g, h) = gram(a, b, None);
+    triangle_from_gram_with_zero_columns(g.as_ref(), h)
+}
+
 /// `A^T W A` and `A^T W B` (`W = I` without weights), summed over row
 /// blocks in block order (in parallel with rayon for tall matrices).
 fn gram(a: MatRef<'_, f64>, b: MatRef<'_, f64>, w: Option<&[f64]>) -> (Mat<f64>, Mat<f64>) {

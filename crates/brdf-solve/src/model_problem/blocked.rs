@@ -53,6 +53,8 @@ struct Work {
     a: Vec<f64>,
     val: Vec<f64>,
     jac: Vec<f64>,
+    /// Per-row derivative factors under a row transform.
+    factor: Vec<f64>,
 }
 
 /// `acc += A^T A` for the column-major `rows x w` matrix in `a` (`w` a
@@ -122,7 +124,7 @@ impl ModelProblem<'_> {
     /// residual column last (index `n_params`).
     fn groups(&self) -> Vec<Vec<usize>> {
         let np = self.model.n_params();
-        match &self.shared {
+        match self.shared() {
             Some((b, _)) => {
                 let l = b.basis_len();
                 (0..self.model.channels())
@@ -167,7 +169,7 @@ impl ModelProblem<'_> {
                 let mut rows: Vec<&mut [f64]> =
                     outs.iter_mut().map(|o| &mut o[off..off + len]).collect();
                 let acc = (acc_len > 0).then_some(acc.as_mut_slice());
-                match &self.shared {
+                match self.shared() {
                     Some((basis, _)) => self.shared_block(*basis, p, b, &mut rows, acc, &mut work),
                     None => self.general_block(p, b, &mut rows, acc, &mut work),
                 }
@@ -292,17 +294,35 @@ impl ModelProblem<'_> {
             self.model.eval_batch_at(p, &blk.pairs, val);
         }
         let scale = &self.scale[blk.start..blk.start + len];
-        for (c, r) in rows.iter_mut().enumerate() {
-            let y = &self.targets[c * n + blk.start..c * n + blk.start + len];
-            for j in 0..len {
-                r[j] = val[c * len + j] * scale[j] - y[j];
+        if let Some(t) = self.transform {
+            // Transformed rows: the residual and the row's derivative
+            // factor from the model value.
+            work.factor.resize(m, 0.0);
+            for (c, r) in rows.iter_mut().enumerate() {
+                for j in 0..len {
+                    let (v, d) = t.apply(c * n + blk.start + j, val[c * len + j]);
+                    r[j] = v;
+                    work.factor[c * len + j] = d;
+                }
+            }
+        } else {
+            for (c, r) in rows.iter_mut().enumerate() {
+                let y = &self.targets[c * n + blk.start..c * n + blk.start + len];
+                for j in 0..len {
+                    r[j] = val[c * len + j] * scale[j] - y[j];
+                }
             }
         }
         let Some(acc) = acc else { return };
         let w = np + 1;
         work.a.resize(w * m, 0.0);
         let (a, jac) = (&mut work.a[..w * m], &work.jac[..m * np]);
-        scaled_transpose(jac, scale, np, a);
+        let factor = if self.transform.is_some() {
+            &work.factor[..m]
+        } else {
+            scale
+        };
+        scaled_transpose(jac, factor, np, a);
         for (c, r) in rows.iter().enumerate() {
             a[np * m + c * len..np * m + (c + 1) * len].copy_from_slice(r);
         }

@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# The measurements of issue 28 (fast where users wait), written as JSON
+# lines into $1 (a scratch folder) for report.py, and the commands appended
+# to $1/commands.txt:
+#
+#   BRDF_DATA=... benches/peers/issue28.sh OUT
+#
+# 1. `brdf fit` as users run it (default options: the appearance pipeline
+#    for renderer models, with the report-size image errors) and with
+#    `--metric ngan` (one fit), principled and glTF on every RGL file, one
+#    thread: processor time of the whole command (user + sys) and wall
+#    clock, final costs, and the seconds of every candidate of the
+#    render-fidelity pipeline;
+# 2. the full MERL grid (an RGL file resampled by `brdf resample`): the
+#    default fit of grey Ashikhmin-Shirley (fit_loop, 1 and 2 threads)
+#    against SciPy trf on the same problem (peer_fits + peers.py, same
+#    run), and principled RGB with --metric ngan;
+# 3. `brdf select` on one RGL file, 1 and 2 threads;
+# 4. `brdf batch` over the RGL folder x 5 models, 1 and 2 threads;
+# 5. criterion: the principled and glTF batch kernels.
+#
+# Called by run.sh; PEERS_ONLY=issue28 runs it alone (about 15 minutes of
+# processor time on the shared 2-core machine).
+set -euo pipefail
+
+out="$1"
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+: "${BRDF_DATA:?set BRDF_DATA to the measured data folder (with rgl/)}"
+target="${CARGO_TARGET_DIR:-$repo/target}"
+py="${PY:-python3}"
+d="$out/issue28"
+rm -rf "$d"
+mkdir -p "$d"
+cmds="$out/commands.txt"
+cd "$repo"
+cargo build --release -p brdf-cli -p brdf-benches --bin brdf --bin fit_loop --bin peer_fits
+brdf="$target/release/brdf"
+files="${FILES:-cc_ibiza_sunset_rgb cc_iris_purple_gem_rgb colodur_napoli_4f_rgb paper_white_rgb vch_golden_yellow_rgb}"
+
+# One timed command: its JSON output and "cpu wall" seconds as one line.
+timed() {
+	local tag="$1"
+	shift
+	/usr/bin/time -f '%U %S %e' -o "$d/time.txt" "$@" >"$d/out.json"
+	"$py" - "$tag" "$d/time.txt" "$d/out.json" <<'EOF' >>"$d/runs.jsonl"
+import json, sys
+tag, t, o = sys.argv[1], sys.argv[2], sys.argv[3]
+u, s, e = open(t).read().split()[-3:]
+try:
+    res = json.load(open(o))
+except ValueError:
+    res = None
+print(json.dumps({"tag": json.loads(tag), "cpu": float(u) + float(s), "wall": float(e), "result": res}))
+EOF
+}
+
+# 1. Renderer models on every RGL file, as `brdf fit` runs them.
+echo 'RAYON_NUM_THREADS=1 brdf fit --data $BRDF_DATA/rgl/FILE.bsdf --model {principled,gltf} [--metric ngan] --json --quiet' >>"$cmds"
+for model in principled gltf; do
+	for f in $files; do
+		for metric in auto ngan; do
+			RAYON_NUM_THREADS=1 timed "{\"kind\": \"rgl\", \"file\": \"$f\", \"model\": \"$model\", \"metric\": \"$metric\"}" \
+				"$brdf" fit --data "$BRDF_DATA/rgl/$f.bsdf" --model "$model" --metric "$metric" --json --quiet
+		done
+	done
+done
+
+# 2. The full MERL grid.
+merl="$d/paper_white.binary"
+echo 'brdf resample --from $BRDF_DATA/rgl/paper_white_rgb.bsdf --to merl $PEERS_OUT/issue28/paper_white.binary' >>"$cmds"
+"$brdf" resample --from "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --to merl "$merl" >/dev/null
+for t in 1 2; do
+	echo "RAYON_NUM_THREADS=$t fit_loop \$PEERS_OUT/issue28/paper_white.binary ashikhmin-shirley --grey --reps 2 --json" >>"$cmds"
+	RAYON_NUM_THREADS=$t "$target/release/fit_loop" "$merl" ashikhmin-shirley --grey --reps 2 --json |
+		"$py" -c "import json,sys; r=json.load(sys.stdin); print(json.dumps({'tag': {'kind': 'merl_as', 'threads': $t}, 'result': r}))" >>"$d/runs.jsonl"
+done
+echo 'RAYON_NUM_THREADS=1 peer_fits --out $PEERS_OUT/issue28/peers --only paper_white_grey_as --solvers bounded; python benches/peers/peers.py $PEERS_OUT/issue28/peers' >>"$cmds"
+RAYON_NUM_THREADS=1 "$target/release/peer_fits" --out "$d/peers" --only paper_white_grey_as --solvers bounded >"$d/peer_fits.log"
+RAYON_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$py" benches/peers/peers.py "$d/peers" >"$d/peers.log"
+echo 'RAYON_NUM_THREADS=1 fit_loop $PEERS_OUT/issue28/paper_white.binary principled --metric ngan --reps 1 --json' >>"$cmds"
+RAYON_NUM_THREADS=1 "$target/release/fit_loop" "$merl" principled --metric ngan --reps 1 --json |
+	"$py" -c "import json,sys; r=json.load(sys.stdin); print(json.dumps({'tag': {'kind': 'merl_principled', 'threads': 1}, 'result': r}))" >>"$d/runs.jsonl"
+rm -f "$merl"
+
+# 3. select on one RGL file.
+for t in 1 2; do
+	echo "RAYON_NUM_THREADS=$t brdf select --data \$BRDF_DATA/rgl/paper_white_rgb.bsdf --json --quiet" >>"$cmds"
+	RAYON_NUM_THREADS=$t timed "{\"kind\": \"select\", \"threads\": $t}" \
+		"$brdf" select --data "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --json --quiet
+done
+
+# 4. batch over the RGL folder x 5 models.
+models="principled,gltf,ggx,ashikhmin-shirley,cook-torrance"
+for t in 1 2; do
+	rm -rf "$d/batch_$t"
+	echo "RAYON_NUM_THREADS=$t brdf batch --data \$BRDF_DATA/rgl --models $models --out \$PEERS_OUT/issue28/batch_$t --quiet" >>"$cmds"
+	RAYON_NUM_THREADS=$t timed "{\"kind\": \"batch\", \"threads\": $t, \"fits\": 25}" \
+		"$brdf" batch --data "$BRDF_DATA/rgl" --models "$models" --out "$d/batch_$t" --quiet
+	cp "$d/batch_$t/summary.csv" "$d/batch_$t.csv"
+done
+
+# 5. The renderer kernels.
+echo "cargo bench -p brdf-benches --bench models -- 'renderer_kernels/' --warm-up-time 2 --measurement-time 5" >>"$cmds"
+rm -rf "$target"/criterion/renderer_kernels
+cargo bench -p brdf-benches --bench models -- 'renderer_kernels/' --warm-up-time 2 --measurement-time 5 >"$d/kernels.log" 2>&1
+mkdir -p "$d/kernels"
+for f in "$target"/criterion/renderer_kernels/*/new; do
+	name=$(basename "$(dirname "$f")")
+	cp "$f/estimates.json" "$d/kernels/$name.estimates.json"
+	cp "$f/benchmark.json" "$d/kernels/$name.benchmark.json"
+done
+rm -f "$d/time.txt" "$d/out.json"
