@@ -3,9 +3,10 @@ default `brdf fit` (principled, fitted for appearance) exported to Mitsuba 3
 and rendered in the judge scene beside Mitsuba's own `measured` plugin on
 the same file, under both light sets (`shared/spec/appearance.md`).
 
-The bounds are the goals of the issue where they are met (see
-results/render_fidelity.md); where a goal is not met yet, the bound is
-the regression guard stated beside it, and the closing note says so.
+The bounds are regression guards (the measured figures of
+results/render_fidelity.md plus a stated noise margin); which goals of the
+issue are met, and by how much the others are missed, is tabulated at the
+end of results/render_fidelity.md.
 Run by `.ci/run` (`bash benches/judge/ci.sh`).
 """
 
@@ -20,23 +21,28 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import render_fidelity as RF  # noqa: E402
 import scene as S  # noqa: E402
 
-# FLIP bounds (sky, studio) and the largest mean-colour CIEDE2000.
-# Measured (results/render_fidelity.md, 256 spp) and the issue's goals:
-# - paper_white 0.057/0.041 and colodur 0.087/0.059: the goals (0.06/0.04)
-#   hold for paper_white's sky only; colodur is at Ngan's fit (0.081/0.058)
-#   and both lie within 0.02-0.04 of the two-seed noise floor;
+# FLIP bounds (sky, studio) and the largest mean-colour CIEDE2000: regression
+# guards, not the goals. Measured (results/render_fidelity.md, 256 spp,
+# brdf-render's sky = Mitsuba's sunsky tabulated, h-sky) plus a noise
+# margin of 5% of the value (at least 0.005) on FLIP and 0.5 on dE; the
+# renders are seeded and the fits deterministic, so the margin covers
+# platform differences only. All bounds lie below the Mitsuba
+# inverse-rendering peer (ibiza 0.372/0.244, iris 0.443/0.266, golden yellow
+# 0.612/0.393, colodur 0.111/0.096, paper 0.069/0.047). Measured:
+# - paper_white 0.057/0.041, colodur 0.082/0.056 (issue goals 0.06/0.04:
+#   paper's sky met, its studio missed by 0.001, colodur missed by
+#   0.022/0.016);
 # - films, before issue 23 (Ngan's L2): ibiza 0.506/0.314, iris 0.638/0.450,
-#   golden yellow 0.540/0.391; now 0.322/0.213, 0.335/0.254, 0.297/0.197:
-#   below Mitsuba's own inverse rendering (0.372/0.244, 0.443/0.266,
-#   0.612/0.393) everywhere, at half of before only for golden yellow's
-#   studio light. The bounds: below the inverse-rendering peer, and a
-#   margin of about 10% over what was measured.
+#   golden yellow 0.540/0.391; now 0.306/0.207 (dE 6.0), 0.311/0.229
+#   (dE 1.8), 0.291/0.190 (dE 5.3): half of before met for iris' sky and
+#   golden yellow's studio only (results/render_fidelity.md lists each
+#   goal and its margin).
 BOUNDS = {
-    "paper_white_rgb": ((0.065, 0.046), 1.0),
-    "colodur_napoli_4f_rgb": ((0.097, 0.066), 1.0),
-    "cc_ibiza_sunset_rgb": ((0.36, 0.24), 5.5),
-    "cc_iris_purple_gem_rgb": ((0.37, 0.265), 6.5),
-    "vch_golden_yellow_rgb": ((0.33, 0.22), 7.6),
+    "paper_white_rgb": ((0.062, 0.046), 1.0),
+    "colodur_napoli_4f_rgb": ((0.087, 0.061), 1.0),
+    "cc_ibiza_sunset_rgb": ((0.322, 0.218), 6.6),
+    "cc_iris_purple_gem_rgb": ((0.327, 0.241), 2.3),
+    "vch_golden_yellow_rgb": ((0.306, 0.200), 5.8),
 }
 
 
