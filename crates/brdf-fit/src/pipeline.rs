@@ -1102,6 +1102,8 @@ struct TransformedRows {
     cos_i: Vec<f64>,
     row: Vec<f64>,
     target: Vec<f64>,
+    /// The measured values (channel-major).
+    values: Vec<f64>,
 }
 
 impl TransformedRows {
@@ -1130,6 +1132,7 @@ impl TransformedRows {
             cos_i,
             row,
             target,
+            values,
         }
     }
 }
@@ -1137,7 +1140,11 @@ impl TransformedRows {
 impl RowTransform for TransformedRows {
     fn apply(&self, i: usize, m: f64) -> (f64, f64) {
         let c = self.cos_i[i % self.cos_i.len()];
-        let x = m * c;
+        // The model value as the unit-scale residual `M - R` plus `R`, as
+        // the transformed objective has always formed it (at data near
+        // 1e300 the difference is what the fit has seen).
+        let v = self.values[i];
+        let x = ((m - v) + v) * c;
         (
             self.row[i] * self.transform.value(x) - self.target[i],
             self.row[i] * c * self.transform.derivative(x),

@@ -205,14 +205,12 @@ impl Factored {
 
     /// The guarded normal equations; `None` where they are not accurate
     /// (or `J` is not finite: a non-finite entry makes the Gram matrix
-    /// non-finite, which the guard refuses). Exactly zero columns (a
-    /// parameter without influence at this point) do not send the step to
-    /// QR: they get zero rows and columns in `R`, as in QR's.
+    /// non-finite, which the guard refuses).
     fn by_normal_equations(jac: &[f64], r: &[f64], n: usize) -> Option<Self> {
         let m = r.len();
         let jm = faer::MatRef::from_row_major_slice(jac, m, n);
         let rm = faer::MatRef::from_column_major_slice(r, m, 1);
-        let (rr, qtr) = tall_qr::gram_triangle_with_zero_columns(jm, rm)?;
+        let (rr, qtr) = tall_qr::gram_triangle(jm, rm)?;
         Some(Self::from_triangle(
             rr,
             (0..n).map(|i| qtr[(i, 0)]).collect(),
@@ -221,7 +219,10 @@ impl Factored {
 
     /// The guarded normal equations a problem formed in its residual pass
     /// (`gram`: the `(n+1) x (n+1)` row-major Gram matrix of `[J | r]`);
-    /// `None` where they are not accurate.
+    /// `None` where they are not accurate. Exactly zero columns (a
+    /// parameter without influence at this point, such as a tint whose lobe
+    /// is off) do not send the rest of the solve to the stored Jacobian and
+    /// QR: they get zero rows and columns in `R`, as in QR's.
     fn from_gram(gram: &[f64], n: usize) -> Option<Self> {
         let w = n + 1;
         let g = Mat::from_fn(n, n, |i, k| gram[i * w + k]);

@@ -199,20 +199,6 @@ pub fn triangle_from_gram_with_zero_columns(
     Some((r, qtb))
 }
 
-/// [`gram_triangle`] with exactly zero columns of `A` taken as
-/// [`triangle_from_gram_with_zero_columns`] takes them.
-pub fn gram_triangle_with_zero_columns(
-    a: MatRef<'_, f64>,
-    b: MatRef<'_, f64>,
-) -> Option<(Mat<f64>, Mat<f64>)> {
-    let k = a.ncols();
-    if k == 0 || a.nrows() < k || b.nrows() != a.nrows() {
-        return None;
-    }
-    let (g, h) = gram(a, b, None);
-    triangle_from_gram_with_zero_columns(g.as_ref(), h)
-}
-
 /// `A^T W A` and `A^T W B` (`W = I` without weights), summed over row
 /// blocks in block order (in parallel with rayon for tall matrices).
 fn gram(a: MatRef<'_, f64>, b: MatRef<'_, f64>, w: Option<&[f64]>) -> (Mat<f64>, Mat<f64>) {
