@@ -65,8 +65,12 @@ fn shade_row(
             }
             j += 1;
         }
+        // Added, not stored: with Mitsuba's film a silhouette pixel has
+        // several entries (its sub-samples), on top of the background.
         let x = p.pixel % size;
-        out[x * 3..x * 3 + 3].copy_from_slice(&acc);
+        for (o, a) in out[x * 3..x * 3 + 3].iter_mut().zip(acc) {
+            *o += a;
+        }
     }
 }
 
@@ -102,12 +106,17 @@ pub fn render(sp: &ShadingPoints, brdf: &dyn Brdf) -> Image {
                 shade_row(sp, brdf, pixels, nc, &mut work, row);
             }
         });
-    Image {
+    let mut image = Image {
         width: size,
         height: size,
         channels: 3,
         data,
+    };
+    // Mitsuba's pixel filter, as `ShadingPoints::render` applies it.
+    if !sp.film_mask.is_empty() {
+        brdf_render::film::filter(&mut image);
     }
+    image
 }
 
 /// The data's render under one light set, with what every comparison
