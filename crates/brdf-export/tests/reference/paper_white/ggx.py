@@ -2,7 +2,7 @@
 
 Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.
 
-converted by fitting: `ggx` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 1.6329e-2 1/sr, relative L2 7.3612e-2; image error at 128 px: HDR-FLIP sky 0.0145, studio 0.0120 (mean 0.0133), mean-colour CIEDE2000 at most 0.05
+converted by fitting: `ggx` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 1.5446e-2 1/sr, relative L2 6.9634e-2; image error at 128 px: HDR-FLIP sky 0.0127, studio 0.0123 (mean 0.0125), mean-colour CIEDE2000 at most 0.06
 """
 
 import os
@@ -12,9 +12,9 @@ import bpy
 
 NAME = "paper_white_rgb"
 INPUTS = {
-    "Base Color": (0.8398556002124199, 0.852614161838464, 1, 1.0),
-    "Metallic": 0.08850234379265125,
-    "Roughness": 0.6805248207248658,
+    "Base Color": (0.8405638917864988, 0.8533212514099516, 1, 1.0),
+    "Metallic": 0.08685613075101921,
+    "Roughness": 0.6820936107949241,
     "IOR": 1.5,
     "Specular IOR Level": 0.5,
 }
