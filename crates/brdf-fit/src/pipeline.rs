@@ -513,6 +513,16 @@ fn start_box(model: &dyn Parametric, nonlinear: &[usize]) -> StartBox {
 
 pub(crate) type NonlinearFit = (Vec<f64>, SolverReport, (usize, usize, usize), String);
 
+/// The polish's report with the search's iterations and evaluations
+/// counted in (the work of the whole fit).
+fn after_search(search: &SolverReport, polish: SolverReport) -> SolverReport {
+    SolverReport {
+        iterations: search.iterations + polish.iterations,
+        evaluations: search.evaluations + polish.evaluations,
+        ..polish
+    }
+}
+
 fn fit_nonlinear(
     model: &dyn Parametric,
     data: &SampleSet,
@@ -626,11 +636,7 @@ fn fit_nonlinear(
     let (p, rep, how) = if fused_refine {
         // Already on all parameters: polish the best to the full tolerances.
         let polish = repolish(problem, &full, &polish_lm, &ms.best.params)?;
-        let rep = SolverReport {
-            iterations: ms.best.iterations + polish.iterations,
-            evaluations: ms.best.evaluations + polish.evaluations,
-            ..polish
-        };
+        let rep = after_search(&ms.best, polish);
         let stages = search_stages(data.len(), starts.len());
         (
             rep.params.clone(),
@@ -644,11 +650,7 @@ fn fit_nonlinear(
         // reports every parameter's bound status).
         let p0 = project(&ms.best.params)?;
         let polish = bounded_least_squares(problem, &p0, &full, &polish_lm)?;
-        let rep = SolverReport {
-            iterations: ms.best.iterations + polish.iterations,
-            evaluations: ms.best.evaluations + polish.evaluations,
-            ..polish
-        };
+        let rep = after_search(&ms.best, polish);
         let stages = search_stages(data.len(), starts.len());
         (
             rep.params.clone(),
@@ -660,11 +662,7 @@ fn fit_nonlinear(
     } else {
         // Polish the best start to the full tolerances.
         let polish = repolish(problem, &full, &polish_lm, &ms.best.params)?;
-        let rep = SolverReport {
-            iterations: ms.best.iterations + polish.iterations,
-            evaluations: ms.best.evaluations + polish.evaluations,
-            ..polish
-        };
+        let rep = after_search(&ms.best, polish);
         (
             rep.params.clone(),
             rep,
