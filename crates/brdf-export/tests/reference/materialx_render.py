@@ -5,6 +5,7 @@ shared/spec/appearance.md, studio light set, and write linear radiance EXRs
 for render_check.py to compare with brdf-render.
 
   xvfb-run -a python materialx_render.py OUT_DIR FILE.mtlx...
+  xvfb-run -a python materialx_render.py --probe   (exits 0 if an OpenGL context can be made)
 
 Each document is loaded with MaterialX's standard data libraries, GLSL is
 generated for its material (MaterialX's own shading graphs: `gltf_pbr`,
@@ -309,6 +310,11 @@ def render_file(f, r, tools, out_dir):
 
 
 def main():
+    if sys.argv[1:] == ["--probe"]:
+        # Whether an OpenGL context can be made here (MaterialX's renderer
+        # ends the process when it cannot open the X display).
+        mx_glsl.GlslRenderer.create(8, 8, mx_render.BaseType.FLOAT).initialize()
+        return
     out_dir, files = sys.argv[1], sys.argv[2:]
     os.makedirs(out_dir, exist_ok=True)
     report = dict(settings(), files=[])
