@@ -25,7 +25,7 @@
 # example's binary (default: cargo run --release). RENDER_LIGHTS: the light
 # sets of the Mitsuba render checks (default studio,sky: brdf-render's sky is
 # Mitsuba's sunsky, tabulated; Cycles and MaterialX check studio only). Takes
-# about ten minutes (the MaterialX renders on llvmpipe about five).
+# about ten minutes (the MaterialX renders on llvmpipe about two).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 py="${PYTHON:-python3}"

@@ -13,9 +13,11 @@ generated for its material (MaterialX's own shading graphs: `gltf_pbr`,
 OUT_DIR/NAME.studio.seed2.exr and .seed3.exr are written per file (NAME = the
 file name with `.` for `/`): the renderer has no seed, so the second is an
 independent rerun (a fresh program), whose difference from the first is the
-renderer's floor (0 when it is deterministic); plus OUT_DIR/materialx.json:
-MaterialX's version, the OpenGL renderer string, the settings, the shader
-node of each file and its mean radiance.
+renderer's floor (0 when it is deterministic); for a `gltf_pbr` document
+also NAME.studio.gltf_spec.exr, drawn with the glTF spec's formulas put back
+into MaterialX's GLSL (materialx_gltf_spec.py: the diagnosis of what
+differs); plus OUT_DIR/materialx.json: MaterialX's version, the settings,
+the shader node of each file and its mean radiance.
 
 The scene, as brdf-render's (crates/brdf-render):
   - camera at (0, 0, 6) looking down -z, up +y, 22 deg field of view
@@ -28,12 +30,13 @@ The scene, as brdf-render's (crates/brdf-render):
   - sphere: radius 1 at the origin, a 512 x 256 latitude-longitude mesh whose
     normals are the sphere's, pushed out by 1 / cos^2(pi / 512) so that its
     faces cover every pixel whose ray hits the sphere (the shading points
-    move by at most 4e-5);
+    move by at most 4e-5); the sub-pixel pass draws only its rim;
   - studio light: brdf-render's key light, the 1.2 x 1.2 square of radiance
     12 at (3, 3, 4) facing the origin, as its 8 x 8 cells
     (materialx_square_light.glsl, one light each); the constant surround of
     radiance 0.05 as MaterialX's environment light (uniform radiance and
-    irradiance maps, filtered importance sampling with 64 samples);
+    irradiance maps, filtered importance sampling with 64 samples: at most
+    0.14 % from 1024 samples on the sphere's inner pixels);
   - no shadows, no ambient occlusion, no transparency; no colour transform
     (the documents are linear Rec.709, the working space); no sRGB encoding
     of the output.
@@ -66,6 +69,9 @@ KEY = {"origin": (3.0, 3.0, 4.0), "side": 1.2, "radiance": 12.0, "grid": 8}
 SURROUND = 0.05
 ENV_SAMPLES = 64
 MESH = (512, 256)  # longitude, latitude segments
+# The sub-pixel pass draws the sphere below this z only: seen from the camera
+# it lies beyond 51.8 px from the centre, the silhouette's pixels beyond 54.
+RIM_Z = 0.5
 LIGHT_NODE = "judge_square_cell"
 LIGHT_IMPL = "IM_point_light_genglsl"
 
@@ -138,9 +144,10 @@ def light_handler(lib, contexts):
     return lh, doc
 
 
-def sphere_obj(path):
+def sphere_obj(path, z_max=math.inf):
     """A latitude-longitude unit sphere as OBJ, pushed out so that its faces
-    lie outside the sphere (they then cover its whole silhouette)."""
+    lie outside the sphere (they then cover its whole silhouette); only the
+    faces reaching below z = z_max."""
     n_lon, n_lat = MESH
     scale = 1.0 / (math.cos(math.pi / n_lon) * math.cos(math.pi / (2 * n_lat)))
     theta = np.linspace(0.0, math.pi, n_lat + 1)
@@ -151,6 +158,7 @@ def sphere_obj(path):
     idx = np.arange((n_lat + 1) * (n_lon + 1)).reshape(n_lat + 1, n_lon + 1) + 1
     a, b, c, d = idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]
     tris = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
+    tris = tris[nrm[tris - 1, 2].min(axis=1) < z_max]
     with open(path, "w") as fh:
         fh.write("".join(f"v {x:.9f} {y:.9f} {z:.9f}\n" for x, y, z in nrm * scale))
         fh.write("".join(f"vn {x:.9f} {y:.9f} {z:.9f}\n" for x, y, z in nrm))
@@ -187,22 +195,34 @@ def generator(root):
     return gen, context
 
 
-def renderer(obj, lh):
-    """One GLSL renderer with the sphere and the lights (one OpenGL context:
-    the environment maps are textures of the context that first binds them)."""
+def renderer(lh):
+    """One GLSL renderer with the lights (one OpenGL context: the
+    environment maps are textures of the context that first binds them)."""
     r = mx_glsl.GlslRenderer.create(SIZE, SIZE, mx_render.BaseType.FLOAT)
     r.initialize()
     r.setImageHandler(mx_glsl.GLTextureHandler.create(mx_render.StbImageLoader.create()))
     r.setLightHandler(lh)
-    gh = r.getGeometryHandler()
-    gh.addLoader(mx_render.TinyObjLoader.create())
-    if not gh.loadGeometry(mx.FilePath(obj), False):
-        raise RuntimeError(f"{obj}: MaterialX's OBJ loader did not load the sphere")
     return r
 
 
-def draw(r, shader, size):
+def meshes(tmp):
+    """The geometry of each pass: the sphere for the pixel centres, its rim
+    for the sub-pixel positions (only the silhouette's pixels use them)."""
+    out = {}
+    for size, name, z_max in ((SIZE, "sphere", math.inf), (SIZE * SUB, "rim", RIM_Z)):
+        obj = os.path.join(tmp, f"{name}.obj")
+        sphere_obj(obj, z_max)
+        gh = mx_render.GeometryHandler.create()
+        gh.addLoader(mx_render.TinyObjLoader.create())
+        if not gh.loadGeometry(mx.FilePath(obj), False):
+            raise RuntimeError(f"{obj}: MaterialX's OBJ loader did not load the sphere")
+        out[size] = gh
+    return out
+
+
+def draw(r, shader, size, geometry):
     """One render of `shader` at size x size, rows top to bottom, RGB."""
+    r.setGeometryHandler(geometry[size])
     r.setSize(size, size)
     r.setCamera(camera(size))
     r.createProgram(shader)
@@ -291,7 +311,7 @@ def settings():
             "sphere_mesh": {"longitude": MESH[0], "latitude": MESH[1]}}
 
 
-def render_file(f, r, tools, out_dir):
+def render_file(f, r, geometry, tools, out_dir):
     """Render the document `f` (twice; a `gltf_pbr` one also with the glTF
     spec's formulas) and write the EXRs; its entry of materialx.json."""
     name = os.path.relpath(f).replace("/", ".")
@@ -301,7 +321,7 @@ def render_file(f, r, tools, out_dir):
         runs.append(("gltf_spec", material_shader(f, *tools["gltf_spec"])[0]))
     entry = {"file": os.path.relpath(f), "material": material, "shader_node": node}
     for tag, sh in runs:
-        img = film(draw(r, sh, SIZE), draw(r, sh, SIZE * SUB))
+        img = film(draw(r, sh, SIZE, geometry), draw(r, sh, SIZE * SUB, geometry))
         exr = os.path.join(out_dir, f"{name}.studio.{tag}.exr")
         rc.write_exr(exr, img)
         entry[tag] = {"exr": os.path.basename(exr), "finite": bool(np.isfinite(img).all()),
@@ -324,11 +344,9 @@ def main():
             lib = libraries(root)
             tools[kind] = (lib, *generator(root))
         lh, _lights_doc = light_handler(tools["materialx"][0], [t[2] for t in tools.values()])
-        obj = os.path.join(tmp, "sphere.obj")
-        sphere_obj(obj)
-        r = renderer(obj, lh)
+        r, geometry = renderer(lh), meshes(tmp)
         # The renderer has no seed: seed3 is a rerun from a fresh program.
-        report["files"] = [render_file(f, r, tools, out_dir) for f in files]
+        report["files"] = [render_file(f, r, geometry, tools, out_dir) for f in files]
     with open(os.path.join(out_dir, "materialx.json"), "w") as fh:
         json.dump(report, fh, indent=1)
 
