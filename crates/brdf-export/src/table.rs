@@ -291,7 +291,7 @@ pub fn renders_markdown() -> String {
         return String::new();
     };
     let mut s = String::from(
-        "Checks by rendering: each export rendered in its renderer (Mitsuba 3; Blender Cycles, the `.usda` and `.gltf` through Blender's importers) against `brdf-render`'s render of the model it holds, studio light, HDR-FLIP (bounds: Mitsuba 0.02, Cycles 0.03), and against the fit itself for conversions:\n\n",
+        "Checks by rendering: each export rendered in its renderer (Mitsuba 3; Blender Cycles, the `.usda` and `.gltf` through Blender's importers; MaterialX's GLSL renderer) against `brdf-render`'s render of the model it holds, studio light, HDR-FLIP (bounds: Mitsuba 0.02, Cycles 0.03, MaterialX 0.025), and against the fit itself for conversions:\n\n",
     );
     s +=
         "| file | renderer | holds | HDR-FLIP vs brdf-render | renderer re-seeded | vs the fit |\n";

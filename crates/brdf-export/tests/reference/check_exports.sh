@@ -11,16 +11,21 @@
 #   render_check.py         checks by rendering (paper_white/render_check.json): each
 #                           Mitsuba snippet and scene rendered in Mitsuba, each Blender
 #                           script, USD and glTF file rendered in Cycles (cycles_render.py;
-#                           the .usda and .gltf through Blender's importers) under the judge's
-#                           studio light (Mitsuba also under its sky), against brdf-render's render of the model the
-#                           file holds (examples/judge_exr.rs), by HDR-FLIP
+#                           the .usda and .gltf through Blender's importers), each MaterialX
+#                           document rendered by MaterialX's GLSL renderer (materialx_render.py,
+#                           under xvfb-run) under the judge's studio light (Mitsuba also under
+#                           its sky), against brdf-render's render of the model the file holds
+#                           (examples/judge_exr.rs), by HDR-FLIP
 # Needs PYTHON (with mitsuba, numpy, materialx, usd-core, flip-evaluator) and
 # NODE_PATH holding gltf-validator; BLENDER_PYTHON (with bpy) for the Blender
 # checks, which are skipped with a message without it (render_check.json then
-# keeps the committed Cycles answers). JUDGE_EXR: the judge_exr example's
-# binary (default: cargo run --release). RENDER_LIGHTS: the light sets of the
-# Mitsuba render checks (default studio,sky: brdf-render's sky is Mitsuba's
-# sunsky, tabulated; Cycles checks studio only). Takes about three minutes.
+# keeps the committed Cycles answers); xvfb-run (Debian's xvfb) for the
+# MaterialX renders, likewise skipped, keeping the committed MaterialX
+# answers, where no OpenGL context can be made. JUDGE_EXR: the judge_exr
+# example's binary (default: cargo run --release). RENDER_LIGHTS: the light
+# sets of the Mitsuba render checks (default studio,sky: brdf-render's sky is
+# Mitsuba's sunsky, tabulated; Cycles and MaterialX check studio only). Takes
+# about ten minutes (the MaterialX renders on llvmpipe about two).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 py="${PYTHON:-python3}"
@@ -59,27 +64,35 @@ for m in paper_white/*.json; do
     fi
 done
 render_files=(paper_white/*.xml)
+kept=() # renderers that cannot run here: their committed answers are kept
 if [ -n "${BLENDER_PYTHON:-}" ]; then
     "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 paper_white/*.py paper_white/*.usda paper_white/*.gltf >&2
     render_files+=(paper_white/*.py paper_white/*.usda paper_white/*.gltf)
 else
     echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy; the committed Cycles answers are kept"
-    # Keep the committed Cycles answers (the tests check they are for the files as they are).
-    "$py" - "$exr_dir" <<'PY'
-import json, sys
-old = json.load(open("paper_white/render_check.json"))
-json.dump({"cycles": old.get("cycles"), "checks": [c for c in old["checks"] if c["renderer"] == "cycles"]},
-          open(sys.argv[1] + "/cycles_kept.json", "w"))
-PY
+    kept+=(cycles)
+fi
+# MaterialX's GLSL renderer needs an OpenGL context: Mesa's llvmpipe on an
+# Xvfb display (xvfb-run). Without one the committed answers are kept;
+# other failures of the render stop the script.
+if command -v xvfb-run >/dev/null && xvfb-run -a "$py" materialx_render.py --probe 2>/dev/null; then
+    xvfb-run -a "$py" materialx_render.py "$exr_dir" paper_white/*.mtlx >&2
+    render_files+=(paper_white/*.mtlx)
+else
+    echo "MaterialX render checks skipped: no OpenGL context (install xvfb for xvfb-run); the committed MaterialX answers are kept"
+    kept+=(materialx)
 fi
 "$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio,sky}" --spp 1024 "${render_files[@]}" >paper_white/render_check.json.new
-if [ -f "$exr_dir/cycles_kept.json" ]; then
-    "$py" - "$exr_dir/cycles_kept.json" paper_white/render_check.json.new <<'PY'
+if [ ${#kept[@]} -gt 0 ]; then
+    # Keep the committed answers of those renderers (the tests check they
+    # are for the files as they are).
+    "$py" - paper_white/render_check.json paper_white/render_check.json.new "${kept[@]}" <<'PY'
 import json, sys
-kept, new = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
-if kept["cycles"]:
-    new["cycles"] = kept["cycles"]
-new["checks"] += kept["checks"]
+old, new = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+for renderer in sys.argv[3:]:
+    if old.get(renderer):
+        new[renderer] = old[renderer]
+    new["checks"] += [c for c in old["checks"] if c["renderer"] == renderer]
 json.dump(new, open(sys.argv[2], "w"), indent=1)
 PY
 fi

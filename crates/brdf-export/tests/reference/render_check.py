@@ -15,18 +15,25 @@ FILE is an export; what renders it:
                Blender Cycles: the EXRs cycles_render.py wrote in EXR_DIR
                (the script's material; the .usda through Blender's USD
                importer, the .gltf through its glTF importer), studio light
+  M.mtlx, M.openpbr.mtlx
+               MaterialX's GLSL renderer: the EXRs materialx_render.py wrote
+               in EXR_DIR (GLSL generated for the document's material),
+               studio light; for a `gltf_pbr` document also its render with
+               the glTF spec's formulas (materialx_gltf_spec.py):
+               flip_held_gltf_spec
 EXR_DIR also holds brdf-render's renders (examples/judge_exr.rs):
 EXR_DIR/brdf-render/MODEL/LIGHT.exr for MODEL = M and M.KIND (the saved
 models M.json, M.KIND.json). The model a file holds is M.KIND.json where
-the export was converted (KIND: mitsuba, scene, blender, usd, gltf), else
-M.json.
+the export was converted (KIND: mitsuba, scene, blender, usd, gltf,
+materialx, openpbr), else M.json.
 
 Per file and light: flip_held (the renderer against brdf-render of the model
 the file holds: the export is exact, or mapped, when this is at the noise
 floor), flip_source (against brdf-render of the fitted model M.json: for a
 conversion, to set beside the image error the conversion printed) and
 flip_reseeded (the renderer against itself at another seed: the noise
-floor). Needs mitsuba, numpy, flip-evaluator.
+floor; MaterialX's renderer has no seed: a rerun). Needs mitsuba, numpy,
+flip-evaluator.
 """
 
 import json
@@ -42,10 +49,17 @@ sys.path.insert(0, os.path.join(here, "..", "..", "..", "..", "benches", "judge"
 import scene as S  # noqa: E402
 
 SEEDS = (2, 3)
+# Renderers that write EXRs and a report NAME.json into EXR_DIR for this script.
+EXR_RENDERERS = ("cycles", "materialx")
 
 
 def read_exr(path):
     return np.array(mi.Bitmap(path), dtype=np.float32)[:, :, :3]
+
+
+def write_exr(path, img):
+    """A linear RGB float EXR of the H x W x 3 array `img`."""
+    mi.Bitmap(np.ascontiguousarray(img, dtype=np.float32), mi.Bitmap.PixelFormat.RGB).write(path)
 
 
 def hdr_flip(reference, test):
@@ -66,6 +80,10 @@ def kind_of(path):
         return stem, "usd", "cycles"
     if base.endswith(".gltf"):
         return stem, "gltf", "cycles"
+    if base.endswith(".openpbr.mtlx"):
+        return stem, "openpbr", "materialx"
+    if base.endswith(".mtlx"):
+        return stem, "materialx", "materialx"
     raise ValueError(f"{path}: no renderer checks this kind of export here")
 
 
@@ -78,6 +96,93 @@ def mitsuba_renders(path, kind, light, spp):
         return [np.array(mi.render(scene, spp=spp, seed=s), dtype=np.float32)[:, :, :3] for s in SEEDS]
     bsdf = S.bsdf_of(path)
     return [S.render(bsdf, light, seed=s, spp=spp) for s in SEEDS]
+
+
+def renderer_reports(exr_dir):
+    """The reports the EXR-writing renderers left in EXR_DIR (cycles.json
+    from cycles_render.py, materialx.json from materialx_render.py)."""
+    reports = {}
+    for renderer in EXR_RENDERERS:
+        path = os.path.join(exr_dir, f"{renderer}.json")
+        if os.path.exists(path):
+            with open(path) as fh:
+                reports[renderer] = json.load(fh)
+    return reports
+
+
+def settings_of(renderer, report):
+    """What render_check.json keeps of a renderer's report: its settings."""
+    if renderer == "cycles":
+        return {k: report[k] for k in ("blender", "spp", "size", "light", "pixel_filter_width",
+                                       "max_bounces", "view_transform", "units")}
+    return {k: v for k, v in report.items() if k != "files"}
+
+
+def describe(check, renderer, kind, entry):
+    """The route a file took to its renderer and what the renderer made of it."""
+    if renderer == "mitsuba":
+        check["route"] = ("mi.load_file of the scene" if kind == "scene"
+                          else "snippet on the sphere of the judge scene (benches/judge/scene.py)")
+    elif renderer == "cycles":
+        check["route"] = "Blender Cycles, " + entry["route"]
+        check["blender_material"] = {k: entry.get(k) for k in ("material", "distribution", "inputs")}
+    else:
+        check["route"] = "MaterialX GlslRenderer (GLSL generated for the document's material)"
+        check["materialx_material"] = {"material": entry["material"], "shader_node": entry["shader_node"]}
+
+
+def entry_of(report, f):
+    """The renderer report's entry for file `f`, if it rendered it."""
+    names = [e for e in report["files"] if os.path.abspath(e["file"]) == os.path.abspath(f)]
+    return names[0] if names else None
+
+
+def compare(held_img, source_img, renders):
+    """The HDR-FLIPs of a render against brdf-render's pictures and itself."""
+    return {
+        "flip_held": hdr_flip(held_img, renders[0]),
+        "flip_source": hdr_flip(source_img, renders[0]),
+        "flip_reseeded": hdr_flip(renders[0], renders[1]),
+        "flip_brdf_render_held_vs_source": hdr_flip(source_img, held_img),
+        "brdf_render_mean": [float(x) for x in held_img.reshape(-1, 3).mean(axis=0, dtype=np.float64)],
+        "renderer_mean": [float(x) for x in renders[0].reshape(-1, 3).mean(axis=0, dtype=np.float64)],
+    }
+
+
+def check_file(f, exr_dir, lights, spp, reports):
+    """The check of export `f`, or None when its renderer left no render."""
+    stem, kind, renderer = kind_of(f)
+    d = os.path.dirname(f)
+    converted = os.path.exists(os.path.join(d, f"{stem}.{kind}.json"))
+    held = f"{stem}.{kind}" if converted else stem
+    check = {"file": os.path.relpath(f, here), "text": open(f).read(), "renderer": renderer,
+             "model": os.path.join(os.path.relpath(d, here), f"{held}.json"),
+             "source": os.path.join(os.path.relpath(d, here), f"{stem}.json"),
+             "converted": converted, "lights": {}}
+    entry = None
+    if renderer != "mitsuba":
+        entry = entry_of(reports[renderer], f) if renderer in reports else None
+        if entry is None:
+            return None
+    describe(check, renderer, kind, entry)
+    base = os.path.join(exr_dir, os.path.relpath(f).replace("/", "."))
+    for light in lights:
+        if renderer == "mitsuba":
+            renders = mitsuba_renders(f, kind, light, spp)
+            if renders is None:
+                continue
+        else:
+            if light != reports[renderer]["light"]:
+                continue
+            renders = [read_exr(f"{base}.{light}.seed{s}.exr") for s in SEEDS]
+        held_img = read_exr(os.path.join(exr_dir, "brdf-render", held, f"{light}.exr"))
+        source_img = read_exr(os.path.join(exr_dir, "brdf-render", stem, f"{light}.exr"))
+        check["lights"][light] = compare(held_img, source_img, renders)
+        spec = f"{base}.{light}.gltf_spec.exr"
+        if renderer == "materialx" and os.path.exists(spec):
+            # MaterialX's GLSL with the glTF spec's formulas (materialx_gltf_spec.py).
+            check["lights"][light]["flip_held_gltf_spec"] = hdr_flip(held_img, read_exr(spec))
+    return check
 
 
 def main():
@@ -94,59 +199,15 @@ def main():
     exr_dir, files = args[0], args[1:]
     S.set_variant("scalar_rgb")
     out = {"mitsuba": mi.__version__, "flip_evaluator": getattr(flip, "__version__", "1.7"),
-           "reference": "brdf-render (examples/judge_exr.rs), pixel centres, 128 px",
+           "reference": "brdf-render (examples/judge_exr.rs), 128 px, its film (crates/brdf-render/src/film.rs)",
            "mitsuba_spp": spp, "checks": []}
-    cycles_json = os.path.join(exr_dir, "cycles.json")
-    cycles = None
-    if os.path.exists(cycles_json):
-        with open(cycles_json) as fh:
-            cycles = json.load(fh)
-        out["cycles"] = {k: cycles[k] for k in ("blender", "spp", "size", "light", "pixel_filter_width",
-                                                "max_bounces", "view_transform", "units")}
+    reports = renderer_reports(exr_dir)
+    for renderer, report in reports.items():
+        out[renderer] = settings_of(renderer, report)
     for f in files:
-        stem, kind, renderer = kind_of(f)
-        d = os.path.dirname(f)
-        converted = os.path.exists(os.path.join(d, f"{stem}.{kind}.json"))
-        held = f"{stem}.{kind}" if converted else stem
-        check = {"file": os.path.relpath(f, here), "text": open(f).read(), "renderer": renderer,
-                 "model": os.path.join(os.path.relpath(d, here), f"{held}.json"),
-                 "source": os.path.join(os.path.relpath(d, here), f"{stem}.json"),
-                 "converted": converted, "lights": {}}
-        if renderer == "mitsuba":
-            check["route"] = ("mi.load_file of the scene" if kind == "scene"
-                              else "snippet on the sphere of the judge scene (benches/judge/scene.py)")
-        else:
-            if cycles is None:
-                continue
-            entries = {c["file"]: c for c in cycles["files"]}
-            names = [n for n in entries if os.path.abspath(n) == os.path.abspath(f)]
-            if not names:
-                continue
-            c = entries[names[0]]
-            check["route"] = "Blender Cycles, " + c["route"]
-            check["blender_material"] = {k: c.get(k) for k in ("material", "distribution", "inputs")}
-        for light in lights:
-            ours = os.path.join(exr_dir, "brdf-render", held, f"{light}.exr")
-            source = os.path.join(exr_dir, "brdf-render", stem, f"{light}.exr")
-            if renderer == "mitsuba":
-                renders = mitsuba_renders(f, kind, light, spp)
-                if renders is None:
-                    continue
-            else:
-                if light != cycles["light"]:
-                    continue
-                base = os.path.join(exr_dir, os.path.relpath(f).replace("/", "."))
-                renders = [read_exr(f"{base}.{light}.seed{s}.exr") for s in SEEDS]
-            held_img, source_img = read_exr(ours), read_exr(source)
-            check["lights"][light] = {
-                "flip_held": hdr_flip(held_img, renders[0]),
-                "flip_source": hdr_flip(source_img, renders[0]),
-                "flip_reseeded": hdr_flip(renders[0], renders[1]),
-                "flip_brdf_render_held_vs_source": hdr_flip(source_img, held_img),
-                "brdf_render_mean": [float(x) for x in held_img.reshape(-1, 3).mean(axis=0, dtype=np.float64)],
-                "renderer_mean": [float(x) for x in renders[0].reshape(-1, 3).mean(axis=0, dtype=np.float64)],
-            }
-        out["checks"].append(check)
+        check = check_file(f, exr_dir, lights, spp, reports)
+        if check is not None:
+            out["checks"].append(check)
     print(json.dumps(out, indent=1))
 
 
