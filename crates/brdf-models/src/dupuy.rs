@@ -55,7 +55,14 @@
 //! written linearly; at back-scattering (`x = 1`) it is `F_c`, so the
 //! extraction stays exact: for data of the assumed form the fit returns
 //! `kd = S = 0` and the extracted `F_c`. The table (256 nodes) is part of
-//! the model: its stored numbers are the parameters and the table.
+//! the model: its stored numbers are the parameters and the table, which
+//! it hands to a saved model through
+//! [`Parametric::data_table`] (the saved-model schema's version 2 holds it,
+//! [`crate::saved_model`]) and is rebuilt from by
+//! [`Dupuy::from_saved_table`], evaluating as before to the last bit.
+//! Data without back-scattering samples (CUReT's and Cornell's scattered
+//! measurements) cannot give a table: [`ParamError::Data`], naming the
+//! data set and the models to fit instead.
 //! Before data the catalogue builds it with the table of a GGX `D`
 //! (`alpha = 0.3`).
 //!
