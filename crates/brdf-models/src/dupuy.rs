@@ -58,7 +58,7 @@
 //! the model: its stored numbers are the parameters and the table, which
 //! it hands to a saved model through
 //! [`Parametric::data_table`] (the saved-model schema's version 2 holds it,
-//! [`crate::saved_model`]) and is rebuilt from by
+//! `saved_model`) and is rebuilt from by
 //! [`Dupuy::from_saved_table`], evaluating as before to the last bit.
 //! Data without back-scattering samples (CUReT's and Cornell's scattered
 //! measurements) cannot give a table: [`ParamError::Data`], naming the
