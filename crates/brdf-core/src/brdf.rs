@@ -129,6 +129,14 @@ pub trait Parametric: Brdf {
         None
     }
 
+    /// The table a model read off its data that its parameters do not
+    /// hold (Dupuy et al.'s normal distribution: node angles in radians and
+    /// `D` in 1/sr), so that a saved model can store it; `None` (the
+    /// default) for models given by their parameters alone.
+    fn data_table(&self) -> Option<(&[f64], &[f64])> {
+        None
+    }
+
     /// A boxed copy (models are cloned per thread and per fit).
     fn clone_box(&self) -> Box<dyn Parametric>;
 

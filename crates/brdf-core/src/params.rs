@@ -126,6 +126,19 @@ pub enum ParamError {
         /// what is wrong
         reason: String,
     },
+    /// A model read off its data (Dupuy's normal distribution) cannot be
+    /// built from this data set: it lacks the samples the model reads.
+    #[error("{data}: model `{model}` cannot be built from it: {reason}; {fix}")]
+    Data {
+        /// model name
+        model: String,
+        /// the data set (its file where known)
+        data: String,
+        /// what the data set lacks
+        reason: String,
+        /// what to do instead
+        fix: String,
+    },
 }
 
 /// A value for a one-line message: as written for ordinary magnitudes

@@ -162,6 +162,9 @@ impl Parametric for BoxedModel {
     fn shared_basis(&self) -> Option<&dyn SharedBasis> {
         self.inner.shared_basis()
     }
+    fn data_table(&self) -> Option<(&[f64], &[f64])> {
+        self.inner.data_table()
+    }
     fn clone_box(&self) -> Box<dyn Parametric> {
         Box::new(self.clone())
     }

@@ -55,7 +55,14 @@
 //! written linearly; at back-scattering (`x = 1`) it is `F_c`, so the
 //! extraction stays exact: for data of the assumed form the fit returns
 //! `kd = S = 0` and the extracted `F_c`. The table (256 nodes) is part of
-//! the model: its stored numbers are the parameters and the table.
+//! the model: its stored numbers are the parameters and the table, which
+//! it hands to a saved model through
+//! [`Parametric::data_table`] (the saved-model schema's version 2 holds it,
+//! `saved_model`) and is rebuilt from by
+//! [`Dupuy::from_saved_table`], evaluating as before to the last bit.
+//! Data without back-scattering samples (CUReT's and Cornell's scattered
+//! measurements) cannot give a table: [`ParamError::Data`], naming the
+//! data set and the models to fit instead.
 //! Before data the catalogue builds it with the table of a GGX `D`
 //! (`alpha = 0.3`).
 //!
@@ -175,6 +182,44 @@ impl TabulatedNdf {
     /// Node angles and `D` values.
     pub fn table(&self) -> (&[f64], &[f64]) {
         (&self.theta, &self.d)
+    }
+
+    /// A table as [`TabulatedNdf::table`] gave it (a saved model's): the
+    /// node angles must be the grid of `d.len()` nodes (the lookup in
+    /// [`TabulatedNdf::eval`] assumes it) and `D` normalised
+    /// (`integral D cos dm = 1` to 1e-9); the values are kept as given, so
+    /// a saved and reloaded model evaluates as the saved one did.
+    pub fn from_table(theta: &[f64], d: &[f64]) -> Result<Self, ParamError> {
+        let grid = Self::nodes(d.len())?;
+        if theta.len() != d.len() {
+            return Err(config_error(format!(
+                "the table has {} angles and {} values of D; they must pair up",
+                theta.len(),
+                d.len()
+            )));
+        }
+        if let Some((j, (a, b))) = theta
+            .iter()
+            .zip(&grid)
+            .enumerate()
+            .find(|(_, (a, b))| !((*a - *b).abs() <= 1e-12))
+        {
+            return Err(config_error(format!(
+                "table angle {j} is {a}, the grid of {} nodes has {b} there (theta_max (j / (n - 1))^2)",
+                d.len()
+            )));
+        }
+        let t = Self::from_values(grid, d.to_vec())?;
+        let norm = dot(&t.normalisation_weights(), d);
+        if !((norm - 1.0).abs() <= 1e-9) {
+            return Err(config_error(format!(
+                "the table's D integrates to {norm} against cos, not 1: it is not a saved table"
+            )));
+        }
+        Ok(Self {
+            theta: t.theta,
+            d: d.to_vec(),
+        })
     }
 
     /// Simpson points over `[0, theta_max]` in `u = sqrt(theta/theta_max)`
@@ -321,6 +366,25 @@ impl TabulatedNdf {
             let t2 = (1.0 - c2) / c2;
             (-t2 / (a * a)).exp() / (PI * a * a * c2 * c2)
         })
+    }
+}
+
+/// The error for a data set without back-scattering samples (CUReT's and
+/// Cornell's scattered measurements): it names the file and the models
+/// that need no such samples.
+fn no_back_scattering(samples: &SampleSet, found: usize) -> ParamError {
+    let data = if samples.provenance.is_empty() {
+        samples.name.clone()
+    } else {
+        format!("{} ({})", samples.name, samples.provenance)
+    };
+    ParamError::Data {
+        model: NAME.into(),
+        data,
+        reason: format!(
+            "its normal distribution is read off back-scattering samples (L = V, or within 5 deg of it), and the data set has {found} of the 2 needed"
+        ),
+        fix: "fit a closed-form microfacet model instead (`--model std`, `--model ggx` or `--model sgd`)".into(),
     }
 }
 
@@ -559,11 +623,7 @@ impl TabulatedMicrofacet {
                 .unwrap_or(exact)
         };
         if back.len() < 2 {
-            return Err(config_error(format!(
-                "{} back-scattering samples (L = V, or within 5 deg of it) in `{}`; at least 2 are needed",
-                back.len(),
-                samples.name
-            )));
+            return Err(no_back_scattering(samples, back.len()));
         }
         let theta = TabulatedNdf::nodes(opts.nodes)?;
         let mut rho = vec![vec![0.0; theta.len()]; nc];
@@ -719,6 +779,14 @@ impl Dupuy {
         Self::from_table(ex.model)
     }
 
+    /// The model of a saved table ([`TabulatedNdf::from_table`]) at its
+    /// default parameters (`kd = S = 0`, `F = 1`); the saved parameters
+    /// are set after.
+    pub fn from_saved_table(channels: usize, theta: &[f64], d: &[f64]) -> Result<Self, ParamError> {
+        let ndf = TabulatedNdf::from_table(theta, d)?;
+        Self::from_table(TabulatedMicrofacet::new(ndf, &vec![1.0; channels])?)
+    }
+
     /// The tabulated microfacet part (table and `G1`).
     pub fn table(&self) -> &TabulatedMicrofacet {
         &self.table
@@ -748,6 +816,9 @@ impl Parametric for Dupuy {
     brdf_core::param_accessors!();
     fn name(&self) -> &str {
         NAME
+    }
+    fn data_table(&self) -> Option<(&[f64], &[f64])> {
+        Some(self.table.ndf().table())
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         let nc = self.table.channels();

@@ -24,6 +24,13 @@
 //! polynomial also stores its PCA transform (its structure depends on the
 //! data it was fitted to).
 //!
+//! Version 2 adds `ndf_table`, the normal distribution Dupuy et al.'s model
+//! reads off its data (`{ "theta": [...], "d": [...] }`: node angles of
+//! the half vector in radians, `D` in 1/sr), which its parameters do not
+//! hold. Only files with a table are written as version 2: a reader of
+//! version 1 would ignore the table and evaluate another model. This build
+//! reads both versions.
+//!
 //! ```
 //! use brdf_core::Brdf;
 //! use brdf_models::saved_model::SavedModel;
@@ -48,8 +55,12 @@ use crate::ModelConfig;
 
 /// The schema name written into every file.
 pub const SCHEMA: &str = "brdf-fit/saved-model";
-/// The schema version this crate writes and reads.
+/// The schema version this crate writes for models given by their
+/// parameters alone.
 pub const VERSION: u32 = 1;
+/// The schema version of files holding a data table ([`NdfTable`]); this
+/// build reads [`VERSION`] to [`TABLE_VERSION`].
+pub const TABLE_VERSION: u32 = 2;
 
 /// Errors of reading, writing and rebuilding saved models; each names the
 /// file.
@@ -73,7 +84,7 @@ pub enum SavedModelError {
     },
     /// Another schema or a version this crate cannot read.
     #[error(
-        "{path}: schema `{schema}` version {version}; this build reads `{SCHEMA}` version {VERSION}"
+        "{path}: schema `{schema}` version {version}; this build reads `{SCHEMA}` versions {VERSION} to {TABLE_VERSION}"
     )]
     Version {
         /// the file
@@ -215,6 +226,17 @@ pub struct RenderedError {
     pub delta_e: f64,
 }
 
+/// The normal distribution a model read off its data (Dupuy et al.'s
+/// tabulated `D`), saved beside its parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NdfTable {
+    /// Polar angles of the half vector at the nodes, radians
+    /// (`theta_max (j / (n - 1))^2`, see [`crate::dupuy`]).
+    pub theta: Vec<f64>,
+    /// `D` at the nodes, 1/sr (`integral D cos dm = 1`).
+    pub d: Vec<f64>,
+}
+
 /// The saved form.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SavedModel {
@@ -240,10 +262,30 @@ pub struct SavedModel {
     /// Where it came from.
     #[serde(default)]
     pub provenance: Provenance,
+    /// The normal distribution of a model read off its data (version 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ndf_table: Option<NdfTable>,
     /// The PCA transform of a Kurt polynomial.
     #[cfg(feature = "polynomial")]
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pca: Option<crate::kurt_polynomial::Pca>,
+}
+
+/// The model of a saved table: Dupuy's, the one catalogue model read off
+/// its data.
+#[cfg(feature = "microfacet")]
+fn table_model(channels: usize, t: &NdfTable) -> Result<Box<dyn Parametric>, ParamError> {
+    Ok(Box::new(crate::Dupuy::from_saved_table(
+        channels, &t.theta, &t.d,
+    )?))
+}
+
+#[cfg(not(feature = "microfacet"))]
+fn table_model(_: usize, _: &NdfTable) -> Result<Box<dyn Parametric>, ParamError> {
+    Err(ParamError::Config {
+        model: "dupuy".into(),
+        reason: "this build has no microfacet models (feature `microfacet`)".into(),
+    })
 }
 
 #[cfg(feature = "polynomial")]
@@ -275,10 +317,12 @@ impl SavedModel {
         };
         let e = crate::entry(model.name()).ok_or_else(|| model_err("not a catalogue model"))?;
         let data_bound = "depends on the fitted data; saving it is not supported";
-        if e.from_samples.is_some() {
-            return Err(model_err(
-                "is read off the fitted data (its tabulated normal distribution); the saved-model schema does not hold the table yet, so saving it is not supported",
-            ));
+        let ndf_table = model.data_table().map(|(theta, d)| NdfTable {
+            theta: theta.to_vec(),
+            d: d.to_vec(),
+        });
+        if e.from_samples.is_some() && ndf_table.is_none() {
+            return Err(model_err("is read off its data but gives no table to save"));
         }
         #[cfg(feature = "polynomial")]
         let pca = match (e.build_for_data.is_some(), poly_variant(model.name())) {
@@ -312,7 +356,11 @@ impl SavedModel {
         };
         Ok(Self {
             schema: SCHEMA.into(),
-            version: VERSION,
+            version: if ndf_table.is_some() {
+                TABLE_VERSION
+            } else {
+                VERSION
+            },
             model: model.name().to_string(),
             structure: config.into(),
             units: Units::default(),
@@ -320,6 +368,7 @@ impl SavedModel {
             channel_names: channel_names.to_vec(),
             parameters,
             provenance,
+            ndf_table,
             #[cfg(feature = "polynomial")]
             pca,
         })
@@ -342,7 +391,7 @@ impl SavedModel {
         let built: Option<Box<dyn Parametric>> = None;
         let mut m = match built {
             Some(m) => m,
-            None => crate::build(&self.model, &config)?,
+            None => self.build_structure(&config)?,
         };
         if self.parameters.len() != m.n_params() {
             return Err(ParamError::WrongCount {
@@ -361,6 +410,26 @@ impl SavedModel {
         Ok(m)
     }
 
+    /// The model at its default parameters: from the saved table for a
+    /// model read off its data, else from the catalogue.
+    fn build_structure(&self, config: &ModelConfig) -> Result<Box<dyn Parametric>, ParamError> {
+        let model_err = |reason: &str| ParamError::Config {
+            model: self.model.clone(),
+            reason: reason.to_string(),
+        };
+        let from_data = crate::entry(&self.model).is_some_and(|e| e.from_samples.is_some());
+        match (&self.ndf_table, from_data) {
+            (Some(t), true) => table_model(config.channels, t),
+            (Some(_), _) => Err(model_err(
+                "has an `ndf_table`, which only a model read off its data (dupuy) takes; remove it",
+            )),
+            (None, true) => Err(model_err(
+                "is read off its data and the file has no `ndf_table`; save the fit again with `brdf fit --save`",
+            )),
+            (None, false) => crate::build(&self.model, config),
+        }
+    }
+
     /// Parse JSON text; `origin` names the text in errors (a path).
     pub fn from_json(text: &str, origin: &str) -> Result<Self, SavedModelError> {
         #[derive(Deserialize)]
@@ -375,7 +444,7 @@ impl SavedModel {
             reason: e.to_string(),
         };
         let h: Header = serde_json::from_str(text).map_err(json_err)?;
-        if h.schema != SCHEMA || h.version != VERSION {
+        if h.schema != SCHEMA || !(VERSION..=TABLE_VERSION).contains(&h.version) {
             return Err(SavedModelError::Version {
                 path: origin.to_string(),
                 schema: h.schema,

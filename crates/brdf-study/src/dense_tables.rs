@@ -172,7 +172,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
                         .map_or(Cell::Empty, |(_, r)| Cell::Num(r.ngan_l2, 4)),
                 );
                 row.push(Cell::Text("n/a (scattered)".into()));
-                row.push(Cell::Text(status(&f)));
+                row.push(Cell::Text(study.relative(&status(&f))));
             }
             t.rows.push(row);
         }
@@ -191,8 +191,31 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
     );
     if !renderers.is_empty() {
         t.note.push_str(RENDERER_NOTE);
+        let new: Vec<&str> = renderers
+            .iter()
+            .filter(|m| crate::new_models::NEW_MODELS.contains(&m.1))
+            .map(|m| m.0)
+            .collect();
+        let renderer: Vec<&str> = labels
+            .iter()
+            .copied()
+            .filter(|l| !new.contains(l))
+            .collect();
         if !models.is_empty() {
-            t.note.push_str(&lowest_l2(&t, &labels));
+            t.note.push_str(&lowest_l2(
+                &t,
+                &renderer,
+                &new,
+                "a renderer model against the lowest of Kurt's models: the renderer model's",
+            ));
+        }
+        if !new.is_empty() {
+            t.note.push_str(&lowest_l2(
+                &t,
+                &new,
+                &[],
+                "a new model against the lowest of Kurt's and the renderer models: the new model's",
+            ));
         }
     }
     t.write(&study.out, "kurt_9_3")?;
@@ -210,7 +233,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
 }
 
 /// The note on the renderer models' columns.
-const RENDERER_NOTE: &str = " Renderer models after the nine, fitted by the same pipeline in the renderers' own boxes: GGX (`ggx`: height-correlated Smith, Schlick Fresnel), GGX separable (`ggx-separable`: separable Smith, as Mitsuba 3), Principled (Disney, as Mitsuba 3's `principled`), glTF (2.0 metallic-roughness) and glTF + KHR (`gltf-ext`: with KHR_materials_ior, _specular, _clearcoat). Their `fit` column says whether the fit converged, which parameters it left on a bound, or that it failed (its other cells then empty). Their spheres: `kurt_fig_9_3_renderer.png`.";
+const RENDERER_NOTE: &str = " Renderer models after the nine, fitted by the same pipeline in the renderers' own boxes: GGX (`ggx`: height-correlated Smith, Schlick Fresnel), GGX separable (`ggx-separable`: separable Smith, as Mitsuba 3), Principled (Disney, as Mitsuba 3's `principled`), glTF (2.0 metallic-roughness) and glTF + KHR (`gltf-ext`: with KHR_materials_ior, _specular, _clearcoat). Their `fit` column says whether the fit converged, which parameters it left on a bound, or that it failed (its other cells then empty). Then the fitted-data models of issue 24, fitted the same way (Ngan's L2): ABC and ABC smooth (Löw et al. 2012), STD (Ribardière et al. 2017), SGD (Bagher et al. 2012, every parameter per channel) and Dupuy (Dupuy et al. 2015: the normal distribution extracted from the back-scattering samples, which the Cornell paints' scattered samples lack: its cells there say so). Their spheres: `kurt_fig_9_3_renderer.png`.";
 
 /// The renderer models on one RGL material: fitted, rendered, added to the
 /// grid; their cells (L2, PSNR, how the fit ended).
@@ -251,10 +274,11 @@ fn renderer_rgl(
     Ok(cells)
 }
 
-/// The comparison the renderer columns are for, read off the table: per
-/// material, the lowest L2 of the renderer models (`renderer` labels)
-/// against the lowest of the other models.
-fn lowest_l2(t: &Table, renderer: &[&str]) -> String {
+/// A comparison the added columns are for, read off the table: per
+/// material, the lowest L2 of the models labelled `group` against the
+/// lowest of the others, the `skip` labels left out; `what` names the
+/// comparison in the sentence.
+fn lowest_l2(t: &Table, group: &[&str], skip: &[&str], what: &str) -> String {
     let mut wins = 0;
     let mut each = Vec::new();
     for row in &t.rows {
@@ -263,7 +287,10 @@ fn lowest_l2(t: &Table, renderer: &[&str]) -> String {
             let (Some(label), Cell::Num(v, _)) = (col.strip_suffix(" L2"), cell) else {
                 continue;
             };
-            let best = if renderer.contains(&label) {
+            if skip.contains(&label) {
+                continue;
+            }
+            let best = if group.contains(&label) {
                 &mut ours
             } else {
                 &mut theirs
@@ -284,7 +311,7 @@ fn lowest_l2(t: &Table, renderer: &[&str]) -> String {
         ));
     }
     format!(
-        " Lowest L2 of a renderer model against the lowest of Kurt's models: the renderer model's is lower on {wins} of {} materials ({}).",
+        " Lowest L2 of {what} is lower on {wins} of {} materials ({}).",
         each.len(),
         each.join("; ")
     )
@@ -330,7 +357,12 @@ mod tests {
             ],
         ];
         assert_eq!(
-            lowest_l2(&t, &["GGX", "glTF"]),
+            lowest_l2(
+                &t,
+                &["GGX", "glTF"],
+                &[],
+                "a renderer model against the lowest of Kurt's models: the renderer model's"
+            ),
             " Lowest L2 of a renderer model against the lowest of Kurt's models: the renderer model's is lower on 1 of 2 materials (a glTF 0.02000 against Ward 0.03000; b GGX 0.04000 against Ward 0.01000)."
         );
     }

@@ -217,3 +217,77 @@ fn table_of(set: &SampleSet) -> brdf_models::TabulatedMicrofacet {
         .table()
         .clone()
 }
+
+/// A fitted Dupuy model saved (schema version 2, its table beside its
+/// parameters) and loaded back evaluates as the fitted one, to 1e-15
+/// relative; a file without its table, or a table off the node grid, is
+/// an error naming the file and the fix; models without a table still
+/// write version 1.
+#[test]
+fn the_saved_model_holds_the_table_and_round_trips() {
+    use brdf_study::saved_model::{SavedModel, TABLE_VERSION, VERSION};
+    let data = Microfacet {
+        ndf: Ndf::Ggx(0.3),
+        f: vec![0.9, 0.5, 0.2],
+    };
+    let set = samples(&data);
+    let rep = Fit::model("dupuy").unwrap().run(&set).unwrap();
+    let saved = rep.saved_model("microfacet").unwrap();
+    assert_eq!(saved.version, TABLE_VERSION);
+    let table = saved.ndf_table.as_ref().expect("the table is saved");
+    assert_eq!(table.d.len(), brdf_models::dupuy::DUPUY_NODES);
+    let text = serde_json::to_string_pretty(&saved).unwrap();
+    let back = SavedModel::from_json(&text, "dupuy.json").unwrap();
+    let model = back.build().unwrap();
+    let (mut a, mut b) = ([0.0; 3], [0.0; 3]);
+    for (l, v) in scattered_pairs(500, 85f64.to_radians()) {
+        rep.model.eval(l.vector(), v.vector(), &mut a);
+        model.eval(l.vector(), v.vector(), &mut b);
+        for c in 0..3 {
+            assert!((a[c] - b[c]).abs() <= 1e-15 * a[c].abs(), "{a:?} {b:?}");
+        }
+    }
+    // Without the table: the fix; a table whose angles are not the grid's.
+    let edited = |edit: &dyn Fn(&mut serde_json::Value)| {
+        let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        edit(&mut v);
+        let saved = SavedModel::from_json(&v.to_string(), "edited.json").unwrap();
+        saved.build().err().expect("an edited table").to_string()
+    };
+    let e = edited(&|v| {
+        v.as_object_mut().unwrap().remove("ndf_table");
+    });
+    assert!(e.contains("brdf fit --save"), "{e}");
+    let e = edited(&|v| v["ndf_table"]["theta"][3] = serde_json::json!(0.5));
+    assert!(e.contains("table angle 3"), "{e}");
+    let lambert = Fit::model("lambert").unwrap().run(&set).unwrap();
+    assert_eq!(lambert.saved_model("x").unwrap().version, VERSION);
+}
+
+/// CUReT holds scattered measurements without back-scattering samples:
+/// Dupuy's model is a typed error at the start of the fit, naming the
+/// file and the models to fit instead.
+#[test]
+fn curet_is_an_error_naming_the_file_and_the_fix() {
+    let Some(path) = common::data_file("curet/abrdf.dat") else {
+        return;
+    };
+    let set = brdf_study::data::load(&format!("{}#25", path.display())).unwrap();
+    let e = match Fit::model("dupuy").unwrap().run(&set) {
+        Ok(_) => panic!("a Dupuy fit of CUReT"),
+        Err(e) => e,
+    };
+    let msg = e.to_string();
+    assert!(
+        matches!(
+            &e,
+            brdf_fit::FitError::Param(brdf_core::ParamError::Data { .. })
+        ),
+        "{msg}"
+    );
+    assert!(!msg.contains('\n'), "{msg}");
+    assert!(
+        msg.contains("abrdf.dat") && msg.contains("`--model std`"),
+        "{msg}"
+    );
+}

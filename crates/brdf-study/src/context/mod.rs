@@ -294,6 +294,15 @@ impl Study {
         })
     }
 
+    /// `message` with the data folder written `$BRDF_DATA` (no machine
+    /// path in results; error messages name the files they read).
+    pub fn relative(&self, message: &str) -> String {
+        match &self.data {
+            Some(root) => message.replace(&root.display().to_string(), "$BRDF_DATA"),
+            None => message.to_string(),
+        }
+    }
+
     /// Output path of a file.
     pub fn path(&self, file: &str) -> PathBuf {
         self.out.join(file)
