@@ -447,21 +447,39 @@ pub(crate) mod tests {
 
     /// The batch kernel against the dual formula at every pair.
     pub(crate) fn assert_batch_matches_duals(model: &dyn Parametric, p: &[f64]) {
-        let pairs = pairs();
+        assert_batch_matches_duals_on(
+            model,
+            p,
+            &pairs(),
+            |f| 1e-11 * (1.0 + f.abs()),
+            |f, b| 1e-10 * (1.0 + f.abs() + b.abs()),
+        );
+    }
+
+    /// The batch kernel (values alone, and values with derivatives)
+    /// against the dual formula at `pairs`: the value `f` within
+    /// `value_tol(f)`, a derivative `b` within `deriv_tol(f, b)`; the values
+    /// of both paths identical.
+    fn assert_batch_matches_duals_on(
+        model: &dyn Parametric,
+        p: &[f64],
+        pairs: &DirPairs,
+        value_tol: impl Fn(f64) -> f64,
+        deriv_tol: impl Fn(f64, f64) -> f64,
+    ) {
         let (n, nc, np) = (pairs.len(), model.channels(), p.len());
         let mut out = vec![0.0; nc * n];
         let mut jac = vec![f64::NAN; nc * n * np];
-        model.eval_grad_batch_at(p, &pairs, &mut out, &mut jac);
+        model.eval_grad_batch_at(p, pairs, &mut out, &mut jac);
         let mut only = vec![0.0; nc * n];
-        model.eval_batch_at(p, &pairs, &mut only);
+        model.eval_batch_at(p, pairs, &mut only);
         let (mut f, mut g) = (vec![0.0; nc], vec![0.0; nc * np]);
         for j in 0..n {
             model.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut f, &mut g);
             for c in 0..nc {
                 let i = c * n + j;
-                let tol = 1e-11 * (1.0 + f[c].abs());
                 assert!(
-                    (out[i] - f[c]).abs() <= tol,
+                    (out[i] - f[c]).abs() <= value_tol(f[c]),
                     "value {p:?} pair {j}: {} vs {}",
                     out[i],
                     f[c]
@@ -469,9 +487,8 @@ pub(crate) mod tests {
                 assert_eq!(out[i], only[i], "value without derivatives");
                 for k in 0..np {
                     let (a, b) = (jac[i * np + k], g[c * np + k]);
-                    let tol = 1e-10 * (1.0 + f[c].abs() + b.abs());
                     assert!(
-                        (a - b).abs() <= tol,
+                        (a - b).abs() <= deriv_tol(f[c], b),
                         "d/dp{k} {p:?} pair {j} ch {c}: {a} vs {b}"
                     );
                 }
@@ -488,10 +505,9 @@ pub(crate) mod tests {
     }
 
     /// At random parameters in the box and random direction pairs above
-    /// the horizon, the batch kernel (values alone, and values with
-    /// derivatives) equals the dual-number reference formula: values to
-    /// 1e-12 relative, derivatives to 1e-10 of the value's and the
-    /// derivative's size.
+    /// the horizon, the batch kernel equals the dual-number reference
+    /// formula: values to 1e-12 relative, derivatives to 1e-10 of the
+    /// value's and the derivative's size.
     #[test]
     fn batch_kernel_equals_the_reference_at_random_points() {
         let mut state = 0x5eed_u64;
@@ -521,33 +537,13 @@ pub(crate) mod tests {
                     let v = dir(uniform(&mut state), uniform(&mut state));
                     pairs.push(&l, &v);
                 }
-                let (n, np) = (pairs.len(), p.len());
-                let mut out = vec![0.0; nc * n];
-                let mut jac = vec![0.0; nc * n * np];
-                model.eval_grad_batch_at(&p, &pairs, &mut out, &mut jac);
-                let mut only = vec![0.0; nc * n];
-                model.eval_batch_at(&p, &pairs, &mut only);
-                let (mut f, mut g) = (vec![0.0; nc], vec![0.0; nc * np]);
-                for j in 0..n {
-                    model.eval_grad_at(&p, &pairs.l(j), &pairs.v(j), &mut f, &mut g);
-                    for c in 0..nc {
-                        let i = c * n + j;
-                        assert!(
-                            (out[i] - f[c]).abs() <= 1e-12 * f[c].abs(),
-                            "value {p:?} pair {j}: {} vs {}",
-                            out[i],
-                            f[c]
-                        );
-                        assert_eq!(out[i], only[i], "value without derivatives");
-                        for k in 0..np {
-                            let (a, b) = (jac[i * np + k], g[c * np + k]);
-                            assert!(
-                                (a - b).abs() <= 1e-10 * (f[c].abs() + b.abs()),
-                                "d/dp{k} {p:?} pair {j} ch {c}: {a} vs {b}"
-                            );
-                        }
-                    }
-                }
+                assert_batch_matches_duals_on(
+                    &model,
+                    &p,
+                    &pairs,
+                    |f| 1e-12 * f.abs(),
+                    |f, b| 1e-10 * (f.abs() + b.abs()),
+                );
             }
         }
     }
