@@ -10,7 +10,8 @@
 #    `--metric ngan` (one fit), principled and glTF on every RGL file, one
 #    thread: processor time of the whole command (user + sys) and wall
 #    clock, final costs, and the seconds of every candidate of the
-#    render-fidelity pipeline;
+#    render-fidelity pipeline; and the same command with Lambert (the
+#    command's floor: loading and the report-size renders);
 # 2. the full MERL grid (an RGL file resampled by `brdf resample`): the
 #    default fit of grey Ashikhmin-Shirley (fit_loop, 1 and 2 threads)
 #    against SciPy trf on the same problem (peer_fits + peers.py, same
@@ -63,6 +64,15 @@ for model in principled gltf; do
 				"$brdf" fit --data "$BRDF_DATA/rgl/$f.bsdf" --model "$model" --metric "$metric" --json --quiet
 		done
 	done
+done
+
+# 1b. What every `brdf fit` of an RGL file costs besides the fit (loading,
+# filtering, the report-size renders of the data and the fit, saving): the
+# same command with Lambert, whose fit is one linear solve.
+echo 'RAYON_NUM_THREADS=1 brdf fit --data $BRDF_DATA/rgl/FILE.bsdf --model lambert --metric ngan --json --quiet' >>"$cmds"
+for f in $files; do
+	RAYON_NUM_THREADS=1 timed "{\"kind\": \"floor\", \"file\": \"$f\", \"model\": \"lambert\", \"metric\": \"ngan\"}" \
+		"$brdf" fit --data "$BRDF_DATA/rgl/$f.bsdf" --model lambert --metric ngan --json --quiet
 done
 
 # 2. The full MERL grid.
