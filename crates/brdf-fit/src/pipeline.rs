@@ -911,12 +911,12 @@ where
     let sub = data.select(&keep);
     let scales = objective.row_scales(&sub);
     let values = sub.values_channel_major();
+    // One problem on the subsample (the transformed one wraps it).
     let mp = ModelProblem::new(model, sub.pairs(), &values, &scales)?;
     let (rows, transformed);
     let problem: &(dyn LeastSquaresProblem + Sync) = if objective.is_transformed() {
         rows = TransformedRows::new(&sub, objective);
-        transformed =
-            ModelProblem::new(model, sub.pairs(), &values, &scales)?.with_transform(&rows);
+        transformed = mp.with_transform(&rows);
         &transformed
     } else {
         &mp
