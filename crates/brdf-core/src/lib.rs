@@ -33,7 +33,6 @@
 //! ## Crate features
 //!
 //! - `serde`: serialize sample sets, parameter specs and angles.
-//! - `proptest-support`: proptest strategies for directions (module `proptest`).
 //!
 //! ## Layering
 //!
@@ -53,8 +52,6 @@ pub mod metrics;
 pub mod pair_geometry;
 pub mod params;
 pub mod plausibility;
-#[cfg(feature = "proptest-support")]
-pub mod proptest;
 pub mod quadrature;
 pub mod samples;
 pub mod shared_basis;

@@ -285,7 +285,12 @@ fn fit_mix(
     };
     let before = flip(&mix)?;
     let start = mix.params().to_vec();
-    let target = ImageTarget::new(image_terms(FIT_SIZE), source, mix.channels(), start);
+    let target = ImageTarget::new(
+        image_terms(FIT_SIZE).map_err(|e| e.to_string())?,
+        source,
+        mix.channels(),
+        start,
+    );
     let mut refined = mix.clone();
     fit_opts.objective = Objective::Image;
     fit_opts.image = Some(Arc::new(target));

@@ -214,7 +214,7 @@ impl Judge {
 
 /// The shading terms of the standard light sets at `size` pixels (no
 /// background: only the sphere is fitted), as image-objective terms.
-pub fn image_terms(size: usize) -> ImageTerms {
+pub fn image_terms(size: usize) -> Result<ImageTerms, FitError> {
     let mut pairs = DirPairs::with_capacity(0);
     let mut weight_rows: [Vec<f64>; 3] = Default::default();
     let mut pixel = Vec::new();
@@ -234,13 +234,7 @@ pub fn image_terms(size: usize) -> ImageTerms {
         }
     }
     let [r, g, b] = weight_rows;
-    ImageTerms {
-        pairs,
-        weights: [r, g, b].concat(),
-        weight_channels: 3,
-        pixel,
-        image_of_pixel,
-    }
+    ImageTerms::new(pairs, [r, g, b].concat(), 3, &pixel, image_of_pixel)
 }
 
 /// One candidate of [`fit_for_appearance`].
@@ -406,7 +400,7 @@ pub fn fit_for_appearance_with(
             starts.push((p.clone(), Vec::new()));
         }
     }
-    let terms = image_terms(FIT_SIZE);
+    let terms = image_terms(FIT_SIZE)?;
     let winner = k;
     let mut best_flip = flip(&candidates, k);
     for (start, lobes) in starts {

@@ -24,6 +24,7 @@
 
 use brdf_core::{Brdf, DirPairs, Parametric};
 use brdf_solve::{LeastSquaresProblem, ModelProblem};
+use rayon::prelude::*;
 
 use crate::FitError;
 
@@ -34,25 +35,103 @@ use crate::FitError;
 /// the dark body of a film is seen, so its relative error counts.
 pub const LOG_FLOOR: f64 = 1.0 / 256.0;
 
+/// Terms per chunk of pixels: a chunk's model values and derivatives
+/// (`channels x terms x parameters`, about 400 kB for an RGB model of
+/// eight parameters) stay in cache while they are summed into its pixels,
+/// and the chunks are the units of parallel work.
+const CHUNK_TERMS: usize = 2048;
+
 /// The shading terms of one or more images: term `k` adds
-/// `weights[c * n + k] * f_c(pairs.l(k), pairs.v(k))` to pixel `pixel[k]`.
+/// `weights[c * n + k] * f_c(l_k, v_k)` to pixel `pixel[k]`.
+///
+/// Stored as chunks of whole pixels (about [`CHUNK_TERMS`] terms each),
+/// each with its own copy of its direction pairs, so a fit evaluates the
+/// model chunk by chunk in parallel and sums each chunk into its pixels
+/// while its values are in cache.
 #[derive(Clone, Debug)]
 pub struct ImageTerms {
-    /// Local-frame direction pairs of the terms.
-    pub pairs: DirPairs,
-    /// Weights, channel-major (`c * n + k`), one channel or as many as the
-    /// model.
-    pub weights: Vec<f64>,
+    chunks: Vec<TermChunk>,
+    /// Weights, channel-major (`c * n + k`).
+    weights: Vec<f64>,
     /// Weight channels (1: the same weight for every channel).
-    pub weight_channels: usize,
-    /// Pixel of each term, non-decreasing; pixels are numbered over all
-    /// images.
-    pub pixel: Vec<usize>,
+    weight_channels: usize,
+    /// Start of each pixel's terms (`pixels + 1` offsets).
+    offsets: Vec<usize>,
     /// Image of each pixel (index into the exposures).
-    pub image_of_pixel: Vec<usize>,
+    image_of_pixel: Vec<usize>,
+}
+
+/// Consecutive whole pixels of an [`ImageTerms`] and their terms.
+#[derive(Clone, Debug)]
+struct TermChunk {
+    /// The chunk's direction pairs (terms `first_term..`).
+    pairs: DirPairs,
+    first_term: usize,
+    /// Its pixels.
+    pixels: std::ops::Range<usize>,
 }
 
 impl ImageTerms {
+    /// The terms of `pairs` (local-frame directions), with `weights`
+    /// channel-major (`c * n + k`, `weight_channels` of them: 1 for the
+    /// same weight in every channel), `pixel[k]` the pixel of term `k`
+    /// (non-decreasing; pixels numbered over all images) and
+    /// `image_of_pixel[p]` the image of pixel `p`.
+    pub fn new(
+        pairs: DirPairs,
+        weights: Vec<f64>,
+        weight_channels: usize,
+        pixel: &[usize],
+        image_of_pixel: Vec<usize>,
+    ) -> Result<Self, FitError> {
+        let n = pairs.len();
+        if pixel.len() != n || weight_channels == 0 || weights.len() != weight_channels * n {
+            return Err(FitError::Usage(format!(
+                "image terms: {n} pairs, {} pixel indices and {} weights in {weight_channels} channels; give one pixel and one weight per channel for every pair",
+                pixel.len(),
+                weights.len()
+            )));
+        }
+        let offsets = offsets(pixel, image_of_pixel.len())?;
+        let mut chunks = Vec::new();
+        let mut first = 0;
+        while first < image_of_pixel.len() {
+            let mut last = first + 1;
+            while last < image_of_pixel.len() && offsets[last + 1] - offsets[first] <= CHUNK_TERMS {
+                last += 1;
+            }
+            let (a, b) = (offsets[first], offsets[last]);
+            chunks.push(TermChunk {
+                pairs: pairs.range(a, b - a),
+                first_term: a,
+                pixels: first..last,
+            });
+            first = last;
+        }
+        Ok(ImageTerms {
+            chunks,
+            weights,
+            weight_channels,
+            offsets,
+            image_of_pixel,
+        })
+    }
+
+    /// Number of terms.
+    pub fn len(&self) -> usize {
+        self.offsets.last().copied().unwrap_or(0)
+    }
+
+    /// Whether there are no terms.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The weights, channel-major (`c * len + k`, as given to [`Self::new`]).
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
     /// Number of pixels.
     pub fn pixels(&self) -> usize {
         self.image_of_pixel.len()
@@ -66,7 +145,7 @@ impl ImageTerms {
     /// Weight of term `k` for channel `c` of a `channels`-channel fit (a
     /// grey fit under coloured light takes the mean of the light's channels).
     fn weight(&self, c: usize, k: usize, channels: usize) -> f64 {
-        let n = self.pairs.len();
+        let n = self.len();
         let wc = self.weight_channels;
         if channels == 1 && wc > 1 {
             (0..wc).map(|i| self.weights[i * n + k]).sum::<f64>() / wc as f64
@@ -75,53 +154,61 @@ impl ImageTerms {
         }
     }
 
-    /// Start of each pixel's terms (`pixels + 1` offsets).
-    fn offsets(&self) -> Result<Vec<usize>, FitError> {
-        let np = self.pixels();
-        let mut off = vec![0; np + 1];
-        for (k, &p) in self.pixel.iter().enumerate() {
-            if p >= np || (k > 0 && p < self.pixel[k - 1]) {
-                return Err(FitError::Usage(format!(
-                    "image terms: term {k} has pixel {p}; pixels must be non-decreasing and below {np}"
-                )));
-            }
-            off[p + 1] = k + 1;
-        }
-        for p in 1..=np {
-            off[p] = off[p].max(off[p - 1]);
-        }
-        Ok(off)
-    }
-
     /// Pixel values `P_c` (channel-major, `c * pixels + p`) of `brdf` with
     /// `channels` channels (a BRDF with more channels is averaged down to
-    /// one; one channel is repeated).
+    /// one; one channel is repeated). Chunks in parallel; each pixel summed
+    /// in term order, so the values do not depend on the thread count.
     pub fn render(&self, brdf: &dyn Brdf, channels: usize) -> Vec<f64> {
-        let n = self.pairs.len();
-        let nb = brdf.channels();
-        let mut f = vec![0.0; nb];
-        let mut out = vec![0.0; channels * self.pixels()];
         let np = self.pixels();
-        // Every term at once (the model's batch kernel), then summed per
-        // pixel in term order.
-        let mut values = vec![0.0; nb * n];
-        brdf.eval_pairs(&self.pairs, &mut values);
-        for k in 0..n {
-            for (c, v) in f.iter_mut().enumerate() {
-                *v = values[c * n + k];
-            }
+        let nb = brdf.channels();
+        let parts: Vec<Vec<f64>> = self
+            .chunks
+            .par_iter()
+            .map(|ch| {
+                let nk = ch.pairs.len();
+                let mut values = vec![0.0; nb * nk];
+                brdf.eval_pairs(&ch.pairs, &mut values);
+                // Down- or up-mixed to the fit's channels, channel-major.
+                let mixed: Vec<f64> = (0..channels * nk)
+                    .map(|i| {
+                        let (c, k) = (i / nk, i % nk);
+                        if channels == nb {
+                            values[c * nk + k]
+                        } else if nb == 1 {
+                            values[k]
+                        } else {
+                            (0..nb).map(|b| values[b * nk + k]).sum::<f64>() / nb as f64
+                        }
+                    })
+                    .collect();
+                self.chunk_pixels(ch, channels, &mixed)
+            })
+            .collect();
+        let mut out = vec![0.0; channels * np];
+        for (ch, part) in self.chunks.iter().zip(&parts) {
+            let w = ch.pixels.len();
             for c in 0..channels {
-                let v = if channels == nb {
-                    f[c]
-                } else if nb == 1 {
-                    f[0]
-                } else {
-                    f.iter().sum::<f64>() / nb as f64
-                };
-                out[c * np + self.pixel[k]] += self.weight(c, k, channels) * v;
+                out[c * np + ch.pixels.start..c * np + ch.pixels.end]
+                    .copy_from_slice(&part[c * w..(c + 1) * w]);
             }
         }
         out
+    }
+
+    /// The pixel sums of a chunk (channel-major over its pixels) from its
+    /// per-term values `m` (channel-major over its terms).
+    fn chunk_pixels(&self, ch: &TermChunk, channels: usize, m: &[f64]) -> Vec<f64> {
+        let nk = ch.pairs.len();
+        let w = ch.pixels.len();
+        let mut px = vec![0.0; channels * w];
+        for c in 0..channels {
+            for (i, q) in ch.pixels.clone().enumerate() {
+                px[c * w + i] = (self.offsets[q]..self.offsets[q + 1])
+                    .map(|k| self.weight(c, k, channels) * m[c * nk + k - ch.first_term])
+                    .sum();
+            }
+        }
+        px
     }
 
     /// The judge's exposure of every image: `1 / p99` of its pixel values
@@ -152,17 +239,53 @@ impl ImageTerms {
     }
 }
 
+/// Start of each pixel's terms (`pixels + 1` offsets) of the terms' pixel
+/// indices `pixel`.
+fn offsets(pixel: &[usize], np: usize) -> Result<Vec<usize>, FitError> {
+    let mut off = vec![0; np + 1];
+    for (k, &p) in pixel.iter().enumerate() {
+        if p >= np || (k > 0 && p < pixel[k - 1]) {
+            return Err(FitError::Usage(format!(
+                "image terms: term {k} has pixel {p}; pixels must be non-decreasing and below {np}"
+            )));
+        }
+        off[p + 1] = k + 1;
+    }
+    for p in 1..=np {
+        off[p] = off[p].max(off[p - 1]);
+    }
+    Ok(off)
+}
+
 /// The image objective of a model against reference pixels, as a
 /// least-squares problem over all the model's parameters.
+///
+/// Every evaluation runs chunk by chunk in parallel ([`ImageTerms`]): the
+/// model's values (and derivatives) at a chunk's terms, summed into the
+/// chunk's pixel rows at once, so the Jacobian of the terms (`channels x
+/// terms x parameters`, 60 MB for an RGB GGX at the standard 32-pixel
+/// sets) is never stored; the solvers get the normal equations of the
+/// pixel rows in the same pass
+/// ([`LeastSquaresProblem::residuals_and_gram`]), summed in chunk order,
+/// so the result does not depend on the thread count.
 pub struct ImageProblem<'a> {
-    inner: ModelProblem<'a>,
+    /// One problem per chunk: the model's values at its terms (unit row
+    /// scales, zero targets).
+    chunks: Vec<ModelProblem<'a>>,
     terms: &'a ImageTerms,
-    offsets: Vec<usize>,
     channels: usize,
+    n_params: usize,
     /// Exposure of every pixel.
     exposure: Vec<f64>,
     /// `ln(eps + e P_c(R))`, channel-major.
     target: Vec<f64>,
+}
+
+/// The pixel rows of one chunk: residuals (channel-major over its pixels)
+/// and, when asked for, their Jacobian rows.
+struct ChunkRows {
+    residuals: Vec<f64>,
+    jacobian: Vec<f64>,
 }
 
 impl<'a> ImageProblem<'a> {
@@ -175,7 +298,6 @@ impl<'a> ImageProblem<'a> {
         reference: &[f64],
         exposures: &[f64],
     ) -> Result<Self, FitError> {
-        let n = terms.pairs.len();
         let nc = model.channels();
         let np = terms.pixels();
         if reference.len() != nc * np || exposures.len() != terms.images() {
@@ -186,42 +308,105 @@ impl<'a> ImageProblem<'a> {
                 terms.images()
             )));
         }
-        let offsets = terms.offsets()?;
         // Unit scales and zero targets: the inner residual is the model's value.
-        let inner = ModelProblem::new(model, &terms.pairs, &vec![0.0; n * nc], &vec![1.0; n])?;
+        let chunks = terms
+            .chunks
+            .iter()
+            .map(|ch| {
+                let n = ch.pairs.len();
+                ModelProblem::new(model, &ch.pairs, &vec![0.0; n * nc], &vec![1.0; n])
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let exposure: Vec<f64> = terms.image_of_pixel.iter().map(|i| exposures[*i]).collect();
         let target = (0..nc * np)
             .map(|i| (LOG_FLOOR + exposure[i % np] * reference[i].max(0.0)).ln())
             .collect();
         Ok(Self {
-            inner,
+            chunks,
             terms,
-            offsets,
             channels: nc,
+            n_params: model.n_params(),
             exposure,
             target,
         })
     }
 
-    /// Pixel sums of the per-term model values `m` (channel-major).
-    fn pixel_values(&self, m: &[f64]) -> Vec<f64> {
-        let n = self.terms.pairs.len();
-        let np = self.terms.pixels();
-        let mut px = vec![0.0; self.channels * np];
-        for c in 0..self.channels {
-            for p in 0..np {
-                px[c * np + p] = (self.offsets[p]..self.offsets[p + 1])
-                    .map(|k| self.terms.weight(c, k, self.channels) * m[c * n + k])
-                    .sum();
+    /// The pixel rows of chunk `i` at `p`, with their Jacobian when
+    /// `with_jacobian`.
+    fn chunk_rows(&self, i: usize, p: &[f64], with_jacobian: bool) -> ChunkRows {
+        let (problem, ch) = (&self.chunks[i], &self.terms.chunks[i]);
+        let (nc, npar) = (self.channels, self.n_params);
+        let (nk, w, np) = (ch.pairs.len(), ch.pixels.len(), self.terms.pixels());
+        let mut m = vec![0.0; nc * nk];
+        problem.residuals(p, &mut m);
+        let px = self.terms.chunk_pixels(ch, nc, &m);
+        let mut residuals = vec![0.0; nc * w];
+        let mut jacobian = Vec::new();
+        let mut inner = Vec::new();
+        if with_jacobian {
+            jacobian = vec![0.0; nc * w * npar];
+            inner = vec![0.0; nc * nk * npar];
+            problem.jacobian(p, &mut inner);
+        }
+        for c in 0..nc {
+            for (j, q) in ch.pixels.clone().enumerate() {
+                let (row, e) = (c * w + j, self.exposure[q]);
+                let v = LOG_FLOOR + e * px[row].max(0.0);
+                residuals[row] = v.ln() - self.target[c * np + q];
+                if !with_jacobian {
+                    continue;
+                }
+                let d = e / v;
+                let out = &mut jacobian[row * npar..(row + 1) * npar];
+                for k in self.terms.offsets[q]..self.terms.offsets[q + 1] {
+                    let wk = d * self.terms.weight(c, k, nc);
+                    let t = c * nk + k - ch.first_term;
+                    for (o, s) in out.iter_mut().zip(&inner[t * npar..(t + 1) * npar]) {
+                        *o += wk * s;
+                    }
+                }
             }
         }
-        px
+        ChunkRows {
+            residuals,
+            jacobian,
+        }
+    }
+
+    /// Every chunk's rows at `p`, in chunk order.
+    fn rows(&self, p: &[f64], with_jacobian: bool) -> Vec<ChunkRows> {
+        (0..self.chunks.len())
+            .into_par_iter()
+            .map(|i| self.chunk_rows(i, p, with_jacobian))
+            .collect()
+    }
+
+    /// Scatter the chunks' rows into the channel-major rows of the problem.
+    fn scatter(&self, parts: &[ChunkRows], out: &mut [f64], jac: Option<&mut [f64]>) {
+        let (np, npar) = (self.terms.pixels(), self.n_params);
+        for (ch, part) in self.terms.chunks.iter().zip(parts) {
+            let w = ch.pixels.len();
+            for c in 0..self.channels {
+                let rows = c * np + ch.pixels.start..c * np + ch.pixels.end;
+                out[rows].copy_from_slice(&part.residuals[c * w..(c + 1) * w]);
+            }
+        }
+        if let Some(jac) = jac {
+            for (ch, part) in self.terms.chunks.iter().zip(parts) {
+                let w = ch.pixels.len();
+                for c in 0..self.channels {
+                    let a = (c * np + ch.pixels.start) * npar;
+                    jac[a..a + w * npar]
+                        .copy_from_slice(&part.jacobian[c * w * npar..(c + 1) * w * npar]);
+                }
+            }
+        }
     }
 }
 
 impl LeastSquaresProblem for ImageProblem<'_> {
     fn n_params(&self) -> usize {
-        self.inner.n_params()
+        self.n_params
     }
 
     fn n_residuals(&self) -> usize {
@@ -229,39 +414,44 @@ impl LeastSquaresProblem for ImageProblem<'_> {
     }
 
     fn residuals(&self, p: &[f64], out: &mut [f64]) {
-        let mut m = vec![0.0; self.inner.n_residuals()];
-        self.inner.residuals(p, &mut m);
-        let np = self.terms.pixels();
-        for (i, v) in self.pixel_values(&m).into_iter().enumerate() {
-            out[i] = (LOG_FLOOR + self.exposure[i % np] * v.max(0.0)).ln() - self.target[i];
-        }
+        let parts = self.rows(p, false);
+        self.scatter(&parts, out, None);
     }
 
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
-        let n = self.terms.pairs.len();
-        let np = self.terms.pixels();
-        let npar = p.len();
-        let mut m = vec![0.0; self.inner.n_residuals()];
-        self.inner.residuals(p, &mut m);
-        let px = self.pixel_values(&m);
-        let mut inner_jac = vec![0.0; self.inner.n_residuals() * npar];
-        self.inner.jacobian(p, &mut inner_jac);
-        jac.fill(0.0);
-        for c in 0..self.channels {
-            for q in 0..np {
-                let row = c * np + q;
-                let e = self.exposure[q];
-                let d = e / (LOG_FLOOR + e * px[row].max(0.0));
-                let out = &mut jac[row * npar..(row + 1) * npar];
-                for k in self.offsets[q]..self.offsets[q + 1] {
-                    let w = d * self.terms.weight(c, k, self.channels);
-                    let src = &inner_jac[(c * n + k) * npar..(c * n + k + 1) * npar];
-                    for (o, s) in out.iter_mut().zip(src) {
-                        *o += w * s;
+        let parts = self.rows(p, true);
+        let mut out = vec![0.0; self.n_residuals()];
+        self.scatter(&parts, &mut out, Some(jac));
+    }
+
+    fn residuals_and_gram(&self, p: &[f64], out: &mut [f64], gram: &mut [f64]) -> bool {
+        let parts = self.rows(p, true);
+        self.scatter(&parts, out, None);
+        // The Gram matrix of [J | r], summed in chunk and row order.
+        let w = self.n_params + 1;
+        gram.fill(0.0);
+        let mut aug = vec![0.0; w];
+        for part in &parts {
+            for (r, row) in part
+                .residuals
+                .iter()
+                .zip(part.jacobian.chunks_exact(self.n_params))
+            {
+                aug[..self.n_params].copy_from_slice(row);
+                aug[self.n_params] = *r;
+                for a in 0..w {
+                    for b in a..w {
+                        gram[a * w + b] += aug[a] * aug[b];
                     }
                 }
             }
         }
+        for a in 0..w {
+            for b in 0..a {
+                gram[a * w + b] = gram[b * w + a];
+            }
+        }
+        true
     }
 }
 
@@ -325,7 +515,7 @@ pub(crate) fn fit_image(
         "bounded LM on all parameters in the image objective ({} pixels of {} images, {} shading terms), from the best BRDF-space fit",
         target.terms.pixels(),
         target.terms.images(),
-        target.terms.pairs.len()
+        target.terms.len()
     );
     Ok((rep.params.clone(), rep, (1, 1, 1), how))
 }

@@ -96,10 +96,17 @@ fn objective_names_round_trip() {
 /// A small image: 40 pixels over two "images", each pixel a sum of three
 /// terms with per-channel weights.
 fn terms() -> ImageTerms {
-    let mut pairs = DirPairs::with_capacity(120);
+    terms_of(40, 3)
+}
+
+/// `pixels` pixels over two "images", each a sum of `per_pixel` terms at
+/// quasi-random direction pairs with per-channel weights.
+fn terms_of(pixels: usize, per_pixel: usize) -> ImageTerms {
+    let n = pixels * per_pixel;
+    let mut pairs = DirPairs::with_capacity(n);
     let mut pixel = Vec::new();
-    let mut weights = vec![0.0; 3 * 120];
-    for k in 0..120 {
+    let mut weights = vec![0.0; 3 * n];
+    for k in 0..n {
         let x = k as f64;
         pairs.push(
             &dir(
@@ -111,18 +118,116 @@ fn terms() -> ImageTerms {
                 TAU * (x * 0.236_067_977_5).fract(),
             ),
         );
-        pixel.push(k / 3);
+        pixel.push(k / per_pixel);
         for c in 0..3 {
-            weights[c * 120 + k] = 0.2 + 0.1 * c as f64 + 0.05 * (x * 0.7).sin().abs();
+            weights[c * n + k] = 0.2 + 0.1 * c as f64 + 0.05 * (x * 0.7).sin().abs();
         }
     }
-    ImageTerms {
-        pairs,
-        weights,
-        weight_channels: 3,
-        pixel,
-        image_of_pixel: (0..40).map(|p| p / 20).collect(),
+    let images = (0..pixels).map(|p| 2 * p / pixels).collect();
+    ImageTerms::new(pairs, weights, 3, &pixel, images).expect("terms")
+}
+
+#[test]
+fn image_problem_in_chunks_gives_the_normal_equations_of_its_jacobian() {
+    // 600 pixels of 37 terms: 22 200 terms, cut into about eleven chunks
+    // of whole pixels. The fused pass's Gram matrix of [J | r] equals the
+    // one formed from the stored Jacobian and residuals, the Jacobian
+    // agrees with central differences across the chunk boundaries, and
+    // both are the same bits on one thread as on two.
+    let cfg = ModelConfig {
+        channels: 3,
+        ..ModelConfig::default()
+    };
+    let model = build("blinn-phong", &cfg).expect("model");
+    let mut truth = build("blinn-phong", &cfg).expect("model");
+    truth.set_params(&TRUTH).expect("truth");
+    let t = terms_of(600, 37);
+    let reference = t.render(truth.as_ref(), 3);
+    // The render against a plain sum over the terms.
+    let mut values = vec![0.0; 3];
+    let n = t.len();
+    for q in [0, 299, 599] {
+        for c in 0..3 {
+            let plain: f64 = (q * 37..(q + 1) * 37)
+                .map(|k| {
+                    let pairs = single_pair(k);
+                    truth.eval_pairs(&pairs, &mut values);
+                    t.weights()[c * n + k] * values[c]
+                })
+                .sum();
+            let got = reference[c * 600 + q];
+            assert!((got - plain).abs() <= 1e-12 * plain.abs(), "{got} {plain}");
+        }
     }
+    let exposures = t.exposures(&reference, 3);
+    let problem = ImageProblem::new(model.as_ref(), &t, &reference, &exposures).expect("problem");
+    let p = [0.1, 0.2, 0.2, 0.3, 0.3, 0.5, 25.0];
+    let (m, np) = (problem.n_residuals(), p.len());
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        pool.install(|| {
+            let (mut r, mut jac) = (vec![0.0; m], vec![0.0; m * np]);
+            let mut gram = vec![0.0; (np + 1) * (np + 1)];
+            problem.jacobian(&p, &mut jac);
+            let (mut r2, mut r3) = (vec![0.0; m], vec![0.0; m]);
+            problem.residuals(&p, &mut r2);
+            assert!(problem.residuals_and_gram(&p, &mut r3, &mut gram));
+            r.copy_from_slice(&r2);
+            assert_eq!(r2, r3);
+            (r, jac, gram)
+        })
+    };
+    let (r, jac, gram) = on(1);
+    assert_eq!((r.clone(), jac.clone(), gram.clone()), on(2));
+    let w = np + 1;
+    for a in 0..w {
+        for b in 0..w {
+            let col = |i: usize, k: usize| if k == np { r[i] } else { jac[i * np + k] };
+            let want: f64 = (0..m).map(|i| col(i, a) * col(i, b)).sum();
+            let got = gram[a * w + b];
+            assert!(
+                (got - want).abs() <= 1e-10 * want.abs().max(1e-12),
+                "gram[{a}][{b}] {got} against {want}"
+            );
+        }
+    }
+    let (mut rp, mut rm) = (vec![0.0; m], vec![0.0; m]);
+    for k in 0..np {
+        let h = 1e-6 * p[k].abs().max(1e-3);
+        let (mut up, mut dn) = (p, p);
+        up[k] += h;
+        dn[k] -= h;
+        problem.residuals(&up, &mut rp);
+        problem.residuals(&dn, &mut rm);
+        for i in (0..m).step_by(7) {
+            let fd = (rp[i] - rm[i]) / (2.0 * h);
+            let an = jac[i * np + k];
+            assert!(
+                (fd - an).abs() <= 1e-6 * an.abs().max(1e-3),
+                "row {i} parameter {k}: analytic {an}, finite difference {fd}"
+            );
+        }
+    }
+}
+
+/// The `k`-th pair of [`terms_of`], alone.
+fn single_pair(k: usize) -> DirPairs {
+    let x = k as f64;
+    let mut pairs = DirPairs::with_capacity(1);
+    pairs.push(
+        &dir(
+            (x * 0.618_033_988_75).fract(),
+            TAU * (x * 0.414_213_562_37).fract(),
+        ),
+        &dir(
+            (x * 0.732_050_807_57).fract(),
+            TAU * (x * 0.236_067_977_5).fract(),
+        ),
+    );
+    pairs
 }
 
 #[test]
@@ -182,7 +287,7 @@ fn image_terms_render_sums_weighted_values() {
     let px = t.render(&Lambert(0.5), 3);
     for c in 0..3 {
         for p in 0..40 {
-            let w: f64 = (3 * p..3 * p + 3).map(|k| t.weights[c * 120 + k]).sum();
+            let w: f64 = (3 * p..3 * p + 3).map(|k| t.weights()[c * 120 + k]).sum();
             assert!((px[c * 40 + p] - 0.5 / PI * w).abs() < 1e-15);
         }
     }

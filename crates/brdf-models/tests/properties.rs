@@ -12,6 +12,8 @@
 //!   near-grazing directions;
 //! - reciprocity for every model that declares itself reciprocal.
 
+mod strategies;
+
 use brdf_core::plausibility::{hemisphere_directions, nonnegativity_scan, reciprocity_deviation};
 use brdf_core::{ParamSpec, Parametric, central_difference_grad};
 use brdf_models::{ModelConfig, catalogue};
@@ -66,7 +68,7 @@ fn derivatives_match_finite_differences() {
                 ..Config::default()
             });
             let strategy = (
-                brdf_core::proptest::pair_above_horizon(),
+                strategies::pair_above_horizon(),
                 proptest::collection::vec(0.0..1.0f64, np),
             );
             let result = runner.run(&strategy, |((l, v), u)| {

@@ -1,9 +1,10 @@
-//! Proptest strategies for directions (feature `proptest-support`).
+//! Proptest strategies for directions, shared by the property tests of this
+//! folder (`mod strategies;`).
 
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
-use crate::spherical_to_cartesian;
+use brdf_core::spherical_to_cartesian;
 
 /// A direction strictly above the horizon, uniform in `cos theta` in
 /// `[1e-6, 1]` with extra weight on the pole and the last `1e-6` before the
