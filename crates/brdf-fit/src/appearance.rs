@@ -400,11 +400,20 @@ pub fn fit_for_appearance_with(
             starts.push((p.clone(), Vec::new()));
         }
     }
-    let terms = image_terms(FIT_SIZE)?;
+    // The data's pixels are rendered once, for every start.
+    let target = ImageTarget::new(
+        image_terms(FIT_SIZE)?,
+        data,
+        report.model.channels(),
+        Vec::new(),
+    );
     let winner = k;
     let mut best_flip = flip(&candidates, k);
     for (start, lobes) in starts {
-        let target = ImageTarget::new(terms.clone(), data, report.model.channels(), start);
+        let target = ImageTarget {
+            start,
+            ..target.clone()
+        };
         let refine = with_lobes(fit, &lobes).image_target(Arc::new(target));
         let (refined, c) = candidate(&refine, Objective::Image, lobes, samples, &judge)?;
         // The refinement sees the BRDF only through the sphere's pixels; it is
