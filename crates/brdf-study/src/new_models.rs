@@ -3,21 +3,22 @@
 //! `brdf fit` fits and judges: every model fitted to the material's
 //! samples (the study's: Sopp's grid within 80 deg, cell weights, every
 //! 5th node, as the Table 9.3 stand-in; `brdf fit` takes every node, five
-//! times the work for SGD's 30 parameters) by the fit `brdf fit --model
-//! NAME` runs by default (`--metric auto`: Ngan's
-//! L2 for the classic analytic models, the appearance fit for the renderer
-//! models), the new models as `brdf fit --metric appearance` fits them
-//! (issue 23's selection by image error: candidates under Ngan's L2, the
-//! log and the cube-root objectives, each refined in the image objective,
-//! the one of least image error kept; [`fit_judged`] with appearance on),
+//! times the work for SGD's 30 parameters) the ways a user fits it
+//! ([`entries`]): as `brdf fit --model NAME` does by default (`--metric
+//! auto`: Ngan's L2 for the classic analytic models, the appearance fit
+//! for the renderer models), and the renderer and new models also the
+//! other way (`--metric ngan`, `--metric appearance`: issue 23's selection
+//! by image error, candidates under Ngan's L2, the log and the cube-root
+//! objectives, each refined in the image objective, the one of least image
+//! error kept; [`fit_judged`]),
 //! then its Ngan L2 and the image errors `brdf fit` reports
 //! (HDR-FLIP of brdf-render's judge sphere at 128 px under the `sky` and
 //! `studio` light sets, against the measured RGL data rendered the same
 //! way).
 //!
-//! Per material the best classic or renderer model and the best new
-//! model are taken by each error separately (the best L2 and the best
-//! FLIP may be different models); the goal is met when the mean over the
+//! Per material the best classic or renderer fit and the best new fit
+//! are taken by each error separately (the best L2 and the best FLIP may
+//! be different models, or one model fitted two ways); the goal is met when the mean over the
 //! materials of the new models' best is at least [`GOAL_REDUCTION`] below
 //! the classic and renderer models' best, for the L2 and for the studio
 //! FLIP, and when on every material where the classic or renderer fit
@@ -44,8 +45,10 @@ pub const NEW_MODELS: [&str; 5] = ["abc", "abc-smooth", "std", "sgd", "dupuy"];
 /// One model's fit on one material.
 #[derive(Clone, Debug)]
 struct Outcome {
-    label: &'static str,
+    label: String,
     name: &'static str,
+    /// What the fit was made for: `Ngan L2` or `appearance`.
+    fitted_for: &'static str,
     ngan_l2: f64,
     flip_sky: f64,
     flip_studio: f64,
@@ -56,11 +59,7 @@ struct Outcome {
     seconds: f64,
 }
 
-fn outcome(
-    label: &'static str,
-    name: &'static str,
-    r: Result<FitReport, brdf_fit::FitError>,
-) -> Result<Outcome, String> {
+fn outcome(entry: &Entry, r: Result<FitReport, brdf_fit::FitError>) -> Result<Outcome, String> {
     let r = r.map_err(|e| e.to_string())?;
     let flip = |light: &str| {
         r.image_error
@@ -77,9 +76,15 @@ fn outcome(
         .filter(|(p, s)| !s.linear && p.at_bound.is_some())
         .map(|(p, _)| format!("{} ({})", p.name, p.at_bound.as_deref().unwrap_or("")))
         .collect();
+    let fitted_for = if entry.appearance {
+        "appearance"
+    } else {
+        "Ngan L2"
+    };
     Ok(Outcome {
-        label,
-        name,
+        label: format!("{} (for {fitted_for})", entry.label),
+        name: entry.name,
+        fitted_for,
         ngan_l2: r.summary.ngan_l2,
         flip_sky: flip("sky"),
         flip_studio: flip("studio"),
@@ -92,6 +97,41 @@ fn outcome(
             .map_or_else(|| r.summary.objective.to_string(), |c| c.objective.clone()),
         seconds: r.summary.seconds,
     })
+}
+
+/// One fit of the study: a model of the catalogue, fitted for appearance
+/// or for Ngan's L2.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    label: &'static str,
+    name: &'static str,
+    appearance: bool,
+}
+
+/// The study's fits: every model as `brdf fit --model NAME` fits it by
+/// default (`--metric auto`), and the models whose default is not the
+/// only fit a user would make also the other way: the renderer models
+/// (appearance by default) for Ngan's L2 too, the new models for both.
+/// Each error is then compared between fits made for it: the L2 of a fit
+/// for Ngan's L2, the FLIP of a fit for appearance, as a user picks
+/// `--metric ngan` or `--metric appearance` for what they need.
+fn entries(models: &[(&'static str, &'static str)]) -> Vec<Entry> {
+    let mut out = Vec::new();
+    for &(label, name) in models {
+        let new = NEW_MODELS.contains(&name);
+        let (default_appearance, _) = metric_choice("auto", name, true);
+        let ways: &[bool] = if new || default_appearance {
+            &[false, true]
+        } else {
+            &[false]
+        };
+        out.extend(ways.iter().map(|&appearance| Entry {
+            label,
+            name,
+            appearance,
+        }));
+    }
+    out
 }
 
 /// The lowest of `key` among `rows` (finite values only).
@@ -118,6 +158,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
     let mut models: Vec<(&'static str, &'static str)> =
         study.models().iter().map(|m| (m.0, m.1)).collect();
     models.extend(study.renderer_models().iter().map(|m| (m.0, m.1)));
+    let fits = entries(&models);
     let mut all = Table::new(
         "New models against the classic and renderer models: every fit on the RGL materials",
         &[
@@ -128,6 +169,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
             "FLIP studio",
             "FLIP sky",
             "shape parameters on a bound",
+            "fitted for",
             "objective kept",
             "termination",
             "seconds",
@@ -163,26 +205,20 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
             continue;
         }
         let (dense, samples) = crate::context::rgl_material(&rgl_dir, name)?;
-        let bar = progress::bar(models.len(), name);
-        let outcomes: Vec<Result<Outcome, String>> = models
+        let bar = progress::bar(fits.len(), name);
+        let outcomes: Vec<Result<Outcome, String>> = fits
             .par_iter()
-            .map(|&(label, model)| {
-                let metric = if NEW_MODELS.contains(&model) {
-                    "appearance"
-                } else {
-                    "auto"
-                };
-                let (appearance, _) = metric_choice(metric, model, true);
-                let r = Fit::model(model)
-                    .and_then(|f| fit_judged(&f, &samples, Some(&dense), appearance));
+            .map(|e| {
+                let r = Fit::model(e.name)
+                    .and_then(|f| fit_judged(&f, &samples, Some(&dense), e.appearance));
                 bar.inc(1);
-                outcome(label, model, r)
+                outcome(e, r)
             })
             .collect();
         bar.finish_and_clear();
         let mut ok = Vec::new();
-        for ((label, model), o) in models.iter().zip(&outcomes) {
-            let group = if NEW_MODELS.contains(model) {
+        for (e, o) in fits.iter().zip(&outcomes) {
+            let group = if NEW_MODELS.contains(&e.name) {
                 "new"
             } else {
                 "classic/renderer"
@@ -191,28 +227,30 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
                 Ok(o) => {
                     all.rows.push(vec![
                         Cell::Text(name.to_string()),
-                        Cell::Text(label.to_string()),
+                        Cell::Text(e.label.to_string()),
                         Cell::Text(group.into()),
                         Cell::Num(o.ngan_l2, 4),
                         Cell::Num(o.flip_studio, 3),
                         Cell::Num(o.flip_sky, 3),
                         Cell::Text(o.shape_on_bound.join(", ")),
+                        Cell::Text(o.fitted_for.into()),
                         Cell::Text(o.objective.clone()),
                         Cell::Text(o.termination.clone()),
                         Cell::Num(o.seconds, 3),
                     ]);
                     ok.push(o);
                 }
-                Err(e) => all.rows.push(vec![
+                Err(err) => all.rows.push(vec![
                     Cell::Text(name.to_string()),
-                    Cell::Text(label.to_string()),
+                    Cell::Text(e.label.to_string()),
                     Cell::Text(group.into()),
                     Cell::Empty,
                     Cell::Empty,
                     Cell::Empty,
                     Cell::Empty,
                     Cell::Empty,
-                    Cell::Text(format!("failed: {e}")),
+                    Cell::Empty,
+                    Cell::Text(format!("failed: {err}")),
                     Cell::Empty,
                 ]),
             }
@@ -260,18 +298,18 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
             }
         }
         row.extend([
-            Cell::Text(cl.label.into()),
+            Cell::Text(cl.label.clone()),
             Cell::Num(cl.ngan_l2, 4),
             Cell::Text(cl.shape_on_bound.join(", ")),
-            Cell::Text(nl.label.into()),
+            Cell::Text(nl.label.clone()),
             Cell::Num(nl.ngan_l2, 4),
             Cell::Text(format!(
                 "{}%",
                 fmt_sig(100.0 * reduction(cl.ngan_l2, nl.ngan_l2), 3)
             )),
-            Cell::Text(cs.label.into()),
+            Cell::Text(cs.label.clone()),
             Cell::Num(cs.flip_studio, 3),
-            Cell::Text(ns.label.into()),
+            Cell::Text(ns.label.clone()),
             Cell::Num(ns.flip_studio, 3),
             Cell::Text(format!(
                 "{}%",
@@ -325,7 +363,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
     let bound_met = bound_losses.is_empty();
     let verdict = |b: bool| if b { "met" } else { "NOT met" };
     let note = format!(
-        "Every classic and renderer model fitted as `brdf fit --model NAME` fits by default (`--metric auto`: Ngan's L2 for the analytic models, the appearance fit for the renderer models GGX, principled, glTF), every new model as `--metric appearance` fits it (candidates under Ngan's L2, log and cube root, each refined in the image objective, the least image error kept; `objective kept` in `new_models_fits.md`), to the RGL samples (Sopp's grid within 80 deg, every 5th node as in the Table 9.3 stand-in, cell weights, RGB), then judged as `brdf fit` judges: Ngan's L2 and the HDR-FLIP of brdf-render's judge sphere (128 px) under the studio and sky light sets against the measured RGL data. New models: {}; classic and renderer models: the rest. Per material the best of each group is taken for each error separately. Goal (issue 24): mean L2 reduction {}% (>= {}%: {}), mean studio-FLIP reduction {}% (>= {}%: {}); on the materials where the classic/renderer fit of lowest L2 ends with a shape parameter on a bound ({}), the best new model has the lower L2 and the lower studio FLIP: {} ({}). The sky light of brdf-render is being matched to Mitsuba's; its FLIP is printed, not judged. Written by `brdf reproduce` (part `new_models`).",
+        "Every model fitted as `brdf fit --model NAME` fits it by default (`--metric auto`: Ngan's L2 for the classic analytic models, the appearance fit for the renderer models GGX, principled, glTF), and the renderer and new models also the other way: `--metric ngan` and `--metric appearance` (candidates under Ngan's L2, log and cube root, each refined in the image objective, the least image error kept; `fitted for` and `objective kept` in `new_models_fits.md`), to the RGL samples (Sopp's grid within 80 deg, every 5th node as in the Table 9.3 stand-in, cell weights, RGB), then judged as `brdf fit` judges: Ngan's L2 and the HDR-FLIP of brdf-render's judge sphere (128 px) under the studio and sky light sets against the measured RGL data. New models: {}; classic and renderer models: the rest. Per material the best fit of each group is taken for each error separately (a user fits for the error they need: `for Ngan L2` or `for appearance` in the labels). Goal (issue 24): mean L2 reduction {}% (>= {}%: {}), mean studio-FLIP reduction {}% (>= {}%: {}); on the materials where the classic/renderer fit of lowest L2 ends with a shape parameter on a bound ({}), the best new model has the lower L2 and the lower studio FLIP: {} ({}). The sky light of brdf-render is being matched to Mitsuba's; its FLIP is printed, not judged. Written by `brdf reproduce` (part `new_models`).",
         NEW_MODELS.join(", "),
         fmt_sig(100.0 * red(0), 3),
         100.0 * GOAL_REDUCTION,
