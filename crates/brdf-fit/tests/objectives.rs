@@ -5,7 +5,7 @@
 
 use std::f64::consts::{PI, TAU};
 
-use brdf_core::{Brdf, DirPairs, Direction, SampleSet};
+use brdf_core::{Brdf, DirPairs, Direction, Parametric, SampleSet};
 use brdf_fit::image_objective::{ImageProblem, ImageTerms};
 use brdf_fit::{Fit, Objective};
 use brdf_models::catalogue::{ModelConfig, build};
@@ -108,16 +108,8 @@ fn terms_of(pixels: usize, per_pixel: usize) -> ImageTerms {
     let mut weights = vec![0.0; 3 * n];
     for k in 0..n {
         let x = k as f64;
-        pairs.push(
-            &dir(
-                (x * 0.618_033_988_75).fract(),
-                TAU * (x * 0.414_213_562_37).fract(),
-            ),
-            &dir(
-                (x * 0.732_050_807_57).fract(),
-                TAU * (x * 0.236_067_977_5).fract(),
-            ),
-        );
+        let (l, v) = term_pair(k);
+        pairs.push(&l, &v);
         pixel.push(k / per_pixel);
         for c in 0..3 {
             weights[c * n + k] = 0.2 + 0.1 * c as f64 + 0.05 * (x * 0.7).sin().abs();
@@ -134,13 +126,7 @@ fn image_problem_in_chunks_gives_the_normal_equations_of_its_jacobian() {
     // one formed from the stored Jacobian and residuals, the Jacobian
     // agrees with central differences across the chunk boundaries, and
     // both are the same bits on one thread as on two.
-    let cfg = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let model = build("blinn-phong", &cfg).expect("model");
-    let mut truth = build("blinn-phong", &cfg).expect("model");
-    truth.set_params(&TRUTH).expect("truth");
+    let (model, truth) = model_and_truth();
     let t = terms_of(600, 37);
     let reference = t.render(truth.as_ref(), 3);
     // The render against a plain sum over the terms.
@@ -150,7 +136,9 @@ fn image_problem_in_chunks_gives_the_normal_equations_of_its_jacobian() {
         for c in 0..3 {
             let plain: f64 = (q * 37..(q + 1) * 37)
                 .map(|k| {
-                    let pairs = single_pair(k);
+                    let (l, v) = term_pair(k);
+                    let mut pairs = DirPairs::with_capacity(1);
+                    pairs.push(&l, &v);
                     truth.eval_pairs(&pairs, &mut values);
                     t.weights()[c * n + k] * values[c]
                 })
@@ -194,44 +182,26 @@ fn image_problem_in_chunks_gives_the_normal_equations_of_its_jacobian() {
             );
         }
     }
-    let (mut rp, mut rm) = (vec![0.0; m], vec![0.0; m]);
-    for k in 0..np {
-        let h = 1e-6 * p[k].abs().max(1e-3);
-        let (mut up, mut dn) = (p, p);
-        up[k] += h;
-        dn[k] -= h;
-        problem.residuals(&up, &mut rp);
-        problem.residuals(&dn, &mut rm);
-        for i in (0..m).step_by(7) {
-            let fd = (rp[i] - rm[i]) / (2.0 * h);
-            let an = jac[i * np + k];
-            assert!(
-                (fd - an).abs() <= 1e-6 * an.abs().max(1e-3),
-                "row {i} parameter {k}: analytic {an}, finite difference {fd}"
-            );
-        }
-    }
+    assert_jacobian_matches_fd(&problem, &p, &jac, 7);
 }
 
-/// The `k`-th pair of [`terms_of`], alone.
-fn single_pair(k: usize) -> DirPairs {
+/// The direction pair of term `k` of [`terms_of`] (quasi-random).
+fn term_pair(k: usize) -> (Vector3<f64>, Vector3<f64>) {
     let x = k as f64;
-    let mut pairs = DirPairs::with_capacity(1);
-    pairs.push(
-        &dir(
+    (
+        dir(
             (x * 0.618_033_988_75).fract(),
             TAU * (x * 0.414_213_562_37).fract(),
         ),
-        &dir(
+        dir(
             (x * 0.732_050_807_57).fract(),
             TAU * (x * 0.236_067_977_5).fract(),
         ),
-    );
-    pairs
+    )
 }
 
-#[test]
-fn image_problem_jacobian_matches_finite_differences() {
+/// The RGB Blinn-Phong to fit and the one at [`TRUTH`].
+fn model_and_truth() -> (Box<dyn Parametric>, Box<dyn Parametric>) {
     let cfg = ModelConfig {
         channels: 3,
         ..ModelConfig::default()
@@ -239,24 +209,22 @@ fn image_problem_jacobian_matches_finite_differences() {
     let model = build("blinn-phong", &cfg).expect("model");
     let mut truth = build("blinn-phong", &cfg).expect("model");
     truth.set_params(&TRUTH).expect("truth");
-    let t = terms();
-    let reference = t.render(truth.as_ref(), 3);
-    let exposures = t.exposures(&reference, 3);
-    let problem = ImageProblem::new(model.as_ref(), &t, &reference, &exposures).expect("problem");
-    let p = [0.1, 0.2, 0.2, 0.3, 0.3, 0.5, 25.0];
-    let m = problem.n_residuals();
-    let np = p.len();
-    let mut jac = vec![0.0; m * np];
-    problem.jacobian(&p, &mut jac);
+    (model, truth)
+}
+
+/// The analytic Jacobian `jac` of `problem` at `p` against central
+/// differences of its residuals, on every `step`-th row.
+fn assert_jacobian_matches_fd(problem: &ImageProblem, p: &[f64], jac: &[f64], step: usize) {
+    let (m, np) = (problem.n_residuals(), p.len());
     let (mut rp, mut rm) = (vec![0.0; m], vec![0.0; m]);
     for k in 0..np {
         let h = 1e-6 * p[k].abs().max(1e-3);
-        let (mut up, mut dn) = (p, p);
+        let (mut up, mut dn) = (p.to_vec(), p.to_vec());
         up[k] += h;
         dn[k] -= h;
         problem.residuals(&up, &mut rp);
         problem.residuals(&dn, &mut rm);
-        for i in 0..m {
+        for i in (0..m).step_by(step) {
             let fd = (rp[i] - rm[i]) / (2.0 * h);
             let an = jac[i * np + k];
             assert!(
@@ -265,9 +233,24 @@ fn image_problem_jacobian_matches_finite_differences() {
             );
         }
     }
+}
+
+#[test]
+fn image_problem_jacobian_matches_finite_differences() {
+    let (model, truth) = model_and_truth();
+    let t = terms();
+    let reference = t.render(truth.as_ref(), 3);
+    let exposures = t.exposures(&reference, 3);
+    let problem = ImageProblem::new(model.as_ref(), &t, &reference, &exposures).expect("problem");
+    let p = [0.1, 0.2, 0.2, 0.3, 0.3, 0.5, 25.0];
+    let m = problem.n_residuals();
+    let mut jac = vec![0.0; m * p.len()];
+    problem.jacobian(&p, &mut jac);
+    assert_jacobian_matches_fd(&problem, &p, &jac, 1);
     // At the truth the residuals vanish.
-    problem.residuals(&TRUTH, &mut rp);
-    assert!(rp.iter().all(|r| r.abs() < 1e-12));
+    let mut r = vec![0.0; m];
+    problem.residuals(&TRUTH, &mut r);
+    assert!(r.iter().all(|r| r.abs() < 1e-12));
 }
 
 #[test]
