@@ -49,6 +49,10 @@ pub type BuildFromSamples = fn(&ModelConfig, &SampleSet) -> Result<Box<dyn Param
 /// pipeline takes their non-linear entries).
 pub type SuggestStarts = fn(&dyn Parametric) -> Vec<Vec<f64>>;
 
+/// Constructor of a one-channel model equivalent to one channel of a
+/// model whose channels share nothing ([`ModelEntry::channel_model`]).
+pub type ChannelModel = fn() -> Result<Box<dyn Parametric>, ParamError>;
+
 /// A catalogue entry.
 #[derive(Clone, Copy)]
 pub struct ModelEntry {
@@ -81,6 +85,13 @@ pub struct ModelEntry {
     /// pairs see): on synthetic data its best start needed about 2000
     /// iterations to converge, past the pipeline's cap of 300.
     pub polish_factor: usize,
+    /// One channel of the model as a one-channel model of its own, for
+    /// models whose channels share no parameter (Bagher's SGD): its
+    /// parameters are a channel's block in the model's order, and it
+    /// evaluates that channel alone, in batch, where slicing the model
+    /// ([`ChannelSlice`](crate::channel_slice::ChannelSlice)) evaluates
+    /// every channel per direction pair. `None`: the slice evaluates.
+    pub channel_model: Option<ChannelModel>,
 }
 
 impl ModelEntry {
@@ -128,6 +139,15 @@ pub fn polish_factor(model: &dyn Parametric) -> usize {
     entry(model.name()).map_or(1, |e| e.polish_factor.max(1))
 }
 
+/// The one-channel model of one channel of `model` (its catalogue entry's
+/// [`ModelEntry::channel_model`]); `None` for a model without, or not in
+/// the catalogue, or when it cannot be built.
+pub fn channel_model(model: &dyn Parametric) -> Option<Box<dyn Parametric>> {
+    entry(model.name())
+        .and_then(|e| e.channel_model)
+        .and_then(|f| f().ok())
+}
+
 /// The start points model `model` suggests (its catalogue entry's
 /// [`ModelEntry::starts`]); none for a model without, or not in the
 /// catalogue.
@@ -160,6 +180,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
         from_samples: None,
         starts: None,
         polish_factor: 1,
+        channel_model: None,
     }];
     macro_rules! lobe_model {
         ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
@@ -174,6 +195,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
                 from_samples: None,
                 starts: None,
                 polish_factor: 1,
+                channel_model: None,
             })
         };
     }
@@ -268,6 +290,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: <crate::sgd::SgdShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -280,6 +303,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: Some(crate::sgd::suggested_starts),
             polish_factor: 10,
+            channel_model: Some(|| Ok(Box::new(crate::sgd::channel::SgdChannel::with_defaults()?))),
         });
         v.push(ModelEntry {
             name: <crate::low::LowAbcShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -292,6 +316,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: <crate::low::LowSmoothShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -304,6 +329,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: crate::dupuy::NAME,
@@ -316,6 +342,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: Some(|c, s| Ok(Box::new(crate::Dupuy::from_samples(c.channels, s)?))),
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
     }
     #[cfg(feature = "lafortune")]
@@ -331,6 +358,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: crate::Lafortune::NAME_ANISO,
@@ -343,6 +371,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
     }
     #[cfg(feature = "oren-nayar")]
@@ -357,6 +386,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
         from_samples: None,
         starts: None,
         polish_factor: 1,
+        channel_model: None,
     });
     #[cfg(feature = "oren-nayar")]
     v.push(ModelEntry {
@@ -370,6 +400,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
         from_samples: None,
         starts: None,
         polish_factor: 1,
+        channel_model: None,
     });
     #[cfg(feature = "sopp")]
     {
@@ -401,6 +432,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
     }
     #[cfg(feature = "koenderink")]
@@ -415,6 +447,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
         from_samples: None,
         starts: None,
         polish_factor: 1,
+        channel_model: None,
     });
     #[cfg(feature = "polynomial")]
     {
@@ -440,6 +473,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: KurtPolynomial::NAME_ANISO,
@@ -462,6 +496,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
     }
     #[cfg(feature = "renderer")]
@@ -477,6 +512,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: <crate::ggx::GgxSeparableLobe as crate::combinators::Lobe>::NAME,
@@ -489,6 +525,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         lobe_model!(
             crate::GgxAniso,
@@ -561,6 +598,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfFormula as crate::dual_model::DualFormula>::NAME,
@@ -573,6 +611,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfExtFormula as crate::dual_model::DualFormula>::NAME,
@@ -585,6 +624,7 @@ pub fn catalogue() -> Vec<ModelEntry> {
             from_samples: None,
             starts: None,
             polish_factor: 1,
+            channel_model: None,
         });
     }
     v

@@ -13,6 +13,14 @@
 //! ([`channel_param_name`]) and checks the block structure on the
 //! Jacobian at probe directions; a model that fails the check gets `None`.
 //!
+//! Sliced out of the whole model, every evaluation of one channel forms all
+//! of them (and, for derivatives, the whole gradient). A model whose
+//! catalogue entry has a one-channel model of a channel
+//! ([`channel_model`](crate::catalogue::channel_model): Bagher's SGD) is
+//! evaluated through it instead, in batch and with its shared basis, once
+//! the slice has checked that it gives the channel's values and
+//! derivatives at probe directions.
+//!
 //! ```
 //! use brdf_core::Brdf;
 //! use brdf_models::channel_slice::{ChannelSlice, channel_blocks};
@@ -30,7 +38,7 @@
 //! ```
 
 use brdf_core::params::channel_param_name;
-use brdf_core::{Brdf, ParamError, ParamSpec, Parametric};
+use brdf_core::{Brdf, DirPairs, ParamError, ParamSpec, Parametric, SharedBasis};
 use nalgebra::Vector3;
 
 /// Channel `channel` of `model` in that channel's parameters `indices`.
@@ -41,6 +49,9 @@ pub struct ChannelSlice {
     indices: Vec<usize>,
     specs: Vec<ParamSpec>,
     params: Vec<f64>,
+    /// The one-channel model that evaluates the channel (parameters in
+    /// `indices` order), where the catalogue has one and it agrees.
+    fast: Option<Box<dyn Parametric>>,
 }
 
 impl std::fmt::Debug for ChannelSlice {
@@ -49,6 +60,7 @@ impl std::fmt::Debug for ChannelSlice {
             .field("model", &self.model.name())
             .field("channel", &self.channel)
             .field("indices", &self.indices)
+            .field("fast", &self.fast.is_some())
             .finish()
     }
 }
@@ -73,14 +85,23 @@ impl ChannelSlice {
         }
         let all = model.param_specs();
         let specs = indices.iter().map(|&k| all[k].clone()).collect();
-        let params = indices.iter().map(|&k| model.params()[k]).collect();
+        let params: Vec<f64> = indices.iter().map(|&k| model.params()[k]).collect();
+        let fast = crate::catalogue::channel_model(model)
+            .filter(|f| agrees(model, channel, &indices, &params, f.as_ref()));
         Ok(Self {
             model: model.clone_box(),
             channel,
             indices,
             specs,
             params,
+            fast,
         })
+    }
+
+    /// Whether the channel is evaluated by a one-channel model of its own
+    /// (else by the whole model).
+    pub fn is_fast(&self) -> bool {
+        self.fast.is_some()
     }
 
     /// The full parameter vector with this slice's entries from `p`.
@@ -108,6 +129,9 @@ impl Parametric for ChannelSlice {
         self.model.name()
     }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        if let Some(f) = &self.fast {
+            return f.eval_at(p, l, v, out);
+        }
         let mut all = vec![0.0; self.model.channels()];
         self.model.eval_at(&self.full(p), l, v, &mut all);
         out[0] = all[self.channel];
@@ -120,6 +144,9 @@ impl Parametric for ChannelSlice {
         out: &mut [f64],
         grad: &mut [f64],
     ) {
+        if let Some(f) = &self.fast {
+            return f.eval_grad_at(p, l, v, out, grad);
+        }
         let (nc, np) = (self.model.channels(), self.model.n_params());
         let mut all = vec![0.0; nc];
         let mut g = vec![0.0; nc * np];
@@ -131,9 +158,104 @@ impl Parametric for ChannelSlice {
             *d = row[k];
         }
     }
+    fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
+        match &self.fast {
+            Some(f) => f.eval_batch_at(p, pairs, out),
+            None => default_batch(self, p, pairs, out),
+        }
+    }
+    fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
+        match &self.fast {
+            Some(f) => f.eval_grad_batch_at(p, pairs, out, jac),
+            None => default_grad_batch(self, p, pairs, out, jac),
+        }
+    }
+    fn shared_basis(&self) -> Option<&dyn SharedBasis> {
+        self.fast.as_ref().and_then(|f| f.shared_basis())
+    }
     fn is_reciprocal(&self) -> bool {
         self.model.is_reciprocal()
     }
+}
+
+/// The trait's per-pair batch values (what a slice without a one-channel
+/// model does).
+fn default_batch(m: &ChannelSlice, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
+    let mut v = [0.0];
+    for (j, o) in out.iter_mut().enumerate().take(pairs.len()) {
+        m.eval_at(p, &pairs.l(j), &pairs.v(j), &mut v);
+        *o = v[0];
+    }
+}
+
+/// The trait's per-pair batch values and Jacobian.
+fn default_grad_batch(
+    m: &ChannelSlice,
+    p: &[f64],
+    pairs: &DirPairs,
+    out: &mut [f64],
+    jac: &mut [f64],
+) {
+    let np = p.len();
+    let mut v = [0.0];
+    for j in 0..pairs.len() {
+        m.eval_grad_at(
+            p,
+            &pairs.l(j),
+            &pairs.v(j),
+            &mut v,
+            &mut jac[j * np..(j + 1) * np],
+        );
+        out[j] = v[0];
+    }
+}
+
+/// Probe direction pairs of the block checks (one near the pole, one
+/// oblique, one grazing).
+fn probes() -> [(Vector3<f64>, Vector3<f64>); 3] {
+    [
+        (Vector3::new(0.3, 0.1, 0.9), Vector3::new(-0.2, 0.05, 0.95)),
+        (Vector3::new(0.7, -0.2, 0.5), Vector3::new(0.6, 0.3, 0.6)),
+        (Vector3::new(0.0, 0.0, 1.0), Vector3::new(-0.9, 0.1, 0.3)),
+    ]
+    .map(|(l, v)| (l.normalize(), v.normalize()))
+}
+
+/// Whether the one-channel model `fast` at `params` gives channel
+/// `channel` of `model` and its derivatives in `indices` at the probe
+/// directions, one by one and in batch (to `1e-12` relative: the two may
+/// round differently).
+fn agrees(
+    model: &dyn Parametric,
+    channel: usize,
+    indices: &[usize],
+    params: &[f64],
+    fast: &dyn Parametric,
+) -> bool {
+    let nf = indices.len();
+    if fast.channels() != 1 || fast.n_params() != nf {
+        return false;
+    }
+    let (nc, np) = (model.channels(), model.n_params());
+    let (mut all, mut g) = (vec![0.0; nc], vec![0.0; nc * np]);
+    let (mut one, mut dg) = ([0.0], vec![0.0; nf]);
+    let mut pairs = DirPairs::with_capacity(3);
+    let (mut batch, mut jac) = (vec![0.0; 3], vec![0.0; 3 * nf]);
+    for (l, v) in probes() {
+        pairs.push(&l, &v);
+    }
+    fast.eval_grad_batch_at(params, &pairs, &mut batch, &mut jac);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()) + 1e-300;
+    probes().iter().enumerate().all(|(j, (l, v))| {
+        model.eval_grad_at(model.params(), l, v, &mut all, &mut g);
+        fast.eval_grad_at(params, l, v, &mut one, &mut dg);
+        let row = &g[channel * np..(channel + 1) * np];
+        let batch_row = &jac[j * nf..(j + 1) * nf];
+        close(all[channel], one[0])
+            && close(all[channel], batch[j])
+            && (0..nf)
+                .all(|u| close(row[indices[u]], dg[u]) && close(row[indices[u]], batch_row[u]))
+    })
 }
 
 /// Every parameter's channel by its name (`kd_r`, `alpha_g`, ... as
@@ -161,12 +283,7 @@ pub fn channel_blocks(model: &dyn Parametric) -> Option<Vec<Vec<usize>>> {
     let np = model.n_params();
     let mut out = vec![0.0; nc];
     let mut grad = vec![0.0; nc * np];
-    for (l, v) in [
-        (Vector3::new(0.3, 0.1, 0.9), Vector3::new(-0.2, 0.05, 0.95)),
-        (Vector3::new(0.7, -0.2, 0.5), Vector3::new(0.6, 0.3, 0.6)),
-        (Vector3::new(0.0, 0.0, 1.0), Vector3::new(-0.9, 0.1, 0.3)),
-    ] {
-        let (l, v) = (l.normalize(), v.normalize());
+    for (l, v) in probes() {
         model.eval_grad_at(model.params(), &l, &v, &mut out, &mut grad);
         for (c, block) in blocks.iter().enumerate() {
             for k in 0..np {

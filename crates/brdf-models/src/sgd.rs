@@ -72,6 +72,8 @@
 //! assert!((f[0] - expect).abs() < 1e-13 * expect);
 //! ```
 
+pub mod channel;
+
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use brdf_core::ParamSpec;
