@@ -54,7 +54,7 @@ pub const IMAGE_MAX_ITERATIONS: usize = 30;
 /// The shading terms of one or more images: term `k` adds
 /// `weights[c * n + k] * f_c(l_k, v_k)` to pixel `pixel[k]`.
 ///
-/// Stored as chunks of whole pixels (about [`CHUNK_TERMS`] terms each),
+/// Stored as chunks of whole pixels (about 2048 terms each),
 /// each with its own copy of its direction pairs, so a fit evaluates the
 /// model chunk by chunk in parallel and sums each chunk into its pixels
 /// while its values are in cache.

@@ -4,7 +4,7 @@
 //! samples (the study's: Sopp's grid within 80 deg, cell weights, every
 //! 5th node, as the Table 9.3 stand-in; `brdf fit` takes every node, five
 //! times the work for SGD's 30 parameters) the ways a user fits it
-//! ([`entries`]): as `brdf fit --model NAME` does by default (`--metric
+//! (see `entries`): as `brdf fit --model NAME` does by default (`--metric
 //! auto`: Ngan's L2 for the classic analytic models, the appearance fit
 //! for the renderer models), and the renderer and new models also the
 //! other way (`--metric ngan`, `--metric appearance`: issue 23's selection
