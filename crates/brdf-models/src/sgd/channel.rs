@@ -1,5 +1,5 @@
 //! [`SgdChannel`]: one colour channel of Bagher et al.'s SGD model
-//! ([`Sgd`](crate::Sgd)) as a one-channel model with a batch kernel, what
+//! ([`Sgd`]) as a one-channel model with a batch kernel, what
 //! the per-channel fit of an RGB SGD model solves three times.
 //!
 //! Every parameter of an SGD channel is its own, so a fit of the RGB model
