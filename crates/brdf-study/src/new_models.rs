@@ -389,12 +389,12 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
     all.write(&study.out, "new_models_fits")?;
     study.wrote(
         "new_models.{csv,md}",
-        "new models (ABC, ABC smooth, STD, SGD, Dupuy) against the best classic or renderer model per RGL material: Ngan L2 and image FLIP (studio, sky) of `brdf fit`'s default fits, the goal of issue 24 judged",
+        "new models (ABC, ABC smooth, STD, SGD, Dupuy) against the best classic or renderer model per RGL material: Ngan L2 and image FLIP (studio, sky) of `brdf fit`'s fits for Ngan L2 and for appearance, the goal of issue 24 judged",
         "`rgl/*.bsdf` (Sopp's grid, every 5th node, RGB)",
     );
     study.wrote(
         "new_models_fits.{csv,md}",
-        "every fit behind `new_models`: Ngan L2, FLIP studio and sky, shape parameters on a bound, termination, time",
+        "every fit behind `new_models`: Ngan L2, FLIP studio and sky, shape parameters on a bound, what it was fitted for, objective kept, termination, time",
         "`rgl/*.bsdf` (Sopp's grid, every 5th node, RGB)",
     );
     Ok(())
