@@ -11,7 +11,7 @@ use brdf_core::Parametric;
 use brdf_models::{ModelConfig, catalogue};
 use nalgebra::Vector3;
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestRunner};
+use proptest::test_runner::{Config, RngSeed, TestRunner};
 
 fn point(model: &dyn Parametric, u: &[f64]) -> Vec<f64> {
     model
@@ -53,8 +53,13 @@ fn reciprocal_at_random_parameter_points() {
             );
             let np = model.n_params();
             let nc = model.channels();
+            // A fixed seed: the same 32 points on every run. With random
+            // seeds about one run in 300 drew no point where phong-fresnel's
+            // asymmetry exceeds 1e-6 (seed 235 of PROPTEST_RNG_SEED), and the
+            // check below failed by chance, not by a change.
             let mut runner = TestRunner::new(Config {
                 cases: 32,
+                rng_seed: RngSeed::Fixed(1),
                 ..Config::default()
             });
             let strategy = (
