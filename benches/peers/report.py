@@ -492,14 +492,19 @@ def issue28_section(d):
             "report (`floor` column); most of it is the RGL interpolation (`brdf_io::rgl`, the data's render), "
             "so the command cannot meet 0.5 s even with a free fit; the goal is judged on `fit CPU` too.",
             "- Default command (appearance pipeline): 8-9 candidate fits (3 objectives, optional lobes, 3-4 image "
-            "refinements); after the screening the image-objective refinements (32-px shading terms, every "
-            "iteration a kernel pass over all terms) are the largest part (see the per-candidate seconds).",
+            "refinements), each ranked by its 32-px renders, then the 128-px image errors of the report. The "
+            "image-objective refinements now run chunk by chunk over the shading terms with the normal equations "
+            "in the same pass and stop at 30 iterations (`image_objective.rs`), so they cost about as much as the "
+            "BRDF-space candidates (see the per-candidate seconds); 2 s needs fewer candidates (e.g. skipping the "
+            "refinements whose start lies in the winner's basin) and a cheaper render of the data (the floor).",
             "- Full MERL grid, default AS: 12 starts (coarse search, 3 refined on all samples) against ONE SciPy start; "
             "the refinement and the covariance (a QR of the 0.9M-row Jacobian) dominate.",
             "- select: every catalogue candidate (every order/degree/lobe count) fitted; the slowest one named in "
-            "the table takes most of the processor time (`sgd`'s fit is its catalogue entry's: channels one by one, "
-            "a longer polish), the rest is the sum of the other fits, so 5 s needs a bounded `sgd` fit and many "
-            "cores or fewer candidates.",
+            "the table takes most of the processor time. `sgd` is fitted channel by channel through its one-channel "
+            "batch model with the polish on a log scale of its shadowing parameters (`sgd/channel.rs`, "
+            "`pipeline/log_scaled.rs`); what is left is its coarse search (starts running to their 300-iteration "
+            "cap in the original parameters) and, on colodur_napoli, a second flat valley; the other candidates "
+            "add about 30 s. 5 s needs a screened `sgd` search and many cores or fewer candidates.",
             "- Kernels: principled value + derivatives is scalar code (baseline x86-64, no FMA/AVX) with per sample "
             "5 square roots and 7 divisions; the direction-only factors (half vector, clear-coat masking, Schlick "
             "weights) are recomputed at every iteration. Left: a per-sample-set cache of those factors, SIMD.",
