@@ -392,13 +392,15 @@ impl<'a> ImageProblem<'a> {
     }
 
     /// Scatter the chunks' rows into the channel-major rows of the problem.
-    fn scatter(&self, parts: &[ChunkRows], out: &mut [f64], jac: Option<&mut [f64]>) {
+    fn scatter(&self, parts: &[ChunkRows], out: Option<&mut [f64]>, jac: Option<&mut [f64]>) {
         let (np, npar) = (self.terms.pixels(), self.n_params);
-        for (ch, part) in self.terms.chunks.iter().zip(parts) {
-            let w = ch.pixels.len();
-            for c in 0..self.channels {
-                let rows = c * np + ch.pixels.start..c * np + ch.pixels.end;
-                out[rows].copy_from_slice(&part.residuals[c * w..(c + 1) * w]);
+        if let Some(out) = out {
+            for (ch, part) in self.terms.chunks.iter().zip(parts) {
+                let w = ch.pixels.len();
+                for c in 0..self.channels {
+                    let rows = c * np + ch.pixels.start..c * np + ch.pixels.end;
+                    out[rows].copy_from_slice(&part.residuals[c * w..(c + 1) * w]);
+                }
             }
         }
         if let Some(jac) = jac {
@@ -425,18 +427,17 @@ impl LeastSquaresProblem for ImageProblem<'_> {
 
     fn residuals(&self, p: &[f64], out: &mut [f64]) {
         let parts = self.rows(p, false);
-        self.scatter(&parts, out, None);
+        self.scatter(&parts, Some(out), None);
     }
 
     fn jacobian(&self, p: &[f64], jac: &mut [f64]) {
         let parts = self.rows(p, true);
-        let mut out = vec![0.0; self.n_residuals()];
-        self.scatter(&parts, &mut out, Some(jac));
+        self.scatter(&parts, None, Some(jac));
     }
 
     fn residuals_and_gram(&self, p: &[f64], out: &mut [f64], gram: &mut [f64]) -> bool {
         let parts = self.rows(p, true);
-        self.scatter(&parts, out, None);
+        self.scatter(&parts, Some(out), None);
         // The Gram matrix of [J | r], summed in chunk and row order.
         let w = self.n_params + 1;
         gram.fill(0.0);
