@@ -79,6 +79,10 @@ pub enum ExportFileError {
         /// the target
         target: Target,
     },
+    /// The measurement to tabulate on could not be read, or the model
+    /// cannot be stored on its grid.
+    #[error(transparent)]
+    Grid(#[from] brdf_io::IoError),
     /// Writing the material failed.
     #[error("{path}: {source}")]
     Io {

@@ -23,6 +23,9 @@
 //! *Mapped* ([`table`]): the renderer's material takes the model's
 //! parameters under the same meaning, but its BRDF is the renderer's own.
 //!
+//! Any model is also written for Mitsuba 3 as a `measured` BSDF tabulated
+//! on an RGL measurement's grid ([`mod@measured`], `--tabulate-on`).
+//!
 //! Any other model is converted by fitting (see [`mod@convert`] for the model
 //! each target gets).
 //!
@@ -59,6 +62,7 @@ pub mod file;
 pub mod fitted;
 pub mod gltf;
 pub mod materialx;
+pub mod measured;
 pub mod mitsuba;
 pub mod pbrt;
 pub mod pbrt_mix;

@@ -14,6 +14,7 @@
 //! | [`sopp_grid`] | Sopp's goniometric grid (resample, CSV, cell weights) | Sopp 2017 | 1/sr, degrees | none |
 //! | [`csv_samples`] | generic CSV samples in and out | users | 1/sr, radians | NaN values kept, counted by filters |
 //! | [`rgl`] | RGL `.bsdf` tensor files, evaluated through the inverse VNDF warp | Dupuy & Jakob 2018 | 1/sr | out-of-gamut values clamped at 0 (as the authors) |
+//! | [`rgl_tabulated`] | any BRDF written as an RGL `.bsdf` on a measurement's own grid (for Mitsuba 3's `measured` plugin) | - | 1/sr | - |
 //! | [`nist`] | NIST StRD non-linear regression `.dat` | NIST ITL | - | - |
 //!
 //! [`load`](fn@load) detects the format by name (`PATH` or `PATH#SAMPLE`, see
@@ -45,6 +46,7 @@ pub mod materials;
 pub mod merl;
 pub mod nist;
 pub mod rgl;
+pub mod rgl_tabulated;
 pub mod sopp_grid;
 
 pub use error::IoError;

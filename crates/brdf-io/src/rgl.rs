@@ -676,6 +676,12 @@ impl Rgl {
         })
     }
 
+    /// Whether the file is isotropic (one tabulated `phi_i`): its values
+    /// depend on the azimuths only through `phi_m - phi_i`.
+    pub fn is_isotropic(&self) -> bool {
+        self.isotropic
+    }
+
     /// The largest tabulated incident elevation below 90 deg (radians):
     /// the measured range (see [`MeasuredRange`]).
     pub fn measured_theta_max(&self) -> f64 {

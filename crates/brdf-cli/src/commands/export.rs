@@ -1,4 +1,5 @@
-//! `brdf export --from MODEL.json --to mitsuba|pbrt|gltf|materialx|usd|blender OUT`:
+//! `brdf export --from MODEL.json --to mitsuba|pbrt|gltf|materialx|usd|blender OUT`
+//! (or `--to mitsuba --tabulate-on DATA.bsdf OUT.bsdf`, any model tabulated):
 //! write a saved model as a renderer's material, a thin layer over
 //! [`brdf_export`]. Exact where the target has the model's equivalent;
 //! otherwise converted by fitting a model the target has (`--via` names
@@ -29,6 +30,12 @@ pub struct ExportArgs {
     /// Print which model each target writes exactly, maps or converts.
     #[arg(long)]
     pub list: bool,
+    /// Mitsuba: write the model itself as a `measured` BSDF, tabulated on
+    /// the grid of this RGL measurement (`.bsdf`; OUT is then a `.bsdf`
+    /// file). Any model, no conversion: what Mitsuba renders is the model
+    /// at the grid's nodes, interpolated between them.
+    #[arg(long, value_name = "DATA.bsdf")]
+    pub tabulate_on: Option<PathBuf>,
     /// Mitsuba: write a complete judge scene (sphere, camera, a light set)
     /// instead of a `<bsdf>` snippet.
     #[arg(long)]
@@ -87,6 +94,9 @@ pub fn run(args: &ExportArgs) -> Result<(), CliError> {
         }
         .into());
     }
+    if let Some(grid) = &args.tabulate_on {
+        return tabulated(args, target, grid, out);
+    }
     let job = ExportJob {
         from: args
             .from
@@ -118,6 +128,50 @@ pub fn run(args: &ExportArgs) -> Result<(), CliError> {
     };
     let done = brdf_export::file::run(&job)?;
     report(args, out, &done.model, job.target, &done.exported)
+}
+
+/// `--tabulate-on`: the model tabulated on a measurement's grid.
+fn tabulated(
+    args: &ExportArgs,
+    target: Target,
+    grid: &std::path::Path,
+    out: &std::path::Path,
+) -> Result<(), CliError> {
+    if target != Target::Mitsuba || args.scene {
+        return Err(brdf_export::ExportError::UnknownOption {
+            option: "--tabulate-on",
+            value: format!("--to {target}{}", if args.scene { " --scene" } else { "" }),
+            expected: "--to mitsuba without --scene (Mitsuba's `measured` plugin reads the tabulated file)",
+        }
+        .into());
+    }
+    let from = args
+        .from
+        .as_deref()
+        .ok_or(brdf_export::ExportError::UnknownOption {
+            option: "--from",
+            value: String::new(),
+            expected: "a model saved by `brdf fit --save` (--from MODEL.json)",
+        })?;
+    let t = brdf_export::measured::run(from, grid, out)?;
+    if args.json {
+        let v = serde_json::json!({
+            "model": t.model, "target": "mitsuba", "out": out.display().to_string(),
+            "exact": true, "tabulated_on": grid.display().to_string(),
+            "incident_directions": t.incident, "nodes_per_direction": t.per_incident,
+            "snippet": t.snippet,
+        });
+        return say!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    say!(
+        "wrote {}: `{}` tabulated on the grid of {} ({} incident directions x {} nodes, RGB) for Mitsuba's `measured` plugin:\n{}",
+        out.display(),
+        t.model,
+        grid.display(),
+        t.incident,
+        t.per_incident,
+        t.snippet.trim_end()
+    )
 }
 
 fn report(
