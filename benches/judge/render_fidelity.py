@@ -11,7 +11,16 @@ Run from the repository root, in a venv with the pinned tools
 `cargo build --release -p brdf-cli`:
 
     python benches/judge/render_fidelity.py [--configs principled:ngan,...]
-        [--peer results/render_fidelity/peer.json] [--from-table]
+        [--peer results/render_fidelity/peer.json] [--from-table] [--add]
+
+A configuration is `model:objective` (exported by `brdf export --to
+mitsuba`: exactly, or converted to a model Mitsuba has) or
+`model:objective:tabulated` (the model itself, tabulated on the
+measurement's grid by `brdf export --to mitsuba --tabulate-on` and rendered
+by the `measured` plugin: how the models Mitsuba lacks are judged, issue 24).
+`--add` renders only the configurations given and merges their rows into
+the existing table.json (a row of the same material, model and objective is
+replaced), then rewrites the markdown.
 
 The markdown ends with the issue's goals for the default fit, each met or
 missed by the measured margin (`--from-table` rewrites it from table.json).
@@ -53,28 +62,46 @@ def data_dir(only=None):
     return files
 
 
-def fit_and_export(data, model, objective, workdir, extra=()):
-    """Fit with the `brdf` command, export to Mitsuba; returns (xml, summary)."""
+def fit(data, model, objective, workdir):
+    """Fit with the `brdf` command; returns (saved model, summary, wall seconds)."""
     stem = f"{data.stem}.{model}.{objective}"
     fit_json = Path(workdir) / f"{stem}.json"
-    xml = Path(workdir) / f"{stem}.xml"
     cmd = [brdf_bin(), "fit", "--data", str(data), "--model", model, "--channels", "rgb"]
     if objective != "default":
         cmd += ["--metric", objective]
-    cmd += ["--save", str(fit_json), "--json", *extra]
+    cmd += ["--save", str(fit_json), "--json", "--quiet"]
     t0 = time.time()
     out = subprocess.run(cmd, check=True, capture_output=True, text=True)
-    wall = time.time() - t0
-    summary = json.loads(out.stdout)
-    export = [brdf_bin(), "export", "--from", str(fit_json), "--to", "mitsuba", str(xml)]
-    done = subprocess.run(export, capture_output=True, text=True)
+    return fit_json, json.loads(out.stdout), time.time() - t0
+
+
+def export(fit_json, summary, route, data):
+    """The fit exported for Mitsuba: an XML snippet (exact or converted;
+    `summary["forced"]` set when the conversion had to be forced) or, for
+    the route `tabulated`, an RGL file on the measurement's grid."""
+    if route == "tabulated":
+        out = fit_json.with_suffix(".bsdf")
+        cmd = [brdf_bin(), "export", "--from", str(fit_json), "--to", "mitsuba",
+               "--tabulate-on", str(data), str(out)]
+        subprocess.run(cmd, check=True, capture_output=True, text=True)
+        summary["forced"] = False
+        return out
+    xml = fit_json.with_suffix(".xml")
+    cmd = [brdf_bin(), "export", "--from", str(fit_json), "--to", "mitsuba", str(xml)]
+    done = subprocess.run(cmd, capture_output=True, text=True)
     # A conversion (a fit of a model Mitsuba lacks) that changes the look
     # beyond brdf export's limit is refused; the table then shows the
     # conversion forced, marked as such.
     summary["forced"] = done.returncode != 0
     if summary["forced"]:
-        subprocess.run(export + ["--force"], check=True, capture_output=True, text=True)
-    return xml, summary, wall
+        subprocess.run(cmd + ["--force"], check=True, capture_output=True, text=True)
+    return xml
+
+
+def fit_and_export(data, model, objective, workdir, route="exported"):
+    """Fit, then export; returns (file Mitsuba loads, summary, fit seconds)."""
+    fit_json, summary, wall = fit(data, model, objective, workdir)
+    return export(fit_json, summary, route, data), summary, wall
 
 
 def judge(reference, test):
@@ -89,20 +116,42 @@ def measured_renders(data, spp):
     return {light: S.render(S.bsdf_of(data), light, seed=1, spp=spp) for light in S.LIGHTS}
 
 
-def row_for(data, refs, model, objective, workdir, spp, pictures=None):
-    xml, summary, wall = fit_and_export(data, model, objective, workdir)
+def row_for(data, refs, model, objective, workdir, spp, pictures=None, route="exported", images=None):
+    """One table row: the fit's export rendered under both lights and judged
+    against the measurement's renders `refs` (the renders go into `images`
+    when given)."""
+    path, summary, wall = fit_and_export(data, model, objective, workdir, route)
     label = objective + (" (conversion forced)" if summary["forced"] else "")
+    if route == "tabulated":
+        label += " (tabulated)"
     row = {"material": data.stem, "model": model, "objective": label, "seconds": wall}
     for light in S.LIGHTS:
-        img = S.render(S.bsdf_of(xml), light, seed=2, spp=spp)
+        img = S.render(S.bsdf_of(path), light, seed=2, spp=spp)
         row[light] = judge(refs[light], img)
+        if images is not None:
+            images[light] = img
         if pictures is not None:
             M.tonemapped_png(
                 img,
-                pictures / f"{data.stem}.{model}.{objective}.{light}.png",
+                pictures / f"{data.stem}.{model}.{objective}{'.tabulated' if route == 'tabulated' else ''}.{light}.png",
                 M.exposure(refs[light]),
             )
     return row
+
+
+def merged(old, new):
+    """`old` rows with `new` ones replacing those of the same material,
+    model and objective, the others inserted after their material's rows."""
+    key = lambda r: (r["material"], r["model"], r["objective"])  # noqa: E731
+    rows = list(old)
+    for r in new:
+        same = [i for i, o in enumerate(rows) if key(o) == key(r)]
+        if same:
+            rows[same[0]] = r
+            continue
+        mine = [i for i, o in enumerate(rows) if o["material"] == r["material"] and "Adam" not in o["model"]]
+        rows.insert(mine[-1] + 1 if mine else len(rows), r)
+    return rows
 
 
 # The goals of issue 23 for the default fit (`principled`, `default`):
@@ -160,6 +209,11 @@ def markdown(rows, spp):
         "by `brdf export --to mitsuba` (seed 2). FLIP = mean HDR-FLIP (0 identical);",
         "PSNR after exposure 1/p99(reference), clip, gamma 2.2; dE = CIEDE2000 of the mean",
         "sphere colours. `noise` rows: the measurement against itself with another seed.",
+        "`(tabulated)`: the fit itself written on the measurement's own grid (`brdf export",
+        "--to mitsuba --tabulate-on DATA.bsdf`) and rendered by the `measured` plugin, as the",
+        "measurement is: how the models Mitsuba has no plugin for (SGD, ABC, STD, Dupuy) are",
+        "judged without converting them. The default `principled` fit tabulated beside its",
+        "exact export shows what the tabulation alone changes.",
         "Time: wall-clock seconds of `brdf fit` (fit, image error included) on this machine.",
         "",
         "| material | model | objective | FLIP sky | FLIP studio | PSNR sky | PSNR studio | dE sky | dE studio | time (s) |",
@@ -187,36 +241,45 @@ def main():
     ap.add_argument(
         "--from-table", action="store_true",
         help="rewrite the markdown from the table.json beside it, rendering nothing")
+    ap.add_argument(
+        "--add", action="store_true",
+        help="render only --configs (no noise rows) and merge them into the existing table.json")
     args = ap.parse_args()
     pictures = Path(args.out).with_suffix("")
+    table = pictures / "table.json"
     if args.from_table:
-        rows = json.loads((pictures / "table.json").read_text())
-        Path(args.out).write_text(markdown(rows, args.spp))
+        Path(args.out).write_text(markdown(json.loads(table.read_text()), args.spp))
         return
     S.set_variant()
-    pictures = Path(args.out).with_suffix("")
     pictures.mkdir(parents=True, exist_ok=True)
     rows = []
     with tempfile.TemporaryDirectory() as work:
         for data in data_dir(args.materials):
             refs = measured_renders(data, args.spp)
-            noise = {"material": data.stem, "model": "noise", "objective": "-", "seconds": None}
-            for light in S.LIGHTS:
-                again = S.render(S.bsdf_of(data), light, seed=2, spp=args.spp)
-                noise[light] = judge(refs[light], again)
-                M.tonemapped_png(
-                    refs[light], pictures / f"{data.stem}.measured.{light}.png",
-                    M.exposure(refs[light]),
-                )
-            rows.append(noise)
+            if not args.add:
+                rows.append(noise_row(data, refs, args.spp, pictures))
             for cfg in args.configs.split(","):
-                model, objective = cfg.split(":")
-                print(f"{data.stem}: {model} / {objective}", file=sys.stderr)
-                rows.append(row_for(data, refs, model, objective, work, args.spp, pictures))
-    if args.peer:
+                model, objective, *route = cfg.split(":")
+                print(f"{data.stem}: {cfg}", file=sys.stderr)
+                rows.append(row_for(data, refs, model, objective, work, args.spp, pictures,
+                                    route=route[0] if route else "exported"))
+    if args.add:
+        rows = merged(json.loads(table.read_text()), rows)
+    elif args.peer:
         rows += json.loads(Path(args.peer).read_text())
-    (pictures / "table.json").write_text(json.dumps(rows, indent=1))
+    table.write_text(json.dumps(rows, indent=1))
     Path(args.out).write_text(markdown(rows, args.spp))
+
+
+def noise_row(data, refs, spp, pictures):
+    """The measurement against itself rendered with another seed."""
+    noise = {"material": data.stem, "model": "noise", "objective": "-", "seconds": None}
+    for light in S.LIGHTS:
+        again = S.render(S.bsdf_of(data), light, seed=2, spp=spp)
+        noise[light] = judge(refs[light], again)
+        M.tonemapped_png(
+            refs[light], pictures / f"{data.stem}.measured.{light}.png", M.exposure(refs[light]))
+    return noise
 
 
 if __name__ == "__main__":
