@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import metrics as M  # noqa: E402
 import render_fidelity as RF  # noqa: E402
 import scene as S  # noqa: E402
 
@@ -55,6 +56,20 @@ def files():
     return found
 
 
+# The same fit written on the measurement's grid (`brdf export --to mitsuba
+# --tabulate-on`, how results/render_fidelity.md judges the models Mitsuba
+# lacks) against its exact `principled` export, both rendered by Mitsuba:
+# FLIP bounds (sky, studio) of what the tabulation alone changes, checked on
+# a film and a matte material. Measured when written: cc_ibiza_sunset
+# 0.077 / 0.019 (the sun's small highlight falls between the grid's nodes),
+# paper_white 0.045 / 0.026 (two renders of the measurement alone: 0.041 /
+# 0.013 and 0.016 / 0.011); the bounds add 10%.
+TABULATION_BOUNDS = {
+    "cc_ibiza_sunset_rgb": (0.085, 0.021),
+    "paper_white_rgb": (0.050, 0.029),
+}
+
+
 @pytest.mark.parametrize("stem", sorted(BOUNDS))
 def test_default_fit_renders_like_the_measurement(stem):
     data = next(f for f in files() if f.stem == stem)
@@ -62,7 +77,16 @@ def test_default_fit_renders_like_the_measurement(stem):
     (flip_sky, flip_studio), max_de = BOUNDS[stem]
     with tempfile.TemporaryDirectory() as work:
         refs = RF.measured_renders(data, S.SPP)
-        row = RF.row_for(data, refs, "principled", "default", work, S.SPP)
+        exact = {}
+        row = RF.row_for(data, refs, "principled", "default", work, S.SPP, images=exact)
+        if stem in TABULATION_BOUNDS:
+            fit_json = Path(work) / f"{stem}.principled.default.json"
+            tabulated = RF.export(fit_json, {}, "tabulated", data)
+            for light, bound in zip(S.LIGHTS, TABULATION_BOUNDS[stem]):
+                img = S.render(S.bsdf_of(tabulated), light, seed=2)
+                flip = M.flip(exact[light], img)
+                print(stem, light, "tabulated against exact: FLIP", flip)
+                assert flip <= bound, (stem, light, flip)
     print(stem, row)
     assert row["sky"]["flip"] <= flip_sky, row
     assert row["studio"]["flip"] <= flip_studio, row
