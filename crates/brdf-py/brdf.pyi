@@ -46,6 +46,9 @@ class Model:
         force: bool = False,
     ) -> str:
         """The model as a mitsuba, pbrt, gltf, materialx, usd or blender material."""
+    def tabulate(self, grid: StrPath) -> bytes:
+        """The model tabulated on the grid of an RGL ``.bsdf`` measurement:
+        a file Mitsuba 3's ``measured`` plugin renders."""
     def save(self, path: StrPath) -> None:
         """Write the model (JSON)."""
     def render(self, *, light: str = "studio", size: int = 128) -> npt.NDArray[np.float64]:

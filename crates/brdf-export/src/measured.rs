@@ -15,6 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
+use brdf_io::rgl_tabulated::Tabulated;
 use brdf_models::saved_model::SavedModel;
 
 use crate::file::ExportFileError;
@@ -44,12 +45,11 @@ pub fn snippet(file: &Path) -> String {
         .to_document(false, None)
 }
 
-/// Tabulate the model saved at `from` on the grid of the RGL file `grid`
-/// and write it to `out` (an RGL `.bsdf` file).
-pub fn run(from: &Path, grid: &Path, out: &Path) -> Result<TabulatedExport, ExportFileError> {
-    let saved = SavedModel::load(from)?;
+/// The saved model tabulated on the grid of the RGL file `grid`: the
+/// bytes of an RGL `.bsdf` file (what [`run`] writes).
+pub fn tabulate(saved: &SavedModel, grid: &Path) -> Result<Tabulated, ExportFileError> {
     let model = saved.build().map_err(|e| ExportFileError::Model {
-        path: from.display().to_string(),
+        path: saved.model.clone(),
         reason: e.to_string(),
     })?;
     let grid_name = grid.file_name().map(PathBuf::from).unwrap_or_default();
@@ -60,7 +60,18 @@ pub fn run(from: &Path, grid: &Path, out: &Path) -> Result<TabulatedExport, Expo
         grid_name.display(),
         env!("CARGO_PKG_VERSION")
     );
-    let t = brdf_io::rgl_tabulated::tabulate(grid, model.as_ref(), &description)?;
+    Ok(brdf_io::rgl_tabulated::tabulate(
+        grid,
+        model.as_ref(),
+        &description,
+    )?)
+}
+
+/// Tabulate the model saved at `from` on the grid of the RGL file `grid`
+/// and write it to `out` (an RGL `.bsdf` file).
+pub fn run(from: &Path, grid: &Path, out: &Path) -> Result<TabulatedExport, ExportFileError> {
+    let saved = SavedModel::load(from)?;
+    let t = tabulate(&saved, grid)?;
     std::fs::write(out, &t.bytes).map_err(|source| ExportFileError::Io {
         path: out.display().to_string(),
         source,

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use brdf_models::saved_model::SavedModel;
 use numpy::{AllowTypeChange, IntoPyArray, PyArrayLikeDyn, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 
 use crate::error::{to_py, usage};
 
@@ -134,6 +134,27 @@ impl PyModel {
             force,
         };
         crate::model::export_text(m.as_ref(), to, &opts)
+    }
+
+    /// The model tabulated on the grid of an RGL measurement, as ``brdf
+    /// export --to mitsuba --tabulate-on`` writes it: an RGL ``.bsdf`` file
+    /// that Mitsuba 3's ``measured`` plugin renders. Any model, without
+    /// conversion: its values at the grid's nodes, interpolated between
+    /// them as the measurement is.
+    ///
+    /// Parameters
+    /// ----------
+    /// grid : str or os.PathLike
+    ///     An RGL ``.bsdf`` measurement (isotropic, RGB).
+    ///
+    /// Returns
+    /// -------
+    /// bytes
+    ///     The file's bytes; a ``BrdfError`` for an anisotropic model or
+    ///     an unreadable measurement.
+    pub fn tabulate<'py>(&self, py: Python<'py>, grid: PathBuf) -> PyResult<Bound<'py, PyBytes>> {
+        let t = brdf_export::measured::tabulate(&self.saved, &grid).map_err(to_py)?;
+        Ok(PyBytes::new(py, &t.bytes))
     }
 
     /// Write the model (JSON) for ``Model.load`` and ``brdf eval --load``.

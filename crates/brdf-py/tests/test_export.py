@@ -7,7 +7,7 @@ export checks (crates/brdf-export/tests/reference/paper_white/)."""
 import brdf
 import pytest
 
-from conftest import REPO
+from conftest import REPO, data_file
 
 FIXTURES = REPO / "crates" / "brdf-export" / "tests" / "reference" / "paper_white"
 
@@ -65,3 +65,16 @@ def test_options_are_checked():
         brdf.export(str(FIXTURES / "principled.gltf.json"), "materialx", surface="phong")
     with pytest.raises(brdf.BrdfError, match="unknown --light `moon`"):
         brdf.export(saved, "mitsuba", scene=True, light="moon")
+
+
+def test_tabulated_on_a_measurement_equals_the_command(brdf_cli, tmp_path):
+    """`Model.tabulate` gives the bytes `brdf export --tabulate-on` writes,
+    and the file reads back as an RGL measurement of the model."""
+    grid = data_file("rgl/paper_white_rgb.bsdf")
+    saved = str(FIXTURES / "principled.json")
+    out = tmp_path / "tabulated.bsdf"
+    brdf_cli("export", "--from", saved, "--to", "mitsuba", "--tabulate-on", grid, str(out))
+    got = brdf.Model.load(saved).tabulate(grid)
+    assert got == out.read_bytes()
+    back = brdf.load(str(out))
+    assert back["values"].shape[1] == 3 and back["values"].max() > 0
