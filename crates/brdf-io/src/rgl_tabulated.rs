@@ -84,13 +84,13 @@ pub fn tabulate(grid: &Path, brdf: &dyn Brdf, description: &str) -> Result<Tabul
         path: grid.to_path_buf(),
         reason,
     };
-    if rgl.is_isotropic() {
-        if let Some(change) = anisotropy(brdf) {
-            return Err(refuse(format!(
-                "the model is anisotropic (its value changes by {} under a turn about the normal) and this grid is isotropic; tabulate it on an anisotropic measurement",
-                crate::error::short(change)
-            )));
-        }
+    if rgl.is_isotropic()
+        && let Some(change) = anisotropy(brdf)
+    {
+        return Err(refuse(format!(
+            "the model is anisotropic (its value changes by {} under a turn about the normal) and this grid is isotropic; tabulate it on an anisotropic measurement",
+            crate::error::short(change)
+        )));
     }
     let angles = |name: &str| {
         tf.field(name)

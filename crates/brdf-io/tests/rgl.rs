@@ -3,8 +3,11 @@
 //! stored values at grid nodes, paper is near-diffuse with an albedo below
 //! 1, and reciprocity holds approximately.
 
+mod common;
+use common::data;
+
 use std::f64::consts::FRAC_PI_2;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use brdf_core::{AlbedoFrame, Brdf, QuadratureOptions, directional_albedo, spherical_to_cartesian};
 use brdf_io::rgl::{Field, Rgl, TensorFile};
@@ -64,17 +67,6 @@ fn tensor_container_and_bad_input() {
     assert!(TensorFile::parse(p, &bad).is_err());
     // A tensor file without the RGL fields is not an RGL material.
     assert!(Rgl::parse(p, &b).is_err());
-}
-
-fn data(name: &str) -> Option<PathBuf> {
-    let root = std::env::var_os("BRDF_DATA")?;
-    let p = PathBuf::from(root).join("rgl").join(name);
-    assert!(
-        p.exists(),
-        "BRDF_DATA is set but {} is missing",
-        p.display()
-    );
-    Some(p)
 }
 
 #[test]

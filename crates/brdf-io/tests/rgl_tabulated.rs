@@ -5,23 +5,15 @@
 //! Mitsuba's own render of such a file is checked by the CI judge
 //! (`benches/judge/test_judge.py`).
 
-use std::path::{Path, PathBuf};
+mod common;
+use common::data;
+
+use std::path::Path;
 
 use brdf_core::{Brdf, spherical_to_cartesian};
 use brdf_io::rgl::{Rgl, TensorFile};
 use brdf_io::rgl_tabulated::tabulate;
 use nalgebra::Vector3;
-
-fn data(name: &str) -> Option<PathBuf> {
-    let root = std::env::var_os("BRDF_DATA")?;
-    let p = PathBuf::from(root).join("rgl").join(name);
-    assert!(
-        p.exists(),
-        "BRDF_DATA is set but {} is missing",
-        p.display()
-    );
-    Some(p)
-}
 
 /// A coloured diffuse term plus a Gaussian lobe in the half-vector
 /// elevation: smooth, isotropic, with a different colour in the lobe.
@@ -136,8 +128,8 @@ fn between_the_nodes_a_tabulated_model_is_its_interpolation() {
     let (mut rel, mut f, mut g) = (Vec::new(), [0.0; 3], [0.0; 3]);
     for k in 0..400 {
         let x = |j: u32| ((k as f64 + 0.5) * (0.618034 + 0.1 * j as f64)).fract();
-        let l = spherical_to_cartesian(1.05 * x(0), 6.28 * x(1));
-        let v = spherical_to_cartesian(1.05 * x(2), 6.28 * x(3));
+        let l = spherical_to_cartesian(1.05 * x(0), std::f64::consts::TAU * x(1));
+        let v = spherical_to_cartesian(1.05 * x(2), std::f64::consts::TAU * x(3));
         back.eval(&l, &v, &mut f);
         model.eval(&l, &v, &mut g);
         rel.extend((0..3).map(|c| (f[c] - g[c]).abs() / g[c]));
