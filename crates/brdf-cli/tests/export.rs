@@ -354,3 +354,68 @@ fn new_targets_write_their_files() {
     ]);
     assert!(!ok && stderr.contains("--scene"), "{stderr}");
 }
+
+#[test]
+fn tabulate_on_writes_the_model_on_the_measurement_grid() {
+    let Some(grid) = common::data_file("rgl/paper_white_rgb.bsdf") else {
+        eprintln!("skipped: BRDF_DATA is not set");
+        return;
+    };
+    let out = tmp("tabulated.bsdf");
+    let model = blinn_phong();
+    let (ok, stdout, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&model),
+        "--to",
+        "mitsuba",
+        "--tabulate-on",
+        s(&grid),
+        s(&out),
+    ]);
+    assert!(ok, "{stderr}");
+    assert!(
+        stdout.contains("`blinn-phong` tabulated on the grid")
+            && stdout.contains(r#"<bsdf type="measured">"#),
+        "{stdout}"
+    );
+    // The file is an RGL measurement of the model: at normal incidence
+    // and exitance, kd / pi + ks (n + 2) / (2 pi).
+    let back = brdf_io::rgl::Rgl::read(&out).expect("reads back");
+    let n = brdf_core::nalgebra::Vector3::new(0.0, 0.0, 1.0);
+    let mut f = [0.0; 3];
+    brdf_core::Brdf::eval(&back, &n, &n, &mut f);
+    let want = (0.5 + 0.04 * 42.0 / 2.0) / std::f64::consts::PI;
+    assert!((f[0] - want).abs() < 1e-3 * want, "{f:?} vs {want}");
+
+    for (to, scene) in [("gltf", None), ("mitsuba", Some("--scene"))] {
+        let mut args = vec![
+            "export",
+            "--from",
+            s(&model),
+            "--to",
+            to,
+            "--tabulate-on",
+            s(&grid),
+            s(&out),
+        ];
+        args.extend(scene);
+        let (ok, _, stderr) = brdf(&args);
+        assert!(
+            !ok && stderr.contains("--tabulate-on") && stderr.contains("--to mitsuba"),
+            "{stderr}"
+        );
+    }
+    let missing = tmp("no-such-grid.bsdf");
+    let (ok, _, stderr) = brdf(&[
+        "export",
+        "--from",
+        s(&model),
+        "--to",
+        "mitsuba",
+        "--tabulate-on",
+        s(&missing),
+        s(&out),
+    ]);
+    assert!(!ok && stderr.contains("no-such-grid.bsdf"), "{stderr}");
+}
