@@ -51,8 +51,8 @@ pub fn table(name: &str, rows: &[SelectRow], choice: usize, tolerance: f64) -> T
             Cell::Text(r.stored_numbers.to_string()),
             Cell::Num(r.error, 4),
             Cell::Text(fitted_on),
-            Cell::Num(r.aic, 5),
-            Cell::Num(r.bic, 5),
+            criterion(r, r.aic),
+            criterion(r, r.bic),
             Cell::Num(r.seconds, 3),
             Cell::Text(r.termination.clone()),
         ]);
@@ -70,4 +70,14 @@ pub fn table(name: &str, rows: &[SelectRow], choice: usize, tolerance: f64) -> T
         }
     }
     t
+}
+
+/// An information criterion's cell: empty for a screened-out row (the
+/// criteria compare fits of the same samples).
+fn criterion(r: &SelectRow, value: f64) -> Cell {
+    if r.screened_out {
+        Cell::Empty
+    } else {
+        Cell::Num(value, 5)
+    }
 }
