@@ -858,9 +858,7 @@ where
     if data.len() <= COARSE_ABOVE {
         return Ok(starts.to_vec());
     }
-    let k = data.len().div_ceil(COARSE_SAMPLES);
-    let keep: Vec<bool> = (0..data.len()).map(|j| j % k == 0).collect();
-    let sub = data.select(&keep);
+    let (sub, k) = stratified_subsample(data, COARSE_SAMPLES);
     let sub_scales: Vec<f64> = scales.iter().step_by(k).copied().collect();
     let values = sub.values_channel_major();
     let mp = ModelProblem::new(model, sub.pairs(), &values, &sub_scales)?;
@@ -886,6 +884,16 @@ where
         return Ok(starts.to_vec());
     }
     Ok(chosen)
+}
+
+/// A deterministic stratified subsample of about `target` samples: every
+/// `k`-th sample (`k = ceil(n / target)`), in the data's own order, which
+/// for gridded data covers the grid evenly. Returns the subsample and `k`
+/// (all samples and 1 when `n <= target`).
+pub(crate) fn stratified_subsample(data: &SampleSet, target: usize) -> (SampleSet, usize) {
+    let k = data.len().div_ceil(target.max(1)).max(1);
+    let keep: Vec<bool> = (0..data.len()).map(|j| j % k == 0).collect();
+    (data.select(&keep), k)
 }
 
 /// Sample sets larger than this screen the starts of a search on all
@@ -928,9 +936,7 @@ where
     if data.len() <= SCREEN_ABOVE || starts.len() <= POLISHED_STARTS {
         return Ok(starts.to_vec());
     }
-    let k = data.len().div_ceil(SCREEN_SAMPLES);
-    let keep: Vec<bool> = (0..data.len()).map(|j| j % k == 0).collect();
-    let sub = data.select(&keep);
+    let (sub, _) = stratified_subsample(data, SCREEN_SAMPLES);
     let scales = objective.row_scales(&sub);
     let values = sub.values_channel_major();
     // One problem on the subsample (the transformed one wraps it).

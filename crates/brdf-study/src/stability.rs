@@ -386,7 +386,15 @@ pub fn scale_cases(ct: &SampleSet) -> Result<Vec<CaseOutcome>, StudyError> {
 }
 
 fn select_case(label: &str, data: &SampleSet) -> CaseOutcome {
-    match brdf_fit::select::select(data, 0.1, &brdf_fit::FitOptions::default()) {
+    // Exhaustive: the study's rows are those of every candidate fitted to
+    // all samples (as before the coarse-to-fine default).
+    match brdf_fit::select::select_with(
+        data,
+        0.1,
+        &brdf_fit::FitOptions::default(),
+        &brdf_fit::select::Among::default(),
+        brdf_fit::select::Search::Exhaustive,
+    ) {
         Ok((rows, choice)) => {
             let failed = rows.iter().filter(|r| !r.error.is_finite()).count();
             CaseOutcome {

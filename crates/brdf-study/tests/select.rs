@@ -55,6 +55,12 @@ fn tolerance_rule_aic_and_bic_on_noisy_lambert() {
         }
         assert!(r.error.is_finite(), "{}: {}", r.label, r.termination);
     }
+    // 150 samples are fewer than the coarse subsample: no coarse stage,
+    // every row is of all samples.
+    assert!(
+        rows.iter()
+            .all(|r| !r.screened_out && r.coarse_error.is_none() && r.samples == N)
+    );
     assert!(rows.iter().any(|r| r.model == "dupuy"));
     assert!(rows.iter().any(|r| r.label == "lafortune (2 lobes)"));
     assert!(rows.iter().any(|r| r.label == "koenderink order 8"));

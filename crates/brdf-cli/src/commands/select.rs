@@ -1,5 +1,7 @@
-//! `brdf select --data PATH [--tolerance REL] [--models A,B] [--max-parameters N] [--json]`: fit the candidate
-//! models and choose the smallest one within the tolerance of the best.
+//! `brdf select --data PATH [--tolerance REL] [--models A,B] [--max-parameters N] [--exhaustive] [--json]`:
+//! fit the candidate models (coarse to fine, or every one to all samples
+//! with `--exhaustive`) and choose the smallest one within the tolerance
+//! of the best.
 
 use crate::error::CliError;
 use brdf_fit::FitOptions;
@@ -25,6 +27,12 @@ pub struct SelectArgs {
     /// Only candidates with at most N stored numbers.
     #[arg(long, value_name = "N")]
     pub max_parameters: Option<usize>,
+    /// Fit every candidate to all samples. By default all candidates are
+    /// fitted to a shared subsample of about 2048 samples and only those
+    /// near the best again to all samples; the others are reported with
+    /// their coarse error, screened out.
+    #[arg(long)]
+    pub exhaustive: bool,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
@@ -43,6 +51,8 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     if args.by_image {
         return by_image(args);
     }
+    // The same rows for any thread count.
+    brdf_fit::select::sequential_factorisations();
     let data = brdf_io::load(&args.data)?;
     let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
     brdf_study::context::progress::set_quiet(args.quiet);
@@ -53,11 +63,28 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
         models: args.models.clone(),
         max_parameters: args.max_parameters,
     };
-    let (rows, choice) =
-        brdf_fit::select::select_among(&data, args.tolerance, &FitOptions::default(), &among)?;
+    let search = if args.exhaustive {
+        brdf_fit::select::Search::Exhaustive
+    } else {
+        brdf_fit::select::Search::CoarseToFine
+    };
+    let (rows, choice) = brdf_fit::select::select_with(
+        &data,
+        args.tolerance,
+        &FitOptions::default(),
+        &among,
+        search,
+    )?;
     bar.finish_and_clear();
     if args.json {
-        let v = serde_json::json!({ "data": data.name, "tolerance": args.tolerance, "choice": rows[choice], "candidates": rows });
+        let v = serde_json::json!({
+            "data": data.name,
+            "samples": data.len(),
+            "tolerance": args.tolerance,
+            "search": if args.exhaustive { "exhaustive" } else { "coarse to fine" },
+            "choice": rows[choice],
+            "candidates": rows,
+        });
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     let table = brdf_fit::select::table(&data.name, &rows, choice, args.tolerance);
