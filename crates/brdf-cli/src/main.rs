@@ -47,6 +47,8 @@ fn run() -> Result<(), CliError> {
 }
 
 fn main() -> ExitCode {
+    // The same results for any thread count (RAYON_NUM_THREADS).
+    brdf_solve::sequential_factorisations();
     match run() {
         Ok(()) => ExitCode::SUCCESS,
         // The reader of our output went away (`brdf info x | head`): done.

@@ -67,6 +67,8 @@ use pyo3::prelude::*;
 #[pymodule]
 #[pyo3(name = "brdf")]
 fn brdf_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // The same results for any thread count, as the `brdf` command.
+    brdf_fit::select::sequential_factorisations();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("BrdfError", m.py().get_type::<error::BrdfError>())?;
     m.add_function(wrap_pyfunction!(samples::load, m)?)?;

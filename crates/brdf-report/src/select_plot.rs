@@ -1,5 +1,7 @@
 //! The selection plot: each candidate of `brdf select --json` by its error
-//! against stored numbers and against seconds, the chosen one marked.
+//! against stored numbers and against seconds, the chosen one marked and
+//! the candidates screened out on the coarse subsample (whose error is the
+//! coarse one) drawn apart.
 
 use brdf_render::plot::{Plot, Series};
 use serde_json::Value;
@@ -23,11 +25,13 @@ pub fn svgs(v: &Value, path: &str) -> Result<Vec<String>, ReportError> {
         ("stored_numbers", "stored numbers", false),
         ("seconds", "seconds", true),
     ] {
-        let (mut others, mut best) = (Vec::new(), Vec::new());
+        let (mut others, mut best, mut screened) = (Vec::new(), Vec::new(), Vec::new());
         for r in rows {
             let p = (get(r, x_key), get(r, "error"));
             if r["label"].as_str() == Some(chosen) {
                 best.push(p);
+            } else if r["screened_out"].as_bool() == Some(true) {
+                screened.push(p);
             } else {
                 others.push(p);
             }
@@ -38,7 +42,11 @@ pub fn svgs(v: &Value, path: &str) -> Result<Vec<String>, ReportError> {
             title: format!("candidates: error against {x_label}"),
             x_label: x_label.into(),
             y_label: "error".into(),
-            series: vec![Series::points("candidates", 0, others), chosen_series],
+            series: vec![
+                Series::points("candidates (all samples)", 0, others),
+                Series::points("screened out (coarse error)", 1, screened),
+                chosen_series,
+            ],
             log_x,
             log_y: true,
             ..Plot::default()

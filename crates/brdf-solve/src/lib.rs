@@ -68,4 +68,16 @@ pub use multistart::{MultiStartReport, StartBox, multistart};
 pub use nnls::{NnlsSolution, NnlsTermination, nnls};
 pub use problem::{LeastSquaresProblem, fd_jacobian};
 pub use report::{BoundStatus, SolverReport, Termination};
+/// Make faer's dense factorisations (the pivoted QR and SVD of [`lstsq`])
+/// sequential for the whole process (faer's global parallelism). By
+/// default faer splits their blocks by the thread count of the rayon pool
+/// they run in, so the same solve can differ in its last bits between 1
+/// and 2 threads (Koenderink's coefficients in `brdf select` did). Callers
+/// parallelise over starts, candidates and materials instead, so nothing is
+/// lost; an application that wants the same results for any thread count
+/// calls this once at start, as the `brdf` command and the Python module do.
+pub fn sequential_factorisations() {
+    faer::set_global_parallelism(faer::Par::Seq);
+}
+
 pub use varpro::{SeparableProblem, VarPro};

@@ -51,8 +51,6 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     if args.by_image {
         return by_image(args);
     }
-    // The same rows for any thread count.
-    brdf_fit::select::sequential_factorisations();
     let data = brdf_io::load(&args.data)?;
     let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
     brdf_study::context::progress::set_quiet(args.quiet);

@@ -159,16 +159,10 @@ fn fit_candidate(
     }
 }
 
-/// Make faer's dense factorisations sequential for the whole process (its
-/// global parallelism): the column-pivoted QR of the all-linear candidates
-/// (`brdf_solve::lstsq`) otherwise splits its blocks by the thread count
-/// of the rayon pool it runs in, and Koenderink's coefficients then differ
-/// in their last bits between 1 and 2 threads. The candidates themselves
-/// run in parallel, so nothing is lost. `brdf select` calls this first; a
-/// library caller that wants the same rows for any thread count should too.
-pub fn sequential_factorisations() {
-    faer::set_global_parallelism(faer::Par::Seq);
-}
+/// Make faer's dense factorisations sequential for the whole process:
+/// [`brdf_solve::sequential_factorisations`] (the `brdf` command and the
+/// Python module call it at start).
+pub use brdf_solve::sequential_factorisations;
 
 /// The measured data `brdf select` fits: invalid samples and those beyond
 /// `limit_deg` dropped, the mean of the channels when `grey`.
