@@ -206,15 +206,24 @@ fn extra_start(
 
 /// Ngan's L2 of `m` at `p` on `d`.
 fn ngan(m: &dyn Parametric, d: &SampleSet, p: &[f64]) -> Result<f64, FitError> {
+    Ok(ngan_of(d, &values_at(m, d, p))?.total)
+}
+
+/// `m`'s values at `p` on `d`'s pairs (channel-major).
+fn values_at(m: &dyn Parametric, d: &SampleSet, p: &[f64]) -> Vec<f64> {
     let mut fitted = vec![0.0; d.len() * m.channels()];
     m.eval_batch_at(p, d.pairs(), &mut fitted);
-    let e = brdf_core::metrics::ngan_l2(
+    fitted
+}
+
+/// Ngan's L2 of the values `fitted` against `d`.
+fn ngan_of(d: &SampleSet, fitted: &[f64]) -> Result<brdf_core::MetricValue, FitError> {
+    Ok(brdf_core::metrics::ngan_l2(
         &d.values_channel_major(),
-        &fitted,
+        fitted,
         &d.pairs().lz,
         d.weights(),
-    )?;
-    Ok(e.total)
+    )?)
 }
 
 /// The default fit's summary with the extra start's result `rep` in its
@@ -228,15 +237,9 @@ fn adopt(
 ) -> Result<FitSummary, FitError> {
     let p = rep.params;
     m.set_params(&p)?;
-    let mut fitted = vec![0.0; d.len() * m.channels()];
-    m.eval_batch_at(&p, d.pairs(), &mut fitted);
+    let fitted = values_at(m, d, &p);
     let err = opts.objective.error(d, &fitted)?;
-    let ngan = brdf_core::metrics::ngan_l2(
-        &d.values_channel_major(),
-        &fitted,
-        &d.pairs().lz,
-        d.weights(),
-    )?;
+    let ngan = ngan_of(d, &fitted)?;
     let status = box_constraints(m)?.status(&p);
     for ((fp, v), s) in summary.parameters.iter_mut().zip(&p).zip(&status) {
         fp.value = *v;
