@@ -1,8 +1,10 @@
-"""README picture: for one material, the measurement (Mitsuba's `measured`
-plugin), the default fit and the Ngan-L2 fit of before issue 23, rendered by
-Mitsuba 3 under both light sets (tiles written by render_fidelity.py).
+"""README pictures: for one material, the measurement (Mitsuba's `measured`
+plugin) and some fits, rendered by Mitsuba 3 under both light sets (the
+tiles render_fidelity.py writes into results/render_fidelity/; a fit's tile
+is named `MODEL.OBJECTIVE[.tabulated]`), one row per light set.
 
-    python benches/judge/montage.py cc_iris_purple_gem_rgb principled OUT.png
+    python benches/judge/montage.py cc_iris_purple_gem_rgb OUT.png principled.default principled.ngan
+    python benches/judge/montage.py cc_ibiza_sunset_rgb OUT.png principled.default sgd.appearance.tabulated
 """
 
 import sys
@@ -20,11 +22,12 @@ def tile(name):
 
 
 def main():
-    material, model, out = sys.argv[1:4]
+    material, out, *fits = sys.argv[1:]
+    if not fits:
+        sys.exit(__doc__)
     rows = []
     for light in ("sky", "studio"):
-        names = [f"{material}.measured.{light}.png", f"{material}.{model}.default.{light}.png",
-                 f"{material}.{model}.ngan.{light}.png"]
+        names = [f"{material}.measured.{light}.png"] + [f"{material}.{f}.{light}.png" for f in fits]
         rows.append(np.concatenate([tile(n) for n in names], axis=1))
     img = np.ascontiguousarray(np.concatenate(rows, axis=0))
     mi.Bitmap(img, pixel_format=mi.Bitmap.PixelFormat.RGB).write(out)
