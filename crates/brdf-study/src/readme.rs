@@ -124,10 +124,15 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
     if !others.is_empty() {
         let _ = writeln!(s, "\nOther files here, not written by `brdf reproduce`:\n");
         for f in others {
-            let what = if f == "performance.md" {
-                "the peer comparison, written by `benches/peers/run.sh`"
-            } else {
-                "not from this command (check where it came from)"
+            let what = match f.as_str() {
+                "performance.md" => "the peer comparison, written by `benches/peers/run.sh`",
+                "performance_renderer_models.md" => {
+                    "the renderer models' fit times before and after issue 28's first changes (tables from `benches/peers/renderer_models.sh`)"
+                }
+                "render_fidelity.md" => {
+                    "fits judged by their render in Mitsuba 3, written by `python benches/judge/render_fidelity.py` (its renders and `table.json` in `render_fidelity/`)"
+                }
+                _ => "not from this command (check where it came from)",
             };
             let _ = writeln!(s, "- `{f}`: {what}");
         }
