@@ -34,13 +34,25 @@
 //!
 //! ```no_run
 //! use brdf_core::Brdf;
-//! # fn model() -> Box<dyn Brdf> { unimplemented!() }
-//! let bytes = brdf_io::rgl_tabulated::tabulate(
+//! use nalgebra::Vector3;
+//!
+//! /// A grey Lambertian reflector of albedo 0.5.
+//! struct Matte;
+//! impl Brdf for Matte {
+//!     fn channels(&self) -> usize {
+//!         1
+//!     }
+//!     fn eval(&self, _: &Vector3<f64>, _: &Vector3<f64>, out: &mut [f64]) {
+//!         out[0] = 0.5 / std::f64::consts::PI;
+//!     }
+//! }
+//!
+//! let t = brdf_io::rgl_tabulated::tabulate(
 //!     std::path::Path::new("rgl/cc_ibiza_sunset_rgb.bsdf"),
-//!     model().as_ref(),
-//!     "sgd fitted to cc_ibiza_sunset_rgb",
+//!     &Matte,
+//!     "a matte grey on the grid of cc_ibiza_sunset_rgb",
 //! )?;
-//! std::fs::write("ibiza_sgd.bsdf", bytes.bytes)?;
+//! std::fs::write("matte.bsdf", t.bytes)?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 

@@ -51,14 +51,11 @@ impl Brdf for NotFinite {
 /// The written file as the reader sees it.
 fn read_back(grid: &Path, model: &dyn Brdf) -> (Rgl, TensorFile) {
     let t = tabulate(grid, model, "test lobe").unwrap();
-    assert_eq!(t.incident * t.per_incident * 3, {
-        let tf = TensorFile::parse(grid, &t.bytes).unwrap();
-        tf.field("rgb").unwrap().shape.iter().product::<usize>()
-    });
-    (
-        Rgl::parse(Path::new("tabulated.bsdf"), &t.bytes).unwrap(),
-        TensorFile::parse(Path::new("tabulated.bsdf"), &t.bytes).unwrap(),
-    )
+    let path = Path::new("tabulated.bsdf");
+    let tf = TensorFile::parse(path, &t.bytes).unwrap();
+    let rgb = tf.field("rgb").unwrap().shape.iter().product::<usize>();
+    assert_eq!(t.incident * t.per_incident * 3, rgb);
+    (Rgl::parse(path, &t.bytes).unwrap(), tf)
 }
 
 #[test]
