@@ -34,6 +34,53 @@ fn fit_of_a_renderer_model_reports_image_errors_and_candidates() {
 }
 
 #[test]
+fn a_film_keeps_its_colour_and_a_lobe_only_when_the_render_pays() {
+    // vch_golden_yellow, principled, the default appearance fit. Before
+    // the mean-colour rows of the image objective the fit's mean colour was
+    // CIEDE2000 5.2 (sky) from the data's; the rows bring it under 3. The
+    // rough clear coat is switched on only in the image objective, where it
+    // lowers the mean FLIP by more than the 5% margin.
+    let Some(p) = data_file("rgl/vch_golden_yellow_rgb.bsdf") else {
+        return;
+    };
+    let p = p.display().to_string();
+    let (ok, out, err) = brdf(&["fit", "--data", &p, "--model", "principled", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    for l in v["image_errors"][0]["lights"].as_array().expect("lights") {
+        assert!(l["delta_e"].as_f64().expect("dE") < 3.0, "{l}");
+    }
+    let candidates = v["candidates"][0].as_array().expect("candidates");
+    let mean_flip = |c: &serde_json::Value| {
+        let l = c["image"]["lights"].as_array().expect("lights");
+        l.iter()
+            .map(|l| l["flip"].as_f64().expect("flip"))
+            .sum::<f64>()
+            / l.len() as f64
+    };
+    let lobes = |c: &serde_json::Value| c["lobes"].as_array().expect("lobes").len();
+    let chosen = candidates
+        .iter()
+        .find(|c| c["chosen"] == true)
+        .expect("chosen");
+    assert_eq!(chosen["objective"], "image", "{chosen}");
+    assert_eq!(
+        chosen["lobes"],
+        serde_json::json!(["clearcoat"]),
+        "{chosen}"
+    );
+    let best_without = candidates
+        .iter()
+        .filter(|c| lobes(c) == 0)
+        .map(mean_flip)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        mean_flip(chosen) < 0.95 * best_without,
+        "{chosen} against {best_without}"
+    );
+}
+
+#[test]
 fn scattered_data_say_no_image_error_can_be_formed() {
     let Some(p) = data_file("curet/abrdf.dat") else {
         return;

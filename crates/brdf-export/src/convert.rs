@@ -20,16 +20,19 @@
 //!
 //! ## When a conversion is refused
 //!
-//! [`crate::export_or_convert`] refuses a conversion whose mean FLIP over
-//! the light sets exceeds [`FLIP_LIMIT`] (0.05) or whose largest
-//! mean-colour CIEDE2000 exceeds [`DELTA_E_LIMIT`] (3), unless
-//! `force`. 0.05 is the top of the judge's noise floor (two renders of the
-//! same measurement with different seeds differ by 0.016-0.05,
-//! `shared/spec/appearance.md`): below it the conversion is as close as a
-//! re-render; 3 is just above the just-noticeable colour difference (2.3),
-//! below the "visibly different" warning of fits (5). A conversion beyond
-//! either is a different-looking material; fitting the target's model
-//! to the measurement directly is then the better route.
+//! [`crate::export_or_convert`] refuses a conversion whose FLIP under any
+//! light set exceeds [`FLIP_LIMIT`] (0.02) or whose largest mean-colour
+//! CIEDE2000 exceeds [`DELTA_E_LIMIT`] (3), unless `force`. 0.02 is issue
+//! 23's bound on what a conversion may change: both renders are
+//! brdf-render's, deterministic quadratures without Monte Carlo noise, so
+//! 0.02 is a difference of the materials, not of the renders (two Mitsuba
+//! renders of one measurement differ by 0.016-0.05 from noise alone,
+//! `shared/spec/appearance.md`); 3 is just above the just-noticeable
+//! colour difference (2.3), below the "visibly different" warning of fits
+//! (5). A conversion beyond either is a different-looking material;
+//! fitting the target's model to the measurement directly is then the
+//! better route (on paper_white, principled to glTF changes the sky render
+//! by 0.034: Burley's diffuse has a grazing rise Lambert's lacks).
 //!
 //! pbrt-v4's `mix` (below) is not a catalogue model: its BRDF-space fit
 //! (Ngan's objective) is refined in the image objective and the
@@ -83,9 +86,9 @@ pub struct ConvertOptions {
     pub force: bool,
 }
 
-/// Mean FLIP over the light sets above which a conversion is refused
-/// (see the module doc).
-pub const FLIP_LIMIT: f64 = 0.05;
+/// FLIP under any light set above which a conversion is refused (see the
+/// module doc).
+pub const FLIP_LIMIT: f64 = 0.02;
 /// Largest mean-colour CIEDE2000 above which a conversion is refused.
 pub const DELTA_E_LIMIT: f64 = 3.0;
 
@@ -153,7 +156,7 @@ impl Conversion {
     /// Whether the conversion keeps the look: `Err` naming the better
     /// route when it exceeds [`FLIP_LIMIT`] or [`DELTA_E_LIMIT`].
     pub fn check(&self, target: Target) -> Result<(), ExportError> {
-        let (flip, delta_e) = (self.image.mean_flip(), self.image.max_delta_e());
+        let (flip, delta_e) = (self.image.max_flip(), self.image.max_delta_e());
         if flip <= FLIP_LIMIT && delta_e <= DELTA_E_LIMIT {
             return Ok(());
         }

@@ -282,7 +282,7 @@ pub enum ExportError {
     /// The converted material renders unlike the source (see
     /// [`convert::FLIP_LIMIT`], [`convert::DELTA_E_LIMIT`]).
     #[error(
-        "converting `{model}` to {target} as `{via}` changes its look (mean HDR-FLIP {flip:.3}, limit {flip_limit}; CIEDE2000 {delta_e:.2}, limit {de_limit}): fit the target's model directly: `brdf fit --model {via} ...` and export that, or pass --force to export the conversion anyway",
+        "converting `{model}` to {target} as `{via}` changes its look (HDR-FLIP {flip:.3} under one light set, limit {flip_limit}; CIEDE2000 {delta_e:.2}, limit {de_limit}): fit the target's model directly: `brdf fit --model {via} ...` and export that, or pass --force to export the conversion anyway",
         flip_limit = convert::FLIP_LIMIT,
         de_limit = convert::DELTA_E_LIMIT
     )]
@@ -293,7 +293,7 @@ pub enum ExportError {
         target: Target,
         /// the model fitted
         via: String,
-        /// mean HDR-FLIP over the light sets
+        /// largest HDR-FLIP over the light sets
         flip: f64,
         /// largest mean-colour CIEDE2000
         delta_e: f64,

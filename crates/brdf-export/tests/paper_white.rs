@@ -96,13 +96,15 @@ fn files_are_what_the_exporter_writes_with_the_conversion_error_noted() {
                 "{m} -> {t}: {e:?} vs {rel}"
             );
             assert_eq!(c["via"].as_str().unwrap(), model.name());
-            // The note written is the report's, with the recomputed L2 and
-            // an image error within the limits (nothing was forced).
+            // The note written is the report's, with the recomputed L2; the
+            // conversion was forced exactly when its image error is beyond
+            // the limits.
             let note = c["note"].as_str().unwrap();
             assert!(note.contains(&format!("relative L2 {:.4e}", e.relative_l2)));
             assert!(note.contains("HDR-FLIP"), "{note}");
-            assert!(c["mean_flip"].as_f64().unwrap() <= brdf_export::convert::FLIP_LIMIT);
-            assert!(c["max_delta_e"].as_f64().unwrap() <= brdf_export::convert::DELTA_E_LIMIT);
+            let within = c["max_flip"].as_f64().unwrap() <= brdf_export::convert::FLIP_LIMIT
+                && c["max_delta_e"].as_f64().unwrap() <= brdf_export::convert::DELTA_E_LIMIT;
+            assert_eq!(c["forced"].as_bool().unwrap(), !within, "{m} -> {t}");
             assert_eq!(
                 export_with(model.as_ref(), t, Some(note), &opts_named()).unwrap(),
                 text,

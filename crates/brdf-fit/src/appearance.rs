@@ -19,6 +19,9 @@
 //! tried at all on isotropic data); a model with them is
 //! kept only when its image error is lower by [`LOBE_MARGIN`] (nested
 //! models), so no fit parks parameters on bounds to mimic a grazing tail.
+//! Each lobe is tried twice: in the BRDF-space objective that won, and
+//! after the refinement in the image objective, where a lobe must pay in
+//! the render itself.
 //!
 //! Thresholds of the plain-words warnings ([`ImageError::warnings`]):
 //! mean-colour CIEDE2000 above [`DELTA_E_WARN`] (a colour difference an
@@ -44,8 +47,13 @@ pub const DELTA_E_WARN: f64 = 5.0;
 pub const FLIP_WARN: f64 = 0.15;
 /// Relative FLIP improvement an optional lobe must bring to be kept.
 pub const LOBE_MARGIN: f64 = 0.05;
-/// Largest growth of Ngan's L2 an image-objective refinement may bring.
-pub const REFINE_L2_GROWTH: f64 = 1.5;
+/// Largest growth of Ngan's L2 an image-objective refinement may bring
+/// (against the best BRDF-space candidate's). Measured: the rough clear
+/// coat that renders vch_golden_yellow at sky FLIP 0.256 instead of 0.279
+/// (32 px) raises Ngan's L2 1.57 times (the peak it misses is a few
+/// samples; most of the sphere is the body it matches). The base
+/// refinements of the five RGL files stay below 1.5.
+pub const REFINE_L2_GROWTH: f64 = 2.0;
 /// Image size of the image errors in reports (the judge's film).
 pub const REPORT_SIZE: usize = 128;
 /// Image size of the image objective and of the candidate ranking.
@@ -83,6 +91,11 @@ impl ImageError {
     /// Mean FLIP over the light sets (the ranking of candidates).
     pub fn mean_flip(&self) -> f64 {
         self.lights.iter().map(|l| l.flip).sum::<f64>() / self.lights.len().max(1) as f64
+    }
+
+    /// Largest HDR-FLIP over the light sets.
+    pub fn max_flip(&self) -> f64 {
+        self.lights.iter().map(|l| l.flip).fold(0.0, f64::max)
     }
 
     /// Largest mean-colour difference over the light sets.
@@ -336,8 +349,11 @@ fn with_lobes(fit: &Fit, on: &[String]) -> Fit {
 /// mean FLIP by [`LOBE_MARGIN`] (anisotropy only when the data are not
 /// [`is_isotropic`]); then the winner and the other base candidates each
 /// refined in the image objective, the refinement with the least image
-/// error kept if it lowers the winner's. Returns the chosen fit and every
-/// candidate.
+/// error kept if it lowers the winner's; then, from the best so far, each
+/// optional lobe still off switched on and refined in the image objective,
+/// kept only when it lowers the mean FLIP by [`LOBE_MARGIN`]. A refinement
+/// is kept only while Ngan's L2 stays within [`REFINE_L2_GROWTH`] times the
+/// winning candidate's. Returns the chosen fit and every candidate.
 pub fn fit_for_appearance(
     fit: &Fit,
     samples: &SampleSet,
@@ -424,6 +440,43 @@ pub fn fit_for_appearance_with(
         candidates.push(c);
         let j = candidates.len() - 1;
         if keeps_data && flip(&candidates, j) < best_flip {
+            candidates[k].chosen = false;
+            candidates[j].chosen = true;
+            best_flip = flip(&candidates, j);
+            k = j;
+            report = refined;
+        }
+    }
+    // The optional lobes, tried in the image objective (nested models): from
+    // the best fit so far, each lobe switched on at the middle of its box and
+    // refined, kept when it lowers the mean FLIP by LOBE_MARGIN and stays a
+    // fit of the data. In BRDF space a lobe mimics a grazing tail the render
+    // hardly shows; here it must pay in the render (on vch_golden_yellow a
+    // rough clear coat does: the GGX fit converted to principled, which
+    // found it, rendered at sky FLIP 0.251 against the lobe-less 0.291).
+    let (base, on_already) = (report.model.params().to_vec(), candidates[k].lobes.clone());
+    let specs = report.model.param_specs().to_vec();
+    for on in optional_lobes(fit.model_name()) {
+        if (isotropic && on.starts_with("anisotropic")) || on_already.iter().any(|l| l == on) {
+            continue;
+        }
+        let mut start = base.clone();
+        for (p, s) in start.iter_mut().zip(specs.iter()) {
+            if s.name.starts_with(on) {
+                *p = 0.5 * (s.lower + s.upper);
+            }
+        }
+        let target = ImageTarget {
+            start,
+            ..target.clone()
+        };
+        let lobes = [on_already.clone(), vec![on.to_string()]].concat();
+        let refine = with_lobes(fit, &lobes).image_target(Arc::new(target));
+        let (refined, c) = candidate(&refine, Objective::Image, lobes, samples, &judge)?;
+        let keeps_data = c.ngan_l2 <= refine_l2_growth * candidates[winner].ngan_l2;
+        candidates.push(c);
+        let j = candidates.len() - 1;
+        if keeps_data && flip(&candidates, j) < best_flip * (1.0 - LOBE_MARGIN) {
             candidates[k].chosen = false;
             candidates[j].chosen = true;
             best_flip = flip(&candidates, j);

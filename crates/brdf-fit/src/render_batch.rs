@@ -12,7 +12,7 @@
 //! the data once, not once per candidate.
 
 use brdf_core::{Brdf, DirPairs};
-use brdf_render::colour::{delta_e_2000, mean_colour};
+use brdf_render::colour::{delta_e_mean_colours, mean_colour};
 use brdf_render::compare::ImageErrors;
 use brdf_render::flip::hdr_flip;
 use brdf_render::psnr::psnr;
@@ -151,7 +151,7 @@ impl Reference {
         Ok(ImageErrors {
             flip: hdr_flip(&self.image, &t)?,
             psnr: psnr(&self.image, &t, self.exposure)?,
-            delta_e_mean_colour: delta_e_2000(self.mean_colour, mean_colour_test, self.exposure),
+            delta_e_mean_colour: delta_e_mean_colours(self.mean_colour, mean_colour_test),
             mean_colour_ref: self.mean_colour,
             mean_colour_test,
             exposure: self.exposure,

@@ -275,3 +275,57 @@ fn image_terms_render_sums_weighted_values() {
         }
     }
 }
+
+#[test]
+fn image_problem_ends_with_the_mean_colour_rows() {
+    // After the pixel rows, one row per image and channel:
+    // W sqrt(n_i) (ln(eps + mean_i(e_i P_c(model))) - ln(eps + mean_i(e_i P_c(ref)))),
+    // computed here from the plain renders of both.
+    use brdf_fit::image_objective::{LOG_FLOOR, MEAN_COLOUR_WEIGHT};
+    let (model, truth) = model_and_truth();
+    let t = terms();
+    let reference = t.render(truth.as_ref(), 3);
+    let exposures = t.exposures(&reference, 3);
+    let problem = ImageProblem::new(model.as_ref(), &t, &reference, &exposures).expect("problem");
+    let (np, ni) = (t.pixels(), t.images());
+    assert_eq!(problem.n_residuals(), 3 * np + 3 * ni);
+    let p = [0.1, 0.2, 0.2, 0.3, 0.3, 0.5, 25.0];
+    let mut fit = build(
+        "blinn-phong",
+        &ModelConfig {
+            channels: 3,
+            ..ModelConfig::default()
+        },
+    )
+    .expect("model");
+    fit.set_params(&p).expect("in the box");
+    let px = t.render(fit.as_ref(), 3);
+    let mut r = vec![0.0; problem.n_residuals()];
+    problem.residuals(&p, &mut r);
+    // `terms()` puts the first half of the pixels in image 0.
+    for i in 0..ni {
+        let pixels = (i * np / 2)..((i + 1) * np / 2);
+        let n = pixels.len() as f64;
+        for c in 0..3 {
+            let mean = |v: &[f64]| {
+                pixels
+                    .clone()
+                    .map(|q| exposures[i] * v[c * np + q])
+                    .sum::<f64>()
+                    / n
+            };
+            let want = MEAN_COLOUR_WEIGHT
+                * n.sqrt()
+                * ((LOG_FLOOR + mean(&px)).ln() - (LOG_FLOOR + mean(&reference)).ln());
+            let got = r[3 * np + i * 3 + c];
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "image {i} channel {c}: {got} against {want}"
+            );
+            assert!(
+                want.abs() > 1e-3,
+                "the rows must see this colour difference"
+            );
+        }
+    }
+}

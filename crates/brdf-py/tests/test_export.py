@@ -47,12 +47,17 @@ def test_every_cli_target_is_covered():
 def test_conversion_as_the_command(brdf_cli, tmp_path):
     # principled has no glTF equivalent: refused unless convert=True, which
     # fits gltf for appearance as `brdf export` does (the error in the file).
+    # On paper_white that conversion changes the render beyond the limit
+    # (FLIP 0.02 under a light set): refused, naming the better route,
+    # unless force=True, as `brdf export --force`.
     saved = str(FIXTURES / "principled.json")
     with pytest.raises(brdf.BrdfError, match="no exact equivalent"):
         brdf.export(saved, "usd")
+    with pytest.raises(brdf.BrdfError, match="changes its look.*brdf fit --model gltf"):
+        brdf.export(saved, "usd", convert=True)
     out = tmp_path / "m.usda"
-    brdf_cli("export", "--from", saved, "--to", "usd", str(out), "--name", "fitted")
-    text = brdf.export(saved, "usd", convert=True)
+    brdf_cli("export", "--from", saved, "--to", "usd", str(out), "--name", "fitted", "--force")
+    text = brdf.export(saved, "usd", convert=True, force=True)
     assert text == out.read_text()
     assert "converted by fitting" in text and "HDR-FLIP" in text
 

@@ -7,9 +7,13 @@
 //! difference is (about 1 is just noticeable).
 //!
 //! Conversion: linear sRGB (Rec. 709 primaries, D65) to CIE XYZ to CIELAB
-//! (D65 white), then `palette`'s `Ciede2000::difference`. Colours are scaled
-//! by the caller's exposure first (e.g. `1 / p99(reference)`), so white is
-//! about `L = 100`.
+//! (D65 white), then `palette`'s `Ciede2000::difference`. Both colours are
+//! first scaled so that the reference's mean has luminance `Y = 0.5`
+//! ([`JUDGE_MEAN_LUMINANCE`], `L` about 76): the judge's normalisation
+//! (`benches/judge/metrics.py`), so a report and the Mitsuba judge give the
+//! same figure for the same two renders. (An exposure of `1 / p99` would put
+//! a glossy film's body near `L = 30`, where CIELAB compresses differences:
+//! the same ibiza fit read 3.4 there and 6.0 in the judge.)
 
 use palette::color_difference::Ciede2000;
 use palette::white_point::D65;
@@ -44,11 +48,28 @@ pub fn ciede2000_lab(a: [f64; 3], b: [f64; 3]) -> f64 {
     la.difference(Lab::new(b[0], b[1], b[2]))
 }
 
+/// Luminance `Y` the reference's mean colour is scaled to before CIELAB.
+pub const JUDGE_MEAN_LUMINANCE: f64 = 0.5;
+
+/// Luminance `Y` (Rec. 709 / sRGB primaries, D65) of a linear sRGB colour.
+pub fn luminance(rgb: [f64; 3]) -> f64 {
+    0.212_639 * rgb[0] + 0.715_169 * rgb[1] + 0.072_192 * rgb[2]
+}
+
 /// CIEDE2000 difference of two linear sRGB colours, each scaled by
 /// `exposure` first.
 pub fn delta_e_2000(a: [f64; 3], b: [f64; 3], exposure: f64) -> f64 {
     let s = |c: [f64; 3]| lab_of_linear_srgb(c.map(|x| x * exposure));
     ciede2000_lab(s(a), s(b))
+}
+
+/// CIEDE2000 difference of the mean colours of a `reference` and a `test`
+/// render (linear sRGB, negative parts clipped), both scaled so that the
+/// reference's luminance is [`JUDGE_MEAN_LUMINANCE`]: the judge's figure.
+pub fn delta_e_mean_colours(reference: [f64; 3], test: [f64; 3]) -> f64 {
+    let (r, t) = (reference.map(|x| x.max(0.0)), test.map(|x| x.max(0.0)));
+    let scale = JUDGE_MEAN_LUMINANCE / luminance(r).max(1e-12);
+    delta_e_2000(r, t, scale)
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@
 use brdf_core::Brdf;
 
 use crate::RenderError;
-use crate::colour::{delta_e_2000, mean_colour};
+use crate::colour::{delta_e_mean_colours, mean_colour};
 use crate::flip::hdr_flip;
 use crate::light::LightSet;
 use crate::psnr::psnr;
@@ -25,7 +25,8 @@ pub struct ImageErrors {
     pub flip: f64,
     /// PSNR (dB) at `exposure`, clipped, gamma 2.2 (infinite when identical)
     pub psnr: f64,
-    /// CIEDE2000 between the mean sphere colours, both scaled by `exposure`
+    /// CIEDE2000 between the mean sphere colours, scaled so the reference's
+    /// luminance is 0.5 (the judge's figure; [`crate::colour`])
     pub delta_e_mean_colour: f64,
     /// mean linear RGB of the reference's sphere pixels
     pub mean_colour_ref: [f64; 3],
@@ -68,7 +69,7 @@ pub fn compare_with(
     Ok(ImageErrors {
         flip: hdr_flip(&r, &t)?,
         psnr: psnr(&r, &t, exposure)?,
-        delta_e_mean_colour: delta_e_2000(mean_colour_ref, mean_colour_test, exposure),
+        delta_e_mean_colour: delta_e_mean_colours(mean_colour_ref, mean_colour_test),
         mean_colour_ref,
         mean_colour_test,
         exposure,

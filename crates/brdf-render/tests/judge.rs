@@ -207,3 +207,27 @@ fn renders_do_not_depend_on_the_thread_count() -> Result<(), rayon::ThreadPoolBu
     );
     Ok(())
 }
+
+/// The mean-colour CIEDE2000 against the judge's own (colour-science,
+/// `tests/reference/make_delta_e.py`): both colours scaled so the
+/// reference's luminance is 0.5, negative channels clipped.
+#[test]
+fn mean_colour_delta_e_is_the_judges() {
+    let text = include_str!("reference/delta_e_judge.json");
+    let cases: serde_json::Value = serde_json::from_str(text).expect("JSON");
+    let rgb = |v: &serde_json::Value| -> [f64; 3] {
+        let a = v.as_array().expect("array");
+        [0, 1, 2].map(|i| a[i].as_f64().expect("number"))
+    };
+    let cases = cases.as_array().expect("cases");
+    assert_eq!(cases.len(), 4);
+    for case in cases {
+        let (r, t) = (rgb(&case["reference"]), rgb(&case["test"]));
+        let want = case["delta_e"].as_f64().expect("number");
+        let got = brdf_render::colour::delta_e_mean_colours(r, t);
+        assert!(
+            (got - want).abs() < 1e-3 * want.max(1.0),
+            "{r:?} {t:?}: {got} against {want}"
+        );
+    }
+}

@@ -193,7 +193,10 @@ fn report(
                 "image": c.image,
                 "note": c.note(),
                 "mean_flip": c.image.mean_flip(),
+                "max_flip": c.image.max_flip(),
                 "max_delta_e": c.image.max_delta_e(),
+                // Beyond the limits, so written only because of --force.
+                "forced": c.check(target).is_err(),
             })
         });
         let v = serde_json::json!({

@@ -15,14 +15,16 @@ here="$(cd "$(dirname "$0")" && pwd)"
 : "${BRDF_DATA:?set BRDF_DATA}"
 brdf="${BRDF:-brdf}"
 cd "$here"
-# export MODEL KIND FILE ARGS...: exact when possible, else converted.
+# export MODEL KIND FILE ARGS...: exact when possible, else converted; a
+# conversion beyond brdf export's limits is forced (the files are fixtures of
+# the writers; the report says `"forced": true`).
 export_one() {
     local m=$1 kind=$2 file=$3
     shift 3
     if "$brdf" export --from "$m.json" "$@" "$file" --exact >/dev/null 2>&1; then
         rm -f "$m.$kind.json" "$m.$kind.report.json"
     else
-        "$brdf" export --from "$m.json" "$@" "$file" --save-converted "$m.$kind.json" --json >"$m.$kind.report.json"
+        "$brdf" export --from "$m.json" "$@" "$file" --save-converted "$m.$kind.json" --json --force >"$m.$kind.report.json"
     fi
 }
 for m in ggx principled; do
