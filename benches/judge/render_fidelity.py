@@ -42,6 +42,8 @@ import metrics as M  # noqa: E402
 import scene as S  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
+# Label suffix of a conversion `brdf export` refused and that was forced.
+FORCED = " (conversion forced)"
 DEFAULT_CONFIGS = ["principled:default", "principled:ngan", "gltf:default", "ggx:default"]
 
 
@@ -121,7 +123,7 @@ def row_for(data, refs, model, objective, workdir, spp, pictures=None, route="ex
     against the measurement's renders `refs` (the renders go into `images`
     when given)."""
     path, summary, wall = fit_and_export(data, model, objective, workdir, route)
-    label = objective + (" (conversion forced)" if summary["forced"] else "")
+    label = objective + (FORCED if summary["forced"] else "")
     if route == "tabulated":
         label += " (tabulated)"
     row = {"material": data.stem, "model": model, "objective": label, "seconds": wall}
@@ -142,12 +144,15 @@ def row_for(data, refs, model, objective, workdir, spp, pictures=None, route="ex
 def merged(old, new):
     """`old` rows with `new` ones replacing those of the same material,
     model and objective, the others inserted after their material's rows."""
-    key = lambda r: (r["material"], r["model"], r["objective"])  # noqa: E731
+    # A conversion that became refused (or accepted) is the same
+    # configuration: its row replaces the other label's.
+    key = lambda r: (r["material"], r["model"], r["objective"].removesuffix(FORCED))  # noqa: E731
     rows = list(old)
     for r in new:
         same = [i for i, o in enumerate(rows) if key(o) == key(r)]
         if same:
             rows[same[0]] = r
+            rows = [o for i, o in enumerate(rows) if i not in same[1:]]
             continue
         mine = [i for i, o in enumerate(rows) if o["material"] == r["material"] and "Adam" not in o["model"]]
         rows.insert(mine[-1] + 1 if mine else len(rows), r)

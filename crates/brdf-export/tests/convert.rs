@@ -80,18 +80,23 @@ fn quick() -> ConvertOptions {
 }
 
 /// The paper_white GGX fit (height-correlated, no Mitsuba equivalent)
-/// converted to Mitsuba's principled for appearance renders like the
-/// source: mean HDR-FLIP well inside the noise floor of a re-render.
+/// converted to Mitsuba's principled for appearance renders close to the
+/// source (mean HDR-FLIP below 0.03, the colour kept) but changes the sky
+/// render by more than issue 23's 0.02 (the committed 128-pixel report:
+/// 0.027; Burley's diffuse is not GGX's Lambert), so the export refuses it
+/// and names the better route.
 #[test]
-fn ggx_to_principled_keeps_the_look() {
+fn ggx_to_principled_is_close_but_beyond_the_bound() {
     let src = paper_white_ggx();
     let c = convert(src.as_ref(), Target::Mitsuba, &quick()).unwrap();
     assert_eq!(c.model.name(), "principled");
     assert!(c.appearance);
     eprintln!("{}", brdf_export::convert::image_note(&c.image));
     assert!(c.image.mean_flip() < 0.03, "{:?}", c.image);
+    assert!(c.image.max_flip() > brdf_export::convert::FLIP_LIMIT, "{:?}", c.image);
     assert!(c.image.max_delta_e() < brdf_export::convert::DELTA_E_LIMIT);
-    assert!(c.check(Target::Mitsuba).is_ok());
+    let refused = c.check(Target::Mitsuba).expect_err("beyond 0.02").to_string();
+    assert!(refused.contains("brdf fit --model principled"), "{refused}");
     assert!(c.note().contains("HDR-FLIP"), "{}", c.note());
 }
 

@@ -2,7 +2,7 @@
 
 Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.
 
-converted by fitting: `ggx` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 1.5446e-2 1/sr, relative L2 6.9634e-2; image error at 128 px: HDR-FLIP sky 0.0127, studio 0.0123 (mean 0.0125), mean-colour CIEDE2000 at most 0.06
+converted by fitting: `ggx` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 1.5373e-2 1/sr, relative L2 6.9304e-2; image error at 128 px: HDR-FLIP sky 0.0127, studio 0.0125 (mean 0.0126), mean-colour CIEDE2000 at most 0.04
 """
 
 import os
@@ -12,9 +12,9 @@ import bpy
 
 NAME = "paper_white_rgb"
 INPUTS = {
-    "Base Color": (0.8405638917864988, 0.8533212514099516, 1, 1.0),
-    "Metallic": 0.08685613075101921,
-    "Roughness": 0.6820936107949241,
+    "Base Color": (0.8398674523886084, 0.8526610045656359, 1, 1.0),
+    "Metallic": 0.08654011691220517,
+    "Roughness": 0.682155250719164,
     "IOR": 1.5,
     "Specular IOR Level": 0.5,
 }

@@ -2,7 +2,7 @@
 
 Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.
 
-converted by fitting: `principled` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 3.0796e-2 1/sr, relative L2 1.3649e-1; image error at 128 px: HDR-FLIP sky 0.0346, studio 0.0262 (mean 0.0304), mean-colour CIEDE2000 at most 0.19
+converted by fitting: `principled` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 3.1424e-2 1/sr, relative L2 1.3927e-1; image error at 128 px: HDR-FLIP sky 0.0343, studio 0.0250 (mean 0.0297), mean-colour CIEDE2000 at most 0.10
 """
 
 import os
@@ -12,9 +12,9 @@ import bpy
 
 NAME = "paper_white_rgb"
 INPUTS = {
-    "Base Color": (0.8280017316522397, 0.8386519411743136, 0.9866375902350717, 1.0),
-    "Metallic": 0.042988483713144794,
-    "Roughness": 0.6660836875307341,
+    "Base Color": (0.8320851873360621, 0.8421346135279912, 0.9898365203238144, 1.0),
+    "Metallic": 0.04444120516300815,
+    "Roughness": 0.6645231948696374,
     "IOR": 1.5,
     "Specular IOR Level": 0.5,
 }
