@@ -93,9 +93,16 @@ fn ggx_to_principled_is_close_but_beyond_the_bound() {
     assert!(c.appearance);
     eprintln!("{}", brdf_export::convert::image_note(&c.image));
     assert!(c.image.mean_flip() < 0.03, "{:?}", c.image);
-    assert!(c.image.max_flip() > brdf_export::convert::FLIP_LIMIT, "{:?}", c.image);
+    assert!(
+        c.image.max_flip() > brdf_export::convert::FLIP_LIMIT,
+        "{:?}",
+        c.image
+    );
     assert!(c.image.max_delta_e() < brdf_export::convert::DELTA_E_LIMIT);
-    let refused = c.check(Target::Mitsuba).expect_err("beyond 0.02").to_string();
+    let refused = c
+        .check(Target::Mitsuba)
+        .expect_err("beyond 0.02")
+        .to_string();
     assert!(refused.contains("brdf fit --model principled"), "{refused}");
     assert!(c.note().contains("HDR-FLIP"), "{}", c.note());
 }
