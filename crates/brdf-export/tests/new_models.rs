@@ -111,9 +111,11 @@ fn save(m: &dyn Parametric, dir: &Path) -> PathBuf {
     path
 }
 
-/// Export `name` to every target; the printed image error is the judge's
-/// comparison of the saved source with the saved conversion.
-fn exports_keep_their_printed_error(name: &str, targets: &[Target]) {
+/// Export `name` to every target (forced); the printed image error is the
+/// judge's comparison of the saved source with the saved conversion, and
+/// the conversion is beyond the limits (refused without --force) exactly
+/// for the targets in `refused`.
+fn exports_keep_their_printed_error(name: &str, targets: &[Target], refused: &[Target]) {
     let dir = scratch(name);
     let from = save(source(name).as_ref(), &dir);
     let src = SavedModel::load_model(&from).unwrap();
@@ -136,9 +138,13 @@ fn exports_keep_their_printed_error(name: &str, targets: &[Target]) {
         let printed = image_note(&c.image);
         eprintln!("{name} -> {target} via {}: {printed}", c.model.name());
         assert!(done.exported.text.contains(&printed), "{name} to {target}");
-        // Accepted without --force: within the conversion's FLIP and
-        // colour limits.
-        assert!(c.check(target).is_ok(), "{name} to {target}: {printed}");
+        // Accepted without --force exactly when within the conversion's
+        // FLIP and colour limits.
+        assert_eq!(
+            c.check(target).is_err(),
+            refused.contains(&target),
+            "{name} to {target}: {printed}"
+        );
         let written = SavedModel::load_model(&converted).unwrap();
         let judged = Judge::new(quick().judge_size)
             .errors(src.as_ref() as &dyn Brdf, written.as_ref() as &dyn Brdf)
@@ -150,25 +156,31 @@ fn exports_keep_their_printed_error(name: &str, targets: &[Target]) {
 
 #[test]
 fn sgd_exports() {
-    exports_keep_their_printed_error("sgd", &[Target::Mitsuba]);
+    exports_keep_their_printed_error("sgd", &[Target::Mitsuba], &[]);
 }
 
 #[test]
 fn abc_exports() {
-    exports_keep_their_printed_error("abc", &[Target::Gltf]);
+    exports_keep_their_printed_error("abc", &[Target::Gltf], &[]);
 }
 
 #[test]
 fn abc_smooth_exports() {
-    exports_keep_their_printed_error("abc-smooth", &[Target::MaterialX]);
+    exports_keep_their_printed_error("abc-smooth", &[Target::MaterialX], &[]);
 }
 
 #[test]
 fn std_exports() {
-    exports_keep_their_printed_error("std", &[Target::Pbrt]);
+    exports_keep_their_printed_error("std", &[Target::Pbrt], &[]);
 }
 
+/// Dupuy's tabulated distribution has no analytic equivalent within issue
+/// 23's bound: both conversions change the render by about 0.04 (64 px).
 #[test]
 fn dupuy_exports_from_its_saved_table() {
-    exports_keep_their_printed_error("dupuy", &[Target::Gltf, Target::Pbrt]);
+    exports_keep_their_printed_error(
+        "dupuy",
+        &[Target::Gltf, Target::Pbrt],
+        &[Target::Gltf, Target::Pbrt],
+    );
 }
