@@ -423,29 +423,20 @@ pub fn fit_for_appearance_with(
         report.model.channels(),
         Vec::new(),
     );
-    let winner = k;
-    let mut best_flip = flip(&candidates, k);
+    // The refinement sees the BRDF only through the sphere's pixels; it is
+    // kept only if it also stays a fit of the data (Ngan's L2 at most
+    // REFINE_L2_GROWTH times the winner's), so it cannot trade the
+    // unrendered directions for a lower image error.
+    let refiner = Refiner {
+        fit,
+        target: &target,
+        samples,
+        judge: &judge,
+        max_l2: refine_l2_growth * candidates[k].ngan_l2,
+    };
+    let mut choice = Choice { report, k };
     for (start, lobes) in starts {
-        let target = ImageTarget {
-            start,
-            ..target.clone()
-        };
-        let refine = with_lobes(fit, &lobes).image_target(Arc::new(target));
-        let (refined, c) = candidate(&refine, Objective::Image, lobes, samples, &judge)?;
-        // The refinement sees the BRDF only through the sphere's pixels; it is
-        // kept only if it also stays a fit of the data (Ngan's L2 at most
-        // REFINE_L2_GROWTH times the winner's), so it cannot trade the
-        // unrendered directions for a lower image error.
-        let keeps_data = c.ngan_l2 <= refine_l2_growth * candidates[winner].ngan_l2;
-        candidates.push(c);
-        let j = candidates.len() - 1;
-        if keeps_data && flip(&candidates, j) < best_flip {
-            candidates[k].chosen = false;
-            candidates[j].chosen = true;
-            best_flip = flip(&candidates, j);
-            k = j;
-            report = refined;
-        }
+        refiner.refine(start, lobes, 1.0, &mut candidates, &mut choice)?;
     }
     // The optional lobes, tried in the image objective (nested models): from
     // the best fit so far, each lobe switched on at the middle of its box and
@@ -454,8 +445,9 @@ pub fn fit_for_appearance_with(
     // hardly shows; here it must pay in the render (on vch_golden_yellow a
     // rough clear coat does: the GGX fit converted to principled, which
     // found it, rendered at sky FLIP 0.251 against the lobe-less 0.291).
-    let (base, on_already) = (report.model.params().to_vec(), candidates[k].lobes.clone());
-    let specs = report.model.param_specs().to_vec();
+    let base = choice.report.model.params().to_vec();
+    let on_already = candidates[choice.k].lobes.clone();
+    let specs = choice.report.model.param_specs().to_vec();
     for on in optional_lobes(fit.model_name()) {
         if (isotropic && on.starts_with("anisotropic")) || on_already.iter().any(|l| l == on) {
             continue;
@@ -466,25 +458,67 @@ pub fn fit_for_appearance_with(
                 *p = 0.5 * (s.lower + s.upper);
             }
         }
+        let lobes = [on_already.clone(), vec![on.to_string()]].concat();
+        refiner.refine(
+            start,
+            lobes,
+            1.0 - LOBE_MARGIN,
+            &mut candidates,
+            &mut choice,
+        )?;
+    }
+    Ok((choice.report, candidates))
+}
+
+/// The chosen fit of [`fit_for_appearance_with`] and its index among the
+/// candidates.
+struct Choice {
+    report: FitReport,
+    k: usize,
+}
+
+/// Refinements in the image objective of one appearance fit.
+struct Refiner<'a> {
+    fit: &'a Fit,
+    /// The data's pixels (the start is set per refinement).
+    target: &'a ImageTarget,
+    samples: &'a SampleSet,
+    judge: &'a Judge,
+    /// Largest Ngan's L2 a refinement may have and still be chosen.
+    max_l2: f64,
+}
+
+impl Refiner<'_> {
+    /// Refine `self.fit` with `lobes` on from `start`, add it to
+    /// `candidates`, and make it the choice when its Ngan's L2 is within
+    /// `max_l2` and its mean FLIP below `gain` times the choice's.
+    fn refine(
+        &self,
+        start: Vec<f64>,
+        lobes: Vec<String>,
+        gain: f64,
+        candidates: &mut Vec<Candidate>,
+        choice: &mut Choice,
+    ) -> Result<(), FitError> {
         let target = ImageTarget {
             start,
-            ..target.clone()
+            ..self.target.clone()
         };
-        let lobes = [on_already.clone(), vec![on.to_string()]].concat();
-        let refine = with_lobes(fit, &lobes).image_target(Arc::new(target));
-        let (refined, c) = candidate(&refine, Objective::Image, lobes, samples, &judge)?;
-        let keeps_data = c.ngan_l2 <= refine_l2_growth * candidates[winner].ngan_l2;
+        let refine = with_lobes(self.fit, &lobes).image_target(Arc::new(target));
+        let (refined, c) = candidate(&refine, Objective::Image, lobes, self.samples, self.judge)?;
+        let keeps_data = c.ngan_l2 <= self.max_l2;
         candidates.push(c);
         let j = candidates.len() - 1;
-        if keeps_data && flip(&candidates, j) < best_flip * (1.0 - LOBE_MARGIN) {
-            candidates[k].chosen = false;
+        if keeps_data && flip(candidates, j) < gain * flip(candidates, choice.k) {
+            candidates[choice.k].chosen = false;
             candidates[j].chosen = true;
-            best_flip = flip(&candidates, j);
-            k = j;
-            report = refined;
+            *choice = Choice {
+                report: refined,
+                k: j,
+            };
         }
+        Ok(())
     }
-    Ok((report, candidates))
 }
 
 fn flip(candidates: &[Candidate], k: usize) -> f64 {
