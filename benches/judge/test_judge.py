@@ -1,7 +1,9 @@
 """The CI judge of issue 23: for every RGL file in `$BRDF_DATA/rgl`, the
 default `brdf fit` (principled, fitted for appearance) exported to Mitsuba 3
 and rendered in the judge scene beside Mitsuba's own `measured` plugin on
-the same file, under both light sets (`shared/spec/appearance.md`).
+the same file, under both light sets (`shared/spec/appearance.md`); and
+brdf-render's render of each measurement (what the fits for appearance are
+fitted to) beside Mitsuba's.
 
 The bounds are regression guards (the measured figures of
 results/render_fidelity.md plus a stated noise margin); which goals of the
@@ -10,11 +12,14 @@ end of results/render_fidelity.md.
 Run by `.ci/run` (`bash benches/judge/ci.sh`).
 """
 
+import functools
 import os
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -31,20 +36,20 @@ import scene as S  # noqa: E402
 # (ibiza 0.372/0.244, iris 0.443/0.266, golden yellow 0.612/0.393, colodur
 # 0.111/0.096, paper 0.069/0.047), and every film's dE bound below the
 # issue's 5. Measured:
-# - paper_white 0.057/0.041, colodur 0.082/0.056 (issue goals 0.06/0.04:
+# - paper_white 0.057/0.041, colodur 0.073/0.051 (issue goals 0.06/0.04:
 #   paper's sky met, its studio missed by 0.001, colodur missed by
-#   0.022/0.016);
+#   0.013/0.011);
 # - films, before issue 23 (Ngan's L2): ibiza 0.506/0.314, iris 0.638/0.450,
-#   golden yellow 0.540/0.391; now 0.315/0.217 (dE 3.0), 0.316/0.230
-#   (dE 1.2), 0.240/0.186 (dE 1.9): golden yellow meets every goal, iris its
-#   sky, ibiza none of the FLIP halvings (results/render_fidelity.md lists
+#   golden yellow 0.540/0.391; now 0.314/0.216 (dE 3.2), 0.329/0.229
+#   (dE 1.6), 0.239/0.187 (dE 1.7): golden yellow meets every goal, ibiza
+#   and iris none of the FLIP halvings (results/render_fidelity.md lists
 #   each goal and its margin).
 BOUNDS = {
     "paper_white_rgb": ((0.062, 0.046), 1.0),
-    "colodur_napoli_4f_rgb": ((0.087, 0.061), 1.0),
-    "cc_ibiza_sunset_rgb": ((0.331, 0.228), 3.5),
-    "cc_iris_purple_gem_rgb": ((0.332, 0.242), 1.7),
-    "vch_golden_yellow_rgb": ((0.252, 0.196), 2.4),
+    "colodur_napoli_4f_rgb": ((0.078, 0.056), 1.0),
+    "cc_ibiza_sunset_rgb": ((0.330, 0.227), 3.8),
+    "cc_iris_purple_gem_rgb": ((0.346, 0.241), 2.1),
+    "vch_golden_yellow_rgb": ((0.251, 0.197), 2.3),
 }
 
 
@@ -71,13 +76,63 @@ TABULATION_BOUNDS = {
 }
 
 
-@pytest.mark.parametrize("stem", sorted(BOUNDS))
-def test_default_fit_renders_like_the_measurement(stem):
+# brdf-render's own render of each measurement (the target of every fit for
+# appearance) against Mitsuba's `measured` plugin's, FLIP (sky, studio).
+# brdf-render evaluates the table with the camera's direction as its incident
+# direction, as Mitsuba does; in the other order the films differed by up to
+# 0.194 / 0.076 (cc_ibiza_sunset). Measured when written (Mitsuba at 256 spp
+# against brdf-render's noiseless render): paper_white 0.019 / 0.009,
+# colodur 0.024 / 0.014, ibiza 0.059 / 0.017, iris 0.120 / 0.050, golden
+# yellow 0.087 / 0.051; two Mitsuba renders of a measurement differ by
+# 0.016-0.041 (sky) and 0.011-0.016 (studio). The glossy films' larger
+# figures stay at 1024 spp (iris 0.115 / 0.049) with equal mean colours
+# (within 1%): brdf-render lights with point sets (the sun one direction,
+# the square light 8 x 8 points), where Mitsuba samples the sun's disk and
+# the whole square, and a sharp highlight shows the difference. Bounds: the
+# measured figures plus 10% (at least 0.005).
+DATA_RENDER_BOUNDS = {
+    "paper_white_rgb": (0.025, 0.014),
+    "colodur_napoli_4f_rgb": (0.029, 0.019),
+    "cc_ibiza_sunset_rgb": (0.065, 0.022),
+    "cc_iris_purple_gem_rgb": (0.132, 0.055),
+    "vch_golden_yellow_rgb": (0.097, 0.056),
+}
+
+
+@functools.lru_cache(maxsize=None)
+def measured_renders(stem):
+    """Mitsuba's renders of the measurement `stem` (seed 1), once per run."""
     data = next(f for f in files() if f.stem == stem)
     S.set_variant()
+    return data, RF.measured_renders(data, S.SPP)
+
+
+def judge_exr():
+    """brdf-render's judge renders (`examples/judge_exr.rs`), built beside `brdf`."""
+    exe = os.environ.get("JUDGE_EXR") or str(Path(RF.brdf_bin()).parent / "examples" / "judge_exr")
+    assert Path(exe).is_file(), f"{exe} is missing: build it with `cargo build --release --examples`"
+    return exe
+
+
+@pytest.mark.parametrize("stem", sorted(DATA_RENDER_BOUNDS))
+def test_brdf_render_renders_the_measurement_as_mitsuba_does(stem):
+    data, refs = measured_renders(stem)
+    import mitsuba as mi
+
+    with tempfile.TemporaryDirectory() as work:
+        subprocess.run([judge_exr(), str(data), work], check=True)
+        for light, bound in zip(S.LIGHTS, DATA_RENDER_BOUNDS[stem]):
+            ours = np.array(mi.Bitmap(str(Path(work) / f"{light}.exr")), dtype=np.float32)[..., :3]
+            flip = M.flip(refs[light], ours)
+            print(stem, light, "brdf-render's render of the measurement against Mitsuba's: FLIP", flip)
+            assert flip <= bound, (stem, light, flip)
+
+
+@pytest.mark.parametrize("stem", sorted(BOUNDS))
+def test_default_fit_renders_like_the_measurement(stem):
+    data, refs = measured_renders(stem)
     (flip_sky, flip_studio), max_de = BOUNDS[stem]
     with tempfile.TemporaryDirectory() as work:
-        refs = RF.measured_renders(data, S.SPP)
         exact = {}
         row = RF.row_for(data, refs, "principled", "default", work, S.SPP, images=exact)
         if stem in TABULATION_BOUNDS:

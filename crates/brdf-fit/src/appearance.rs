@@ -238,7 +238,8 @@ pub fn image_terms(size: usize) -> Result<ImageTerms, FitError> {
             let q = image_of_pixel.len();
             image_of_pixel.push(i);
             for k in px.start..px.end {
-                pairs.push(&sp.l_local[k], &px.v_local);
+                // The renderers' order, as ShadingPoints::render.
+                pairs.push(&px.v_local, &sp.l_local[k]);
                 for (c, row) in weight_rows.iter_mut().enumerate() {
                     row.push(sp.weight[k][c]);
                 }

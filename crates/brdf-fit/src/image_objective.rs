@@ -2,9 +2,10 @@
 //! not to the data's samples.
 //!
 //! A pixel of a sphere under a light set is a weighted sum of BRDF values
-//! at known direction pairs: `P_c = sum_k w_kc f_c(l_k, v_k)`, the weights
+//! at known direction pairs: `P_c = sum_k w_kc f_c(v_k, l_k)`, the weights
 //! holding the light's radiance, the cosine and the quadrature weight
-//! (`brdf_render::ShadingPoints`). So the fit of a model `M` to measured
+//! (`brdf_render::ShadingPoints`; the camera's direction first, as renderers
+//! evaluate a measured table). So the fit of a model `M` to measured
 //! data `R` in image space is an ordinary non-linear least-squares problem
 //! over the pixels:
 //!
@@ -70,7 +71,7 @@ pub const IMAGE_MAX_ITERATIONS: usize = 30;
 pub const MEAN_COLOUR_WEIGHT: f64 = 1.0;
 
 /// The shading terms of one or more images: term `k` adds
-/// `weights[c * n + k] * f_c(l_k, v_k)` to pixel `pixel[k]`.
+/// `weights[c * n + k] * f_c(pair k)` to pixel `pixel[k]`.
 ///
 /// Stored as chunks of whole pixels (about 2048 terms each),
 /// each with its own copy of its direction pairs, so a fit evaluates the

@@ -41,8 +41,9 @@ fn shade_row(
 ) {
     work.pairs.clear();
     for p in pixels {
+        // The renderers' order, as ShadingPoints::render (camera first).
         for l in &sp.l_local[p.start..p.end] {
-            work.pairs.push(l, &p.v_local);
+            work.pairs.push(&p.v_local, l);
         }
     }
     let n = work.pairs.len();

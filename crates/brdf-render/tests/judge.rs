@@ -91,6 +91,27 @@ fn reciprocal_brdfs_render_the_same_swapped_and_others_do_not() {
     assert_ne!(sp.render(&Skewed), sp.render_swapped(&Skewed));
 }
 
+/// A BRDF is evaluated as renderers evaluate it, the camera's direction
+/// first (Mitsuba's `measured` plugin looks an RGL table up so): a pixel of
+/// a non-reciprocal BRDF under one directional light is `f(v, l) n . l`.
+#[test]
+fn renders_evaluate_the_camera_direction_first() -> Result<(), RenderError> {
+    let dir = Vector3::new(0.2, 0.5, 0.8).normalize();
+    let sp = ShadingPoints::judge(&LightSet::directional(dir)?, 16);
+    let img = sp.render(&Skewed);
+    let swapped = sp.render_swapped(&Skewed);
+    let mut f = [0.0];
+    for t in sp.terms() {
+        Skewed.eval(&t.v_local, &t.l_local, &mut f);
+        let camera_first = f[0] * t.l_local.z;
+        Skewed.eval(&t.l_local, &t.v_local, &mut f);
+        let light_first = f[0] * t.l_local.z;
+        assert!((img.data[t.pixel * 3] - camera_first).abs() <= 1e-12);
+        assert!((swapped.data[t.pixel * 3] - light_first).abs() <= 1e-12);
+    }
+    Ok(())
+}
+
 #[test]
 fn terms_reproduce_the_render() {
     let sp = ShadingPoints::judge(&LightSet::sky(), 20);
@@ -100,7 +121,7 @@ fn terms_reproduce_the_render() {
     let mut f = [0.0; 3];
     for t in sp.terms() {
         assert!(t.l_local.z > 0.0 && t.v_local.z > 0.0);
-        brdf.eval(&t.l_local, &t.v_local, &mut f);
+        brdf.eval(&t.v_local, &t.l_local, &mut f);
         for c in 0..3 {
             acc[t.pixel * 3 + c] += t.weight[c] * f[c];
         }
