@@ -12,9 +12,9 @@ import bpy
 
 NAME = "paper_white_rgb"
 INPUTS = {
-    "Base Color": (0.8398674523886084, 0.8526610045656359, 1, 1.0),
-    "Metallic": 0.08654011691220517,
-    "Roughness": 0.682155250719164,
+    "Base Color": (0.8398674523844497, 0.8526610045629337, 1, 1.0),
+    "Metallic": 0.08654011693131704,
+    "Roughness": 0.6821552507211421,
     "IOR": 1.5,
     "Specular IOR Level": 0.5,
 }
