@@ -1,20 +1,16 @@
-//! Environment lights discretised by the fixed [`crate::quadrature`]: a
-//! list of world directions, each carrying the RGB radiance arriving from it
-//! times the solid angle it represents.
+//! Environment lights: distant radiance by direction, discretised per
+//! surface point by the mirror-centred cells of [`crate::quadrature`].
 //!
-//! Why: the sky dome and the studio's constant surround are distant lights
-//! that are the same for every shading point, so their directions and
-//! weights are computed once. Directions whose radiance is zero (below the
-//! horizon of the sky) are left out.
+//! Why per point: the sky dome and the studio's constant surround are the
+//! same for every shading point, but a glossy BRDF samples them around each
+//! point's mirror direction; cells attached to that direction render the
+//! reflection of a smooth environment smoothly (see [`crate::quadrature`]).
+//! Cells whose radiance is zero (below the horizon of the sky) are left out.
 
 use nalgebra::Vector3;
 
-use crate::quadrature::fibonacci_sphere;
+use crate::quadrature::MirrorCells;
 use crate::sky::SunSky;
-
-/// Number of quadrature directions over the whole sphere (about half of them
-/// light a given surface point).
-pub const ENV_DIRECTIONS: usize = 512;
 
 /// One incident direction (world, unit, pointing away from the surface
 /// towards the light) and the RGB irradiance it carries at normal incidence
@@ -46,44 +42,28 @@ impl EnvRadiance {
     }
 }
 
-/// A distant environment: its radiance and the fixed list of weighted
-/// directions that discretises it.
+/// A distant environment: its radiance by direction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Environment {
     /// the radiance by direction (what a camera ray that misses sees)
     pub radiance: EnvRadiance,
-    /// the directions with non-zero radiance and their weights
-    pub incident: Vec<Incident>,
 }
 
 impl Environment {
-    /// The environment of `radiance`, discretised by [`ENV_DIRECTIONS`]
-    /// Fibonacci directions.
+    /// The environment of `radiance`.
     pub fn new(radiance: EnvRadiance) -> Environment {
-        Environment {
-            radiance,
-            incident: discretise(|d| radiance.radiance(d)),
-        }
+        Environment { radiance }
     }
 
     /// A constant environment of radiance `rgb` from every direction.
     pub fn constant(rgb: [f64; 3]) -> Environment {
         Environment::new(EnvRadiance::Constant(rgb))
     }
-}
 
-/// The Fibonacci directions with non-zero `radiance(dir)` and their weights
-/// `radiance * 4 pi / n`.
-fn discretise(radiance: impl Fn(&Vector3<f64>) -> [f64; 3]) -> Vec<Incident> {
-    let d_omega = 4.0 * std::f64::consts::PI / ENV_DIRECTIONS as f64;
-    fibonacci_sphere(ENV_DIRECTIONS)
-        .into_iter()
-        .filter_map(|dir| {
-            let l = radiance(&dir);
-            (l.iter().any(|&x| x != 0.0)).then(|| Incident {
-                dir,
-                weight: l.map(|x| x * d_omega),
-            })
-        })
-        .collect()
+    /// Append the environment's incident directions and weights at a point
+    /// of unit normal `n` seen from unit direction `v` (world): the cells of
+    /// [`MirrorCells`] about the point's mirror direction.
+    pub fn incident_at(&self, n: &Vector3<f64>, v: &Vector3<f64>, out: &mut Vec<Incident>) {
+        MirrorCells::get().incident_at(n, v, |d| self.radiance.radiance(d), out);
+    }
 }

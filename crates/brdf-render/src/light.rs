@@ -1,7 +1,10 @@
 //! Named light sets: what lights the judge sphere. Each gives, for a surface
-//! point, a list of weighted incident directions (world, unit, towards the
-//! light) with RGB weights, so that the pixel radiance is
-//! `L_c = sum_k w_kc f_c(l_k, v) max(0, n . l_k)`.
+//! point seen from a direction `v`, a list of weighted incident directions
+//! (world, unit, towards the light) with RGB weights (the environments'
+//! directions are cells about the point's mirror direction:
+//! [`crate::quadrature`]), so that the pixel radiance is
+//! `L_c = sum_k w_kc f_c(v, l_k) max(0, n . l_k)` (the camera's direction first, as
+//! renderers evaluate: [`crate::shading`]).
 //!
 //! - `directional`: one distant light of irradiance 1 (the study's light,
 //!   `(0.5, 0.5, 0.707)` normalised, unless another direction is given);
@@ -117,20 +120,22 @@ impl LightSet {
         }
     }
 
-    /// Append the incident directions and weights at surface point `p` to
-    /// `out` (the receiver's cosine is not applied).
-    pub fn incident_at(&self, p: &Vector3<f64>, out: &mut Vec<Incident>) {
+    /// Append the incident directions and weights at the unit-sphere point
+    /// `p` (also its normal), seen from unit direction `v` (towards the
+    /// camera), to `out` (the receiver's cosine is not applied; the
+    /// environments' directions depend on `v`: [`crate::quadrature`]).
+    pub fn incident_at(&self, p: &Vector3<f64>, v: &Vector3<f64>, out: &mut Vec<Incident>) {
         match self {
             LightSet::Directional(dir) => out.push(Incident {
                 dir: *dir,
                 weight: [1.0; 3],
             }),
             LightSet::Sky { dome, sun } => {
-                out.extend_from_slice(&dome.incident);
+                dome.incident_at(p, v, out);
                 out.push(*sun);
             }
             LightSet::Studio { surround, key } => {
-                out.extend_from_slice(&surround.incident);
+                surround.incident_at(p, v, out);
                 key.incident_at(p, out);
             }
         }

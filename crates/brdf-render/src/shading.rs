@@ -155,7 +155,7 @@ impl ShadingPoints {
                 continue;
             }
             incident.clear();
-            lights.incident_at(&hit.point, &mut incident);
+            lights.incident_at(&hit.point, &hit.view, &mut incident);
             let start = sp.l_local.len();
             for inc in &incident {
                 let l = hit.frame.to_local(&inc.dir);
