@@ -1,15 +1,16 @@
 //! Environment lights: distant radiance by direction, discretised per
-//! surface point by the mirror-centred cells of [`crate::quadrature`].
+//! surface point by the half-vector cells of [`crate::quadrature`].
 //!
 //! Why per point: the sky dome and the studio's constant surround are the
 //! same for every shading point, but a glossy BRDF samples them around each
-//! point's mirror direction; cells attached to that direction render the
-//! reflection of a smooth environment smoothly (see [`crate::quadrature`]).
+//! point's mirror direction; cells laid out about the normal in half-vector
+//! space (the mirror direction at their centre) render the reflection of a
+//! smooth environment smoothly (see [`crate::quadrature`]).
 //! Cells whose radiance is zero (below the horizon of the sky) are left out.
 
 use nalgebra::Vector3;
 
-use crate::quadrature::MirrorCells;
+use crate::quadrature::HalfVectorCells;
 use crate::sky::SunSky;
 
 /// One incident direction (world, unit, pointing away from the surface
@@ -62,8 +63,8 @@ impl Environment {
 
     /// Append the environment's incident directions and weights at a point
     /// of unit normal `n` seen from unit direction `v` (world): the cells of
-    /// [`MirrorCells`] about the point's mirror direction.
+    /// [`HalfVectorCells`] about the point's normal in half-vector space.
     pub fn incident_at(&self, n: &Vector3<f64>, v: &Vector3<f64>, out: &mut Vec<Incident>) {
-        MirrorCells::get().incident_at(n, v, |d| self.radiance.radiance(d), out);
+        HalfVectorCells::get().incident_at(n, v, |d| self.radiance.radiance(d), out);
     }
 }

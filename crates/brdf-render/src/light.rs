@@ -1,8 +1,8 @@
 //! Named light sets: what lights the judge sphere. Each gives, for a surface
 //! point seen from a direction `v`, a list of weighted incident directions
 //! (world, unit, towards the light) with RGB weights (the environments'
-//! directions are cells about the point's mirror direction:
-//! [`crate::quadrature`]), so that the pixel radiance is
+//! directions are cells of half-vector space about the point's normal,
+//! the mirror direction at their centre: [`crate::quadrature`]), so that the pixel radiance is
 //! `L_c = sum_k w_kc f_c(v, l_k) max(0, n . l_k)` (the camera's direction first, as
 //! renderers evaluate: [`crate::shading`]).
 //!

@@ -1,112 +1,127 @@
-//! The quadrature of environment light at one surface point: cells around
-//! the point's mirror direction, fine near it and coarse far from it.
+//! The quadrature of environment light at one surface point: cells of
+//! half-vector space about the normal, fine near it and coarse far from it.
 //!
-//! A pixel's environment term is `∫ L(w) f(v, w) cos+(n . w) dw`. It is
-//! discretised as `sum_cells f(v, w_cell) W_cell` with
-//! `W_cell = ∫_cell L(w) cos+(n . w) dw` (integrated finely, once per
-//! point: it does not depend on the BRDF) and `w_cell` the cell's
-//! `L cos`-weighted centroid. The only approximation is `f` constant over
-//! a cell, so the cells are small where a glossy `f` varies fast: around
-//! the mirror direction `r = 2 (n . v) n - v`. Rings about `r` have
-//! angular radii growing geometrically from [`INNER_RADIUS`] by
-//! [`RING_GROWTH`] up to `pi`, each split into [`SECTORS`] azimuthal
-//! sectors, the azimuth measured from the direction of `n` (the cells are
-//! symmetric about the plane of incidence, as the horizon is). A Lambertian
-//! `f` is rendered exactly (up to the sub-cell sums of `W`); a narrow lobe
-//! sees cells a fraction of its width.
+//! A pixel's environment term is `∫ L(l) f(v, l) cos+(n . l) dl`. It is
+//! discretised as `sum_cells f(v, l_cell) W_cell` with
+//! `W_cell = ∫_cell L(l) cos+(n . l) dl` (integrated finely, once per
+//! point: it does not depend on the BRDF). The only approximation is `f`
+//! constant over a cell, so the cells must be small where a glossy `f`
+//! varies fast. A microfacet lobe is a function of the half vector
+//! `h = (l + v) / |l + v|` and is round about the normal there whatever
+//! the view, where in the incident direction it is a thin band at grazing
+//! views; so the cells are laid out in half-vector space and mapped to
+//! incident directions by the reflection `l = 2 (v . h) h - v`, whose
+//! Jacobian is `dl = 4 (v . h) dh`. Rings about the normal have angular
+//! radii growing geometrically from [`INNER_RADIUS`] by [`RING_GROWTH`] up
+//! to `pi / 2`, each split into [`SECTORS`] azimuthal sectors, the azimuth
+//! measured from the view's tangent (the cells are symmetric about the
+//! plane of incidence). The cap holds the mirror direction. A cell is
+//! evaluated at the `W`-weighted mean of its sub-cells' polar angles (each
+//! the geometric mean of its radii, where a lobe's `rho^-4` tail equals
+//! its mean over the ring) and azimuths: a point of the ring, where a
+//! direction centroid would fall inside it.
 //!
-//! Why not a fixed set of directions (this module was the spherical
-//! Fibonacci set of 512 directions until issue 23's follow-up): a glossy
-//! film reflects a fixed set as a pattern of spots that move with the
-//! pixel, where Mitsuba's `measured` render of the same film shows the
-//! smooth sky; the fits that chase that render inherit the spots. Cells
-//! attached to each point's mirror direction move with it, and the
-//! reflection integrates smoothly. brdf-render's renders of the RGL
-//! measurements against Mitsuba's `measured` plugin at 1024 samples per
-//! pixel (HDR-FLIP sky / studio, Fibonacci set -> these cells):
-//! cc_iris_purple_gem 0.115 / 0.049 -> 0.099 / 0.033, vch_golden_yellow
-//! 0.083 / 0.049 -> 0.065 / 0.053, cc_ibiza_sunset 0.054 / 0.014 -> 0.046 /
-//! 0.017, colodur_napoli 0.019 / 0.010 -> 0.023 / 0.014, paper_white 0.016 /
-//! 0.006 -> 0.017 / 0.008 (two Mitsuba renders of a measurement at 256
-//! samples differ by 0.016-0.050 / 0.011-0.018); a GGX of width 0.05
-//! under the sky (`tests/mitsuba_sky.rs`) 0.036 -> 0.022. The layout's
-//! constants were chosen by the unit tests' fine integration of a GGX lobe:
-//! 12 sectors and growth 1.3 keep it within 3% to an 80-degree view with
-//! about 265 cells above the horizon (the Fibonacci set had 256); 8 sectors
-//! and growth 1.45 (137 cells) lost 11% at 80 degrees. Near grazing a lobe
-//! is a thin band along the horizon that the cells resolve coarsely (0.82
-//! of the integral at 88 degrees: the sphere's outermost pixels).
+//! What the layout resolves (the unit tests, against a fine integration in
+//! the lobe's own variable): GGX lobes from `alpha = 0.001` (the narrowest
+//! the renderer models allow) to 0.4 within 2% to a 60-degree view and 4%
+//! to 88 degrees; an anisotropic lobe of aspect 5 within 8%; a constant
+//! environment's irradiance within 0.2%. About 360 cells above the
+//! horizon.
 //!
-//! `W_cell` is the sum over sub-cells no wider than [`SUB_CELL`] radians,
-//! each at its solid-angle centroid with its exact solid angle; the
-//! sub-cells below the point's horizon are skipped before the radiance is
+//! Why not cells about the mirror direction in the incident directions
+//! (this module until issue 23's second follow-up, after a spherical
+//! Fibonacci set of 512 directions): their cap of 0.005 rad was wider than
+//! a sharp lobe, which it then counted at its peak over the whole cap:
+//! `alpha = 0.001` came out 6 to 36 times too bright. The image objective
+//! found that error (paper_white refined to a faint mirror of metallic
+//! 0.004 that brdf-render showed as a coat of gloss), and the judge
+//! ranked paper_white's Ngan fit (`roughness` 0.05) at sky FLIP 0.085
+//! where Mitsuba renders it at 0.053. At grazing views the rings resolved
+//! a lobe coarsely (0.82 of it at 88 degrees).
+//!
+//! `W_cell` is the sum over sub-cells no wider than [`SUB_CELL`] radians
+//! of half-vector space, each at its solid-angle centroid; the sub-cells
+//! whose incident direction is below the point's horizon (or whose half
+//! vector faces away from the view) are skipped before the radiance is
 //! looked up. The sub-cells are laid out once, about `+z`
-//! ([`MirrorCells::get`]); a point only rotates them.
+//! ([`HalfVectorCells::get`]); a point only rotates them.
 
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
 use nalgebra::Vector3;
 
 use crate::environment::Incident;
 
-/// Angular radius (radians) of the cap about the mirror direction that is
-/// one cell.
-pub const INNER_RADIUS: f64 = 0.005;
+/// Angular radius (radians, in half-vector space) of the cap about the
+/// normal that is one cell: a third of the narrowest GGX width the
+/// renderer models allow (`alpha = 0.001`).
+pub const INNER_RADIUS: f64 = 3e-4;
 /// Ratio of consecutive ring radii.
 pub const RING_GROWTH: f64 = 1.3;
-/// Azimuthal sectors of every ring.
+/// Azimuthal sectors of every ring but the cap.
 pub const SECTORS: usize = 12;
-/// Largest angular extent (radians) of a sub-cell of `W`'s sums.
-pub const SUB_CELL: f64 = 0.1;
+/// Largest angular extent (radians, half-vector space) of a sub-cell of
+/// `W`'s sums: at most twice that in the incident direction.
+pub const SUB_CELL: f64 = 0.05;
 
-/// One sub-cell, in the frame where the mirror direction is `+z` and the
-/// normal lies in the `xz` plane at `x >= 0`.
+/// One sub-cell of half-vector space, about `+z` (the normal), azimuth
+/// measured from `+x` (towards the view's tangent).
 #[derive(Clone, Copy, Debug)]
 struct SubCell {
+    /// unit half vector at the sub-cell's solid-angle centroid
     dir: Vector3<f64>,
+    /// its polar angle and azimuth
+    rho: f64,
+    phi: f64,
+    /// its solid angle in half-vector space
     solid_angle: f64,
     cell: usize,
 }
 
-/// The cells about `+z` and their sub-cells (see the module doc).
+/// The cells of half-vector space about the normal and their sub-cells
+/// (see the module doc).
 #[derive(Debug)]
-pub struct MirrorCells {
+pub struct HalfVectorCells {
     subs: Vec<SubCell>,
     cells: usize,
 }
 
-impl MirrorCells {
+/// Per-cell sums of one point: `W` per channel, and the `W`-weighted sums
+/// of the sub-cells' polar angle and azimuth (the evaluation point).
+#[derive(Clone, Copy, Default)]
+struct CellSum {
+    w: [f64; 3],
+    weight: f64,
+    rho: f64,
+    phi: f64,
+}
+
+impl HalfVectorCells {
     /// The layout of the module's constants, made once.
-    pub fn get() -> &'static MirrorCells {
-        static CELLS: OnceLock<MirrorCells> = OnceLock::new();
-        CELLS.get_or_init(MirrorCells::layout)
+    pub fn get() -> &'static HalfVectorCells {
+        static CELLS: OnceLock<HalfVectorCells> = OnceLock::new();
+        CELLS.get_or_init(|| HalfVectorCells::layout(INNER_RADIUS, RING_GROWTH, SECTORS))
     }
 
-    fn layout() -> MirrorCells {
-        let mut edges = vec![0.0, INNER_RADIUS];
-        while edges[edges.len() - 1] < PI {
-            let next = (edges[edges.len() - 1] * RING_GROWTH).min(PI);
+    /// Rings about `+z` from `inner` growing by `growth` up to `pi / 2`,
+    /// each but the cap split into `sectors`, each cell into sub-cells no
+    /// wider than [`SUB_CELL`].
+    fn layout(inner: f64, growth: f64, sectors: usize) -> HalfVectorCells {
+        let mut edges = vec![0.0, inner];
+        while edges[edges.len() - 1] < FRAC_PI_2 {
+            let next = (edges[edges.len() - 1] * growth).min(FRAC_PI_2);
             edges.push(next);
         }
-        let mut subs = vec![SubCell {
-            dir: Vector3::z(),
-            solid_angle: 2.0 * PI * (1.0 - INNER_RADIUS.cos()),
-            cell: 0,
-        }];
-        let mut cells = 1;
-        let sector = 2.0 * PI / SECTORS as f64;
-        for ring in edges[1..].windows(2) {
-            let (a, b) = (ring[0], ring[1]);
-            // The widest circle of the ring sets its azimuthal sub-cells.
-            let widest = if a < PI / 2.0 && b > PI / 2.0 {
-                1.0
-            } else {
-                a.sin().max(b.sin())
-            };
+        let mut subs = Vec::new();
+        for (ring, ab) in edges.windows(2).enumerate() {
+            let (a, b) = (ab[0], ab[1]);
+            let n_sectors = if ring == 0 { 1 } else { sectors };
+            let sector = 2.0 * PI / n_sectors as f64;
             let n_rho = ((b - a) / SUB_CELL).ceil().max(1.0) as usize;
-            let n_phi = (widest * sector / SUB_CELL).ceil().max(1.0) as usize;
-            for s in 0..SECTORS {
+            let n_phi = (b.sin() * sector / SUB_CELL).ceil().max(1.0) as usize;
+            for s in 0..n_sectors {
+                let cell = 1 + (ring.max(1) - 1) * sectors + s - usize::from(ring == 0);
                 for i in 0..n_rho {
                     let r0 = a + (b - a) * i as f64 / n_rho as f64;
                     let r1 = a + (b - a) * (i + 1) as f64 / n_rho as f64;
@@ -118,22 +133,28 @@ impl MirrorCells {
                         let phi = sector * (s as f64 + (j as f64 + 0.5) / n_phi as f64);
                         subs.push(SubCell {
                             dir: Vector3::new(sz * phi.cos(), sz * phi.sin(), cz),
+                            // The geometric mean of the sub-cell's radii:
+                            // where a lobe's tail `rho^-4` equals its mean
+                            // over the ring.
+                            rho: (r0 * r1).sqrt(),
+                            phi,
                             solid_angle: (c0 - c1) * sector / n_phi as f64,
-                            cell: cells,
+                            cell,
                         });
                     }
                 }
-                cells += 1;
             }
         }
-        MirrorCells { subs, cells }
+        let cells = 1 + (edges.len() - 2) * sectors;
+        HalfVectorCells { subs, cells }
     }
 
     /// Append to `out` the cells of the environment `radiance` at a point
-    /// of unit normal `n` seen from unit direction `v` (both world): each
-    /// cell with non-zero `W` as an [`Incident`] at its centroid, of weight
-    /// `W / cos(n . w_cell)` (an irradiance at normal incidence, as
-    /// [`Incident`] holds; the receiver's cosine is applied by the caller).
+    /// of unit normal `n` seen from unit direction `v` (both world, `v`
+    /// above the surface): each cell with non-zero `W` as an [`Incident`]
+    /// at its evaluation point, of weight `W / cos(n . w_cell)` (an
+    /// irradiance at normal incidence, as [`Incident`] holds; the
+    /// receiver's cosine is applied by the caller).
     pub fn incident_at(
         &self,
         n: &Vector3<f64>,
@@ -141,59 +162,77 @@ impl MirrorCells {
         radiance: impl Fn(&Vector3<f64>) -> [f64; 3],
         out: &mut Vec<Incident>,
     ) {
-        let (r, t1) = mirror_frame(n, v);
-        let t2 = r.cross(&t1);
-        // n = (n . t1) t1 + (n . r) r: the horizon test needs two products.
-        let (nt, nr) = (n.dot(&t1), n.dot(&r));
-        let mut sums = vec![([0.0; 3], Vector3::zeros()); self.cells];
+        let (t1, t2) = view_frame(n, v);
+        let to_world = |h: &Vector3<f64>| t1 * h.x + t2 * h.y + n * h.z;
+        let mut sums = vec![CellSum::default(); self.cells];
         for s in &self.subs {
-            let cos = nt * s.dir.x + nr * s.dir.z;
+            let h = to_world(&s.dir);
+            let vh = v.dot(&h);
+            if vh <= 0.0 {
+                continue;
+            }
+            let l = 2.0 * vh * h - v;
+            let cos = n.dot(&l);
             if cos <= 0.0 {
                 continue;
             }
-            let w = t1 * s.dir.x + t2 * s.dir.y + r * s.dir.z;
-            let l = radiance(&w);
-            let (sum, centroid) = &mut sums[s.cell];
-            let k = cos * s.solid_angle;
+            let rad = radiance(&l);
+            // dw_l = 4 (v . h) dw_h: the Jacobian of the reflection map.
+            let k = cos * 4.0 * vh * s.solid_angle;
+            let sum = &mut sums[s.cell];
             for c in 0..3 {
-                sum[c] += l[c] * k;
+                sum.w[c] += rad[c] * k;
             }
-            *centroid += w * ((l[0] + l[1] + l[2]) * k);
+            let m = (rad[0] + rad[1] + rad[2]) * k;
+            sum.weight += m;
+            sum.rho += s.rho * m;
+            sum.phi += s.phi * m;
         }
-        for (sum, centroid) in sums {
-            let norm = centroid.norm();
-            if norm <= 0.0 || sum.iter().all(|&x| x == 0.0) {
+        for (cell, sum) in sums.iter().enumerate() {
+            if !(sum.weight > 0.0) {
                 continue;
             }
-            let dir = centroid / norm;
-            let cos = n.dot(&dir);
-            if cos <= 0.0 {
+            // The cap is evaluated at the normal; a ring's cell at the
+            // W-weighted mean of its polar angle and azimuth (a point of
+            // the ring: a cell's direction centroid would fall inside it).
+            let h = if cell == 0 {
+                *n
+            } else {
+                let (rho, phi) = (sum.rho / sum.weight, sum.phi / sum.weight);
+                to_world(&Vector3::new(
+                    rho.sin() * phi.cos(),
+                    rho.sin() * phi.sin(),
+                    rho.cos(),
+                ))
+            };
+            let l = 2.0 * v.dot(&h) * h - v;
+            let cos = n.dot(&l);
+            if !(cos > 0.0) {
                 continue;
             }
             out.push(Incident {
-                dir,
-                weight: sum.map(|x| x / cos),
+                dir: l,
+                weight: sum.w.map(|x| x / cos),
             });
         }
     }
 }
 
-/// The mirror direction of `v` about `n` and the unit direction
-/// perpendicular to it towards `n` (any perpendicular when they coincide).
-fn mirror_frame(n: &Vector3<f64>, v: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-    let r = (2.0 * n.dot(v) * n - v).normalize();
-    let towards_n = n - r * n.dot(&r);
-    let t1 = if towards_n.norm() > 1e-9 {
-        towards_n.normalize()
+/// Tangents of the view's frame: `t1` along the view's projection onto
+/// the surface (any tangent at normal view), `t2 = n x t1`.
+fn view_frame(n: &Vector3<f64>, v: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let along = v - n * n.dot(v);
+    let t1 = if along.norm() > 1e-9 {
+        along.normalize()
     } else {
-        let a = if r.x.abs() < 0.9 {
+        let a = if n.x.abs() < 0.9 {
             Vector3::x()
         } else {
             Vector3::y()
         };
-        (a - r * a.dot(&r)).normalize()
+        (a - n * a.dot(n)).normalize()
     };
-    (r, t1)
+    (t1, n.cross(&t1))
 }
 
 #[cfg(test)]
@@ -206,26 +245,28 @@ mod tests {
         l: impl Fn(&Vector3<f64>) -> [f64; 3],
     ) -> f64 {
         let mut out = Vec::new();
-        MirrorCells::get().incident_at(n, v, l, &mut out);
+        HalfVectorCells::get().incident_at(n, v, l, &mut out);
         out.iter().map(|i| i.weight[0] * n.dot(&i.dir)).sum()
     }
 
-    /// The sub-cells tile the sphere: their solid angles sum to `4 pi`.
+    /// The sub-cells tile the hemisphere of half vectors: their solid
+    /// angles sum to `2 pi`.
     #[test]
-    fn sub_cells_cover_the_sphere() {
-        let cells = MirrorCells::get();
+    fn sub_cells_cover_the_hemisphere() {
+        let cells = HalfVectorCells::get();
         let total: f64 = cells.subs.iter().map(|s| s.solid_angle).sum();
-        assert!((total / (4.0 * PI) - 1.0).abs() < 1e-12, "{total}");
+        assert!((total / (2.0 * PI) - 1.0).abs() < 1e-12, "{total}");
         assert!(
             cells
                 .subs
                 .iter()
-                .all(|s| (s.dir.norm() - 1.0).abs() < 1e-12)
+                .all(|s| (s.dir.norm() - 1.0).abs() < 1e-12 && s.dir.z >= 0.0)
         );
     }
 
     /// A constant environment of radiance 1 gives irradiance `pi` at any
-    /// point and view (the cosine integral over the hemisphere).
+    /// point and view (the cosine integral over the hemisphere), through
+    /// the reflection map's Jacobian `4 (v . h)`.
     #[test]
     fn constant_radiance_gives_irradiance_pi() {
         for (n, v) in [
@@ -238,7 +279,7 @@ mod tests {
             (Vector3::z(), Vector3::new(0.999, 0.0, 0.0447).normalize()),
         ] {
             let e = irradiance(&n, &v, |_| [1.0; 3]);
-            assert!((e / PI - 1.0).abs() < 5e-3, "n {n:?} v {v:?}: {e}");
+            assert!((e / PI - 1.0).abs() < 2e-3, "n {n:?} v {v:?}: {e}");
         }
     }
 
@@ -249,69 +290,147 @@ mod tests {
         let n = Vector3::new(0.2, 0.3, 0.9).normalize();
         let v = Vector3::new(-0.4, 0.1, 0.9).normalize();
         let e = irradiance(&n, &v, |w| [w.dot(&n).max(0.0); 3]);
-        assert!((e / (2.0 * PI / 3.0) - 1.0).abs() < 5e-3, "{e}");
+        assert!((e / (2.0 * PI / 3.0) - 1.0).abs() < 2e-3, "{e}");
     }
 
-    /// Cells near the mirror direction are small: the one holding `r` is
-    /// the inner cap, at `r` itself.
+    /// The first cell is the cap about the normal in half-vector space:
+    /// the mirror direction, of weight `4 (v . n)` times the cap's solid
+    /// angle (the reflection map's Jacobian at `h = n`).
     #[test]
     fn the_first_cell_is_the_mirror_direction() {
         let n = Vector3::z();
         let v = Vector3::new(0.5, 0.2, 0.8).normalize();
         let r = 2.0 * n.dot(&v) * n - v;
         let mut out = Vec::new();
-        MirrorCells::get().incident_at(&n, &v, |_| [1.0; 3], &mut out);
+        HalfVectorCells::get().incident_at(&n, &v, |_| [1.0; 3], &mut out);
         assert!((out[0].dir - r).norm() < 1e-12);
         let cap = 2.0 * PI * (1.0 - INNER_RADIUS.cos());
-        assert!((out[0].weight[0] - cap).abs() < 1e-15);
+        let expect = 4.0 * v.z * cap;
+        assert!(
+            (out[0].weight[0] / expect - 1.0).abs() < 1e-3,
+            "{:?}",
+            out[0]
+        );
     }
 
-    /// A GGX lobe (`alpha = 0.15`, separable Smith) under a constant
-    /// environment against a fine grid in `(cos theta, phi)` (2000 x 4000):
-    /// within 1% to a 30 deg view, 1.5% at 60 deg, 4% at 80 deg. Near grazing the lobe
-    /// is a thin band along the horizon that the cells about `r` resolve
-    /// coarsely (at 88 deg the cells give 0.82 of the integral: the sphere's
-    /// outermost ring of pixels).
-    #[test]
-    fn a_glossy_lobe_matches_a_fine_integration() {
-        let a2: f64 = 0.15 * 0.15;
-        let f = |l: &Vector3<f64>, v: &Vector3<f64>| {
-            if l.z <= 0.0 {
+    /// An anisotropic GGX lobe (widths `ax` along the tangent `x`, `ay`),
+    /// separable Smith masking, Fresnel 1.
+    fn ggx(ax: f64, ay: f64) -> impl Fn(&Vector3<f64>, &Vector3<f64>) -> f64 {
+        move |l, v| {
+            if l.z <= 0.0 || v.z <= 0.0 {
                 return 0.0;
             }
             let h = (l + v).normalize();
-            let d = a2 / (PI * (h.z * h.z * (a2 - 1.0) + 1.0).powi(2));
+            let e = (h.x / ax).powi(2) + (h.y / ay).powi(2) + h.z * h.z;
+            let d = 1.0 / (PI * ax * ay * e * e);
             let g1 = |w: &Vector3<f64>| {
-                let c2 = w.z * w.z;
-                2.0 / (1.0 + (1.0 + a2 * (1.0 - c2) / c2).sqrt())
+                let t2 = ((w.x * ax).powi(2) + (w.y * ay).powi(2)) / (w.z * w.z);
+                2.0 / (1.0 + (1.0 + t2).sqrt())
             };
             d * g1(l) * g1(v) / (4.0 * l.z * v.z)
-        };
-        let n = Vector3::z();
-        for (deg, tol) in [(0.0_f64, 0.01), (30.0, 0.01), (60.0, 0.015), (80.0, 0.04)] {
-            let t = deg.to_radians();
-            let v = Vector3::new(t.sin(), 0.0, t.cos());
-            let mut out = Vec::new();
-            MirrorCells::get().incident_at(&n, &v, |_| [1.0; 3], &mut out);
-            let cells: f64 = out
-                .iter()
-                .map(|i| f(&i.dir, &v) * i.weight[0] * i.dir.z)
-                .sum();
-            let (nt, np) = (2000, 4000);
-            let mut fine = 0.0;
-            for i in 0..nt {
-                let z = (i as f64 + 0.5) / nt as f64;
-                let s = (1.0 - z * z).sqrt();
-                for j in 0..np {
-                    let p = 2.0 * PI * (j as f64 + 0.5) / np as f64;
-                    fine += f(&Vector3::new(s * p.cos(), s * p.sin(), z), &v) * z;
+        }
+    }
+
+    /// `∫ f(l, v) L(l) cos+(l) dl` at normal `+z` by the cells.
+    fn by_cells(
+        f: &impl Fn(&Vector3<f64>, &Vector3<f64>) -> f64,
+        v: &Vector3<f64>,
+        radiance: &impl Fn(&Vector3<f64>) -> f64,
+    ) -> f64 {
+        let mut out = Vec::new();
+        HalfVectorCells::get().incident_at(&Vector3::z(), v, |w| [radiance(w); 3], &mut out);
+        out.iter()
+            .map(|i| f(&i.dir, v) * i.weight[0] * i.dir.z)
+            .sum()
+    }
+
+    /// The same integral on a fine grid of half vectors,
+    /// `theta_h = atan(alpha tan u)` with `u` uniform (the GGX lobe's
+    /// own variable: its density in `u` is smooth for every width), the
+    /// azimuth uniform; `dl = 4 (v . h) dh`.
+    fn fine(
+        f: &impl Fn(&Vector3<f64>, &Vector3<f64>) -> f64,
+        alpha: f64,
+        v: &Vector3<f64>,
+        radiance: &impl Fn(&Vector3<f64>) -> f64,
+    ) -> f64 {
+        let u_max = ((0.99999 * FRAC_PI_2).tan() / alpha).atan();
+        let (nu, np) = (3000, 2400);
+        let du = u_max / nu as f64;
+        let mut sum = 0.0;
+        for i in 0..nu {
+            let u = (i as f64 + 0.5) * du;
+            let th = (alpha * u.tan()).atan();
+            let dth = alpha / (u.cos().powi(2) * (1.0 + (alpha * u.tan()).powi(2))) * du;
+            for j in 0..np {
+                let p = 2.0 * PI * (j as f64 + 0.5) / np as f64;
+                let h = Vector3::new(th.sin() * p.cos(), th.sin() * p.sin(), th.cos());
+                let vh = v.dot(&h);
+                let l = 2.0 * vh * h - v;
+                if vh <= 0.0 || l.z <= 0.0 {
+                    continue;
                 }
+                let dl = 4.0 * vh * th.sin() * dth * 2.0 * PI / np as f64;
+                sum += f(&l, v) * radiance(&l) * l.z * dl;
             }
-            fine *= 2.0 * PI / (nt * np) as f64;
-            assert!(
-                (cells / fine - 1.0).abs() < tol,
-                "view {deg} deg: {cells} vs {fine}"
-            );
+        }
+        sum
+    }
+
+    fn view(deg: f64) -> Vector3<f64> {
+        let t = deg.to_radians();
+        Vector3::new(t.sin(), 0.0, t.cos())
+    }
+
+    /// GGX lobes from the narrowest width the renderer models allow
+    /// (`alpha = 0.001`) to a broad one, at views from the pole to 88 deg
+    /// (the sphere's outermost pixels), against [`fine`]: within 2% to
+    /// 60 deg, 4% beyond (measured: 0.997-1.019 to 60 deg, 0.967 for
+    /// `alpha = 0.4` at 88 deg). Under the mirror-direction rings this
+    /// module had before (cap 0.005 rad), `alpha = 0.001` came out 6.4
+    /// times too bright at the pole and 36 times at 80 deg, and
+    /// `alpha = 0.05` 15% too dark at 80 deg.
+    #[test]
+    fn ggx_lobes_of_every_width_match_a_fine_integration() {
+        let one = |_: &Vector3<f64>| 1.0;
+        for alpha in [0.001, 0.004, 0.02, 0.1, 0.4] {
+            let f = ggx(alpha, alpha);
+            for (deg, tol) in [
+                (0.0, 0.02),
+                (30.0, 0.02),
+                (60.0, 0.02),
+                (80.0, 0.04),
+                (88.0, 0.04),
+            ] {
+                let v = view(deg);
+                let (c, r) = (by_cells(&f, &v, &one), fine(&f, alpha, &v, &one));
+                assert!(
+                    (c / r - 1.0).abs() < tol,
+                    "alpha {alpha} view {deg}: {c} vs {r}"
+                );
+            }
+        }
+    }
+
+    /// An anisotropic lobe (widths 0.03 and 0.15, turned 40 deg from the
+    /// plane of incidence) under a non-constant environment: within 10%
+    /// (measured 1.035-1.081: a sector of 30 deg is coarse for a lobe of
+    /// aspect 5; 16 sectors would give 0.99 at a third more terms, 8
+    /// sectors 0.73).
+    #[test]
+    fn an_anisotropic_lobe_under_a_varying_sky_matches() {
+        let (ax, ay, turn) = (0.03, 0.15, 40f64.to_radians());
+        let g = ggx(ax, ay);
+        let (c, s) = (turn.cos(), turn.sin());
+        let f = |l: &Vector3<f64>, v: &Vector3<f64>| {
+            let rot = |w: &Vector3<f64>| Vector3::new(c * w.x + s * w.y, -s * w.x + c * w.y, w.z);
+            g(&rot(l), &rot(v))
+        };
+        let sky = |w: &Vector3<f64>| 1.0 + 0.8 * w.x + 0.5 * w.y.max(0.0) + 2.0 * w.z * w.z;
+        for deg in [0.0, 45.0, 75.0] {
+            let v = view(deg);
+            let (c, r) = (by_cells(&f, &v, &sky), fine(&f, ax, &v, &sky));
+            assert!((c / r - 1.0).abs() < 0.1, "view {deg}: {c} vs {r}");
         }
     }
 }
