@@ -10,7 +10,7 @@
 
 use nalgebra::Vector3;
 
-use crate::quadrature::HalfVectorCells;
+use crate::quadrature::EnvironmentCells;
 use crate::sky::SunSky;
 
 /// One incident direction (world, unit, pointing away from the surface
@@ -63,8 +63,8 @@ impl Environment {
 
     /// Append the environment's incident directions and weights at a point
     /// of unit normal `n` seen from unit direction `v` (world): the cells of
-    /// [`HalfVectorCells`] about the point's normal in half-vector space.
+    /// [`EnvironmentCells`] about the point's normal in half-vector space.
     pub fn incident_at(&self, n: &Vector3<f64>, v: &Vector3<f64>, out: &mut Vec<Incident>) {
-        HalfVectorCells::get().incident_at(n, v, |d| self.radiance.radiance(d), out);
+        EnvironmentCells::get().incident_at(n, v, |d| self.radiance.radiance(d), out);
     }
 }

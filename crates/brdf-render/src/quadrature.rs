@@ -1,152 +1,222 @@
-//! The quadrature of environment light at one surface point: cells of
-//! half-vector space about the normal, fine near it and coarse far from it.
+//! The quadrature of environment light at one surface point: cells fine
+//! where a glossy BRDF varies fast (about the mirror direction) and coarse
+//! elsewhere.
 //!
 //! A pixel's environment term is `∫ L(l) f(v, l) cos+(n . l) dl`. It is
 //! discretised as `sum_cells f(v, l_cell) W_cell` with
 //! `W_cell = ∫_cell L(l) cos+(n . l) dl` (integrated finely, once per
 //! point: it does not depend on the BRDF). The only approximation is `f`
-//! constant over a cell, so the cells must be small where a glossy `f`
-//! varies fast. A microfacet lobe is a function of the half vector
-//! `h = (l + v) / |l + v|` and is round about the normal there whatever
-//! the view, where in the incident direction it is a thin band at grazing
-//! views; so the cells are laid out in half-vector space and mapped to
-//! incident directions by the reflection `l = 2 (v . h) h - v`, whose
-//! Jacobian is `dl = 4 (v . h) dh`. Rings about the normal have angular
-//! radii growing geometrically from [`INNER_RADIUS`] by [`RING_GROWTH`] up
-//! to `pi / 2`, each split into [`SECTORS`] azimuthal sectors, the azimuth
-//! measured from the view's tangent (the cells are symmetric about the
-//! plane of incidence). The cap holds the mirror direction. A cell is
-//! evaluated at the `W`-weighted mean of its sub-cells' polar angles (each
-//! the geometric mean of its radii, where a lobe's `rho^-4` tail equals
-//! its mean over the ring) and azimuths: a point of the ring, where a
-//! direction centroid would fall inside it.
+//! constant over a cell. Two layouts share the sphere:
+//!
+//! - **About the mirror direction, in half-vector space.** A microfacet
+//!   lobe is a function of `h = (l + v) / |l + v|` and is round about the
+//!   normal there whatever the view, where among incident directions it is
+//!   a thin band at grazing views. Rings about the normal of half-vector
+//!   radius [`INNER_RADIUS`] growing by [`RING_GROWTH`] up to
+//!   [`HALF_VECTOR_LIMIT`], each but the cap split into [`HALF_SECTORS`]
+//!   sectors (azimuth from the view's tangent), are mapped to incident
+//!   directions by the reflection `l = 2 (v . h) h - v`, of Jacobian
+//!   `dl = 4 (v . h) dh`. A cell is evaluated at the `W`-weighted mean of
+//!   its sub-cells' polar angles (each the geometric mean of its radii,
+//!   where a lobe's `rho^-4` tail equals its mean over the ring) and
+//!   azimuths: a point of the ring, where a direction centroid would fall
+//!   inside it; the cap at the normal (the mirror direction).
+//! - **The rest, about the mirror direction `r = 2 (n . v) n - v` among
+//!   incident directions.** Rings of radius [`MIRROR_INNER_RADIUS`]
+//!   growing by [`RING_GROWTH`] up to `pi`, [`SECTORS`] sectors each
+//!   (azimuth from the direction of `n`), each cell at its `W`-weighted
+//!   centroid. Far from the lobe they keep cells of a bounded size among
+//!   incident directions, which half-vector rings would not: at a grazing
+//!   view the whole sky maps to half vectors 45 degrees or more from the
+//!   normal, a few rings, and the measured films then rendered up to 8%
+//!   too dark at the sphere's rim.
+//!
+//! Between [`HAND_OVER`] and [`HALF_VECTOR_LIMIT`] (half-vector angle) a
+//! direction's `W` is shared between the two layouts linearly in the angle
+//! (a partition of unity, so no sub-cell across the boundary is counted
+//! twice or lost).
 //!
 //! What the layout resolves (the unit tests, against a fine integration in
 //! the lobe's own variable): GGX lobes from `alpha = 0.001` (the narrowest
-//! the renderer models allow) to 0.4 within 2% to a 60-degree view and 4%
-//! to 88 degrees; an anisotropic lobe of aspect 5 within 8%; a constant
-//! environment's irradiance within 0.2%. About 360 cells above the
-//! horizon.
+//! the renderer models allow) to 0.4 within 2.5% up to an 80-degree view
+//! and 11% at 88 degrees (the sphere's outermost pixels); an anisotropic
+//! lobe of aspect 5 within 14%; a constant environment's irradiance within
+//! 0.2%. About 300 cells above the horizon.
 //!
-//! Why not cells about the mirror direction in the incident directions
-//! (this module until issue 23's second follow-up, after a spherical
-//! Fibonacci set of 512 directions): their cap of 0.005 rad was wider than
-//! a sharp lobe, which it then counted at its peak over the whole cap:
-//! `alpha = 0.001` came out 6 to 36 times too bright. The image objective
-//! found that error (paper_white refined to a faint mirror of metallic
-//! 0.004 that brdf-render showed as a coat of gloss), and the judge
-//! ranked paper_white's Ngan fit (`roughness` 0.05) at sky FLIP 0.085
-//! where Mitsuba renders it at 0.053. At grazing views the rings resolved
-//! a lobe coarsely (0.82 of it at 88 degrees).
+//! Why: this module was the mirror-direction rings alone (cap 0.005 rad,
+//! after a spherical Fibonacci set of 512 directions). Their cap was wider
+//! than a sharp lobe, which it then counted at its peak over the whole
+//! cap: `alpha = 0.001` came out 6 to 36 times too bright. The image
+//! objective found that error: it refined paper_white to a faint mirror
+//! (metallic 0.004, `alpha` 0.001) that brdf-render showed as a coat of
+//! gloss. At grazing views the rings resolved a lobe coarsely (0.82 of
+//! it at 88 degrees, 0.85 at 80 degrees for `alpha = 0.05`).
 //!
 //! `W_cell` is the sum over sub-cells no wider than [`SUB_CELL`] radians
-//! of half-vector space, each at its solid-angle centroid; the sub-cells
-//! whose incident direction is below the point's horizon (or whose half
-//! vector faces away from the view) are skipped before the radiance is
-//! looked up. The sub-cells are laid out once, about `+z`
-//! ([`HalfVectorCells::get`]); a point only rotates them.
+//! among incident directions (half that among half vectors, where the
+//! reflection map stretches by at most 2), each at its solid-angle
+//! centroid; the sub-cells whose incident direction is below the point's
+//! horizon are skipped before the radiance is looked up. The sub-cells are
+//! laid out once ([`EnvironmentCells::get`]); a point only rotates them.
 
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::PI;
 use std::sync::OnceLock;
 
 use nalgebra::Vector3;
 
 use crate::environment::Incident;
 
-/// Angular radius (radians, in half-vector space) of the cap about the
+/// Angular radius (radians, half-vector space) of the cap about the
 /// normal that is one cell: a third of the narrowest GGX width the
 /// renderer models allow (`alpha = 0.001`).
 pub const INNER_RADIUS: f64 = 3e-4;
-/// Ratio of consecutive ring radii.
+/// Angle from the normal (radians, half-vector space) up to which the
+/// half-vector cells reach; the incident directions beyond are the
+/// mirror-direction rings'.
+pub const HALF_VECTOR_LIMIT: f64 = 0.16;
+/// Angle from the normal (radians, half-vector space) where the hand-over
+/// from the half-vector cells to the mirror-direction rings begins: in
+/// between, a direction's `W` is shared between both, linearly in the
+/// angle (a partition of unity, so no sub-cell straddling the boundary
+/// is counted twice or lost).
+pub const HAND_OVER: f64 = 0.08;
+/// Angular radius (radians) of the mirror-direction rings' cap.
+pub const MIRROR_INNER_RADIUS: f64 = 0.005;
+/// Ratio of consecutive ring radii (both layouts).
 pub const RING_GROWTH: f64 = 1.3;
-/// Azimuthal sectors of every ring but the cap.
+/// Azimuthal sectors of every half-vector ring but the cap (a lobe is
+/// round about the normal there).
+pub const HALF_SECTORS: usize = 8;
+/// Azimuthal sectors of every mirror-direction ring but the cap.
 pub const SECTORS: usize = 12;
-/// Largest angular extent (radians, half-vector space) of a sub-cell of
-/// `W`'s sums: at most twice that in the incident direction.
-pub const SUB_CELL: f64 = 0.05;
+/// Largest angular extent (radians) of a sub-cell of `W`'s sums in the
+/// incident directions (half of it in half-vector space, where the
+/// reflection map stretches by at most 2).
+pub const SUB_CELL: f64 = 0.1;
 
-/// One sub-cell of half-vector space, about `+z` (the normal), azimuth
-/// measured from `+x` (towards the view's tangent).
+/// One sub-cell: a unit direction at its solid-angle centroid (a half
+/// vector about `+z` = the normal, or an incident direction about `+z` =
+/// the mirror direction), its polar angle and azimuth, its solid angle
+/// and its cell.
 #[derive(Clone, Copy, Debug)]
 struct SubCell {
-    /// unit half vector at the sub-cell's solid-angle centroid
     dir: Vector3<f64>,
-    /// its polar angle and azimuth
     rho: f64,
     phi: f64,
-    /// its solid angle in half-vector space
     solid_angle: f64,
     cell: usize,
 }
 
-/// The cells of half-vector space about the normal and their sub-cells
-/// (see the module doc).
+/// The environment's cells (see the module doc): half-vector cells about
+/// the normal, then mirror-direction rings for the rest of the sphere.
 #[derive(Debug)]
-pub struct HalfVectorCells {
-    subs: Vec<SubCell>,
+pub struct EnvironmentCells {
+    half: Vec<SubCell>,
+    mirror: Vec<SubCell>,
     cells: usize,
 }
 
-/// Per-cell sums of one point: `W` per channel, and the `W`-weighted sums
-/// of the sub-cells' polar angle and azimuth (the evaluation point).
+/// The half-vector cells' share of a direction whose half vector is
+/// `rho` from the normal (1 up to [`HAND_OVER`], 0 from
+/// [`HALF_VECTOR_LIMIT`]).
+fn half_share(rho: f64) -> f64 {
+    ((HALF_VECTOR_LIMIT - rho) / (HALF_VECTOR_LIMIT - HAND_OVER)).clamp(0.0, 1.0)
+}
+
+/// Per-cell sums of one point: `W` per channel, its total, and the
+/// `W`-weighted sums of the evaluation point's coordinates.
 #[derive(Clone, Copy, Default)]
 struct CellSum {
     w: [f64; 3],
     weight: f64,
     rho: f64,
     phi: f64,
+    centroid: [f64; 3],
 }
 
-impl HalfVectorCells {
-    /// The layout of the module's constants, made once.
-    pub fn get() -> &'static HalfVectorCells {
-        static CELLS: OnceLock<HalfVectorCells> = OnceLock::new();
-        CELLS.get_or_init(|| HalfVectorCells::layout(INNER_RADIUS, RING_GROWTH, SECTORS))
-    }
-
-    /// Rings about `+z` from `inner` growing by `growth` up to `pi / 2`,
-    /// each but the cap split into `sectors`, each cell into sub-cells no
-    /// wider than [`SUB_CELL`].
-    fn layout(inner: f64, growth: f64, sectors: usize) -> HalfVectorCells {
-        let mut edges = vec![0.0, inner];
-        while edges[edges.len() - 1] < FRAC_PI_2 {
-            let next = (edges[edges.len() - 1] * growth).min(FRAC_PI_2);
-            edges.push(next);
+impl CellSum {
+    fn add(&mut self, rad: [f64; 3], k: f64) -> f64 {
+        for c in 0..3 {
+            self.w[c] += rad[c] * k;
         }
-        let mut subs = Vec::new();
-        for (ring, ab) in edges.windows(2).enumerate() {
-            let (a, b) = (ab[0], ab[1]);
-            let n_sectors = if ring == 0 { 1 } else { sectors };
-            let sector = 2.0 * PI / n_sectors as f64;
-            let n_rho = ((b - a) / SUB_CELL).ceil().max(1.0) as usize;
-            let n_phi = (b.sin() * sector / SUB_CELL).ceil().max(1.0) as usize;
-            for s in 0..n_sectors {
-                let cell = 1 + (ring.max(1) - 1) * sectors + s - usize::from(ring == 0);
-                for i in 0..n_rho {
-                    let r0 = a + (b - a) * i as f64 / n_rho as f64;
-                    let r1 = a + (b - a) * (i + 1) as f64 / n_rho as f64;
-                    let (c0, c1) = (r0.cos(), r1.cos());
-                    // The solid-angle centroid in rho: mean of cos(rho).
-                    let cz = 0.5 * (c0 + c1);
-                    let sz = (1.0 - cz * cz).max(0.0).sqrt();
-                    for j in 0..n_phi {
-                        let phi = sector * (s as f64 + (j as f64 + 0.5) / n_phi as f64);
-                        subs.push(SubCell {
-                            dir: Vector3::new(sz * phi.cos(), sz * phi.sin(), cz),
-                            // The geometric mean of the sub-cell's radii:
-                            // where a lobe's tail `rho^-4` equals its mean
-                            // over the ring.
-                            rho: (r0 * r1).sqrt(),
-                            phi,
-                            solid_angle: (c0 - c1) * sector / n_phi as f64,
-                            cell,
-                        });
-                    }
+        let m = (rad[0] + rad[1] + rad[2]) * k;
+        self.weight += m;
+        m
+    }
+}
+
+/// Rings about `+z` with edges `edges`, each but the cap split into
+/// `sectors`, sub-cells no wider than `sub`; cells numbered from `first`.
+/// Returns the sub-cells and the next free cell number.
+fn rings(edges: &[f64], sectors: usize, sub: f64, first: usize) -> (Vec<SubCell>, usize) {
+    let mut subs = Vec::new();
+    let mut cell = first;
+    for (ring, ab) in edges.windows(2).enumerate() {
+        let (a, b) = (ab[0], ab[1]);
+        let n_sectors = if ring == 0 { 1 } else { sectors };
+        let sector = 2.0 * PI / n_sectors as f64;
+        let widest = if a < PI / 2.0 && b > PI / 2.0 {
+            1.0
+        } else {
+            a.sin().max(b.sin())
+        };
+        let n_rho = ((b - a) / sub).ceil().max(1.0) as usize;
+        let n_phi = (widest * sector / sub).ceil().max(1.0) as usize;
+        for s in 0..n_sectors {
+            for i in 0..n_rho {
+                let r0 = a + (b - a) * i as f64 / n_rho as f64;
+                let r1 = a + (b - a) * (i + 1) as f64 / n_rho as f64;
+                let (c0, c1) = (r0.cos(), r1.cos());
+                // The solid-angle centroid in rho: mean of cos(rho).
+                let cz = 0.5 * (c0 + c1);
+                let sz = (1.0 - cz * cz).max(0.0).sqrt();
+                for j in 0..n_phi {
+                    let phi = sector * (s as f64 + (j as f64 + 0.5) / n_phi as f64);
+                    subs.push(SubCell {
+                        dir: Vector3::new(sz * phi.cos(), sz * phi.sin(), cz),
+                        // The geometric mean of the sub-cell's radii:
+                        // where a lobe's tail `rho^-4` equals its mean
+                        // over the ring.
+                        rho: (r0 * r1).sqrt(),
+                        phi,
+                        solid_angle: (c0 - c1) * sector / n_phi as f64,
+                        cell,
+                    });
                 }
             }
+            cell += 1;
         }
-        let cells = 1 + (edges.len() - 2) * sectors;
-        HalfVectorCells { subs, cells }
+    }
+    (subs, cell)
+}
+
+/// Ring edges from 0, `inner`, growing by `growth` up to `limit`.
+fn edges(inner: f64, growth: f64, limit: f64) -> Vec<f64> {
+    let mut e = vec![0.0, inner];
+    while e[e.len() - 1] < limit {
+        let next = (e[e.len() - 1] * growth).min(limit);
+        e.push(next);
+    }
+    e
+}
+
+impl EnvironmentCells {
+    /// The layout of the module's constants, made once.
+    pub fn get() -> &'static EnvironmentCells {
+        static CELLS: OnceLock<EnvironmentCells> = OnceLock::new();
+        CELLS.get_or_init(EnvironmentCells::layout)
+    }
+
+    fn layout() -> EnvironmentCells {
+        let half_edges = edges(INNER_RADIUS, RING_GROWTH, HALF_VECTOR_LIMIT);
+        let (half, next) = rings(&half_edges, HALF_SECTORS, 0.5 * SUB_CELL, 0);
+        let mirror_edges = edges(MIRROR_INNER_RADIUS, RING_GROWTH, PI);
+        let (mirror, cells) = rings(&mirror_edges, SECTORS, SUB_CELL, next);
+        EnvironmentCells {
+            half,
+            mirror,
+            cells,
+        }
     }
 
     /// Append to `out` the cells of the environment `radiance` at a point
@@ -162,50 +232,74 @@ impl HalfVectorCells {
         radiance: impl Fn(&Vector3<f64>) -> [f64; 3],
         out: &mut Vec<Incident>,
     ) {
-        let (t1, t2) = view_frame(n, v);
-        let to_world = |h: &Vector3<f64>| t1 * h.x + t2 * h.y + n * h.z;
         let mut sums = vec![CellSum::default(); self.cells];
-        for s in &self.subs {
-            let h = to_world(&s.dir);
+        let (t1, t2) = view_frame(n, v);
+        let half_world = |h: &Vector3<f64>| t1 * h.x + t2 * h.y + n * h.z;
+        for s in &self.half {
+            let h = half_world(&s.dir);
             let vh = v.dot(&h);
-            if vh <= 0.0 {
+            let l = 2.0 * vh * h - v;
+            let cos = n.dot(&l);
+            if vh <= 0.0 || cos <= 0.0 {
                 continue;
             }
-            let l = 2.0 * vh * h - v;
+            // dw_l = 4 (v . h) dw_h: the Jacobian of the reflection map.
+            let share = half_share(s.dir.z.clamp(-1.0, 1.0).acos());
+            let sum = &mut sums[s.cell];
+            let m = sum.add(radiance(&l), share * cos * 4.0 * vh * s.solid_angle);
+            sum.rho += s.rho * m;
+            sum.phi += s.phi * m;
+        }
+        let (r, m1) = mirror_frame(n, v);
+        let m2 = r.cross(&m1);
+        for s in &self.mirror {
+            let l = m1 * s.dir.x + m2 * s.dir.y + r * s.dir.z;
             let cos = n.dot(&l);
             if cos <= 0.0 {
                 continue;
             }
-            let rad = radiance(&l);
-            // dw_l = 4 (v . h) dw_h: the Jacobian of the reflection map.
-            let k = cos * 4.0 * vh * s.solid_angle;
-            let sum = &mut sums[s.cell];
-            for c in 0..3 {
-                sum.w[c] += rad[c] * k;
+            // What the half-vector cells hold is not counted again.
+            let h = l + v;
+            let rho = (n.dot(&h) / h.norm()).clamp(-1.0, 1.0).acos();
+            let share = 1.0 - half_share(rho);
+            if share <= 0.0 {
+                continue;
             }
-            let m = (rad[0] + rad[1] + rad[2]) * k;
-            sum.weight += m;
-            sum.rho += s.rho * m;
-            sum.phi += s.phi * m;
+            let sum = &mut sums[s.cell];
+            let m = sum.add(radiance(&l), share * cos * s.solid_angle);
+            for k in 0..3 {
+                sum.centroid[k] += l[k] * m;
+            }
         }
+        let half_cells = self.half.last().map_or(0, |s| s.cell + 1);
         for (cell, sum) in sums.iter().enumerate() {
             if !(sum.weight > 0.0) {
                 continue;
             }
-            // The cap is evaluated at the normal; a ring's cell at the
-            // W-weighted mean of its polar angle and azimuth (a point of
-            // the ring: a cell's direction centroid would fall inside it).
-            let h = if cell == 0 {
-                *n
+            let l = if cell < half_cells {
+                // A half-vector cell at the W-weighted mean of its polar
+                // angle and azimuth (a point of its ring, where a
+                // direction centroid would fall inside it); the cap at
+                // the normal.
+                let h = if cell == 0 {
+                    *n
+                } else {
+                    let (rho, phi) = (sum.rho / sum.weight, sum.phi / sum.weight);
+                    half_world(&Vector3::new(
+                        rho.sin() * phi.cos(),
+                        rho.sin() * phi.sin(),
+                        rho.cos(),
+                    ))
+                };
+                2.0 * v.dot(&h) * h - v
             } else {
-                let (rho, phi) = (sum.rho / sum.weight, sum.phi / sum.weight);
-                to_world(&Vector3::new(
-                    rho.sin() * phi.cos(),
-                    rho.sin() * phi.sin(),
-                    rho.cos(),
-                ))
+                // A mirror-direction cell at its W-weighted centroid.
+                let c = Vector3::from(sum.centroid);
+                if !(c.norm() > 0.0) {
+                    continue;
+                }
+                c.normalize()
             };
-            let l = 2.0 * v.dot(&h) * h - v;
             let cos = n.dot(&l);
             if !(cos > 0.0) {
                 continue;
@@ -221,22 +315,36 @@ impl HalfVectorCells {
 /// Tangents of the view's frame: `t1` along the view's projection onto
 /// the surface (any tangent at normal view), `t2 = n x t1`.
 fn view_frame(n: &Vector3<f64>, v: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-    let along = v - n * n.dot(v);
-    let t1 = if along.norm() > 1e-9 {
-        along.normalize()
-    } else {
-        let a = if n.x.abs() < 0.9 {
-            Vector3::x()
-        } else {
-            Vector3::y()
-        };
-        (a - n * a.dot(n)).normalize()
-    };
+    let t1 = perpendicular_towards(n, v);
     (t1, n.cross(&t1))
+}
+
+/// The mirror direction of `v` about `n` and the unit direction
+/// perpendicular to it towards `n`.
+fn mirror_frame(n: &Vector3<f64>, v: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let r = (2.0 * n.dot(v) * n - v).normalize();
+    (r, perpendicular_towards(&r, n))
+}
+
+/// The unit direction perpendicular to unit `a` towards `b` (any
+/// perpendicular when they are parallel).
+fn perpendicular_towards(a: &Vector3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
+    let along = b - a * a.dot(b);
+    if along.norm() > 1e-9 {
+        return along.normalize();
+    }
+    let e = if a.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    (e - a * e.dot(a)).normalize()
 }
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::FRAC_PI_2;
+
     use super::*;
 
     fn irradiance(
@@ -245,22 +353,26 @@ mod tests {
         l: impl Fn(&Vector3<f64>) -> [f64; 3],
     ) -> f64 {
         let mut out = Vec::new();
-        HalfVectorCells::get().incident_at(n, v, l, &mut out);
+        EnvironmentCells::get().incident_at(n, v, l, &mut out);
         out.iter().map(|i| i.weight[0] * n.dot(&i.dir)).sum()
     }
 
-    /// The sub-cells tile the hemisphere of half vectors: their solid
-    /// angles sum to `2 pi`.
+    /// The half-vector sub-cells tile the cap of half vectors within the
+    /// limit, the mirror-direction sub-cells the sphere.
     #[test]
-    fn sub_cells_cover_the_hemisphere() {
-        let cells = HalfVectorCells::get();
-        let total: f64 = cells.subs.iter().map(|s| s.solid_angle).sum();
-        assert!((total / (2.0 * PI) - 1.0).abs() < 1e-12, "{total}");
+    fn sub_cells_cover_their_domains() {
+        let cells = EnvironmentCells::get();
+        let half: f64 = cells.half.iter().map(|s| s.solid_angle).sum();
+        let cap = 2.0 * PI * (1.0 - HALF_VECTOR_LIMIT.cos());
+        assert!((half / cap - 1.0).abs() < 1e-12, "{half} vs {cap}");
+        let mirror: f64 = cells.mirror.iter().map(|s| s.solid_angle).sum();
+        assert!((mirror / (4.0 * PI) - 1.0).abs() < 1e-12, "{mirror}");
         assert!(
             cells
-                .subs
+                .half
                 .iter()
-                .all(|s| (s.dir.norm() - 1.0).abs() < 1e-12 && s.dir.z >= 0.0)
+                .chain(&cells.mirror)
+                .all(|s| (s.dir.norm() - 1.0).abs() < 1e-12)
         );
     }
 
@@ -293,7 +405,7 @@ mod tests {
         assert!((e / (2.0 * PI / 3.0) - 1.0).abs() < 2e-3, "{e}");
     }
 
-    /// The first cell is the cap about the normal in half-vector space:
+    /// The first cell is the cap about the normal among half vectors:
     /// the mirror direction, of weight `4 (v . n)` times the cap's solid
     /// angle (the reflection map's Jacobian at `h = n`).
     #[test]
@@ -302,7 +414,7 @@ mod tests {
         let v = Vector3::new(0.5, 0.2, 0.8).normalize();
         let r = 2.0 * n.dot(&v) * n - v;
         let mut out = Vec::new();
-        HalfVectorCells::get().incident_at(&n, &v, |_| [1.0; 3], &mut out);
+        EnvironmentCells::get().incident_at(&n, &v, |_| [1.0; 3], &mut out);
         assert!((out[0].dir - r).norm() < 1e-12);
         let cap = 2.0 * PI * (1.0 - INNER_RADIUS.cos());
         let expect = 4.0 * v.z * cap;
@@ -338,7 +450,7 @@ mod tests {
         radiance: &impl Fn(&Vector3<f64>) -> f64,
     ) -> f64 {
         let mut out = Vec::new();
-        HalfVectorCells::get().incident_at(&Vector3::z(), v, |w| [radiance(w); 3], &mut out);
+        EnvironmentCells::get().incident_at(&Vector3::z(), v, |w| [radiance(w); 3], &mut out);
         out.iter()
             .map(|i| f(&i.dir, v) * i.weight[0] * i.dir.z)
             .sum()
@@ -384,11 +496,12 @@ mod tests {
 
     /// GGX lobes from the narrowest width the renderer models allow
     /// (`alpha = 0.001`) to a broad one, at views from the pole to 88 deg
-    /// (the sphere's outermost pixels), against [`fine`]: within 2% to
-    /// 60 deg, 4% beyond (measured: 0.997-1.019 to 60 deg, 0.967 for
-    /// `alpha = 0.4` at 88 deg). Under the mirror-direction rings this
-    /// module had before (cap 0.005 rad), `alpha = 0.001` came out 6.4
-    /// times too bright at the pole and 36 times at 80 deg, and
+    /// (the sphere's outermost pixels), against [`fine`]: within 2.5% to
+    /// 80 deg, 11% at 88 deg (measured: 0.978-1.019 to 80 deg; at 88 deg
+    /// 0.895 for `alpha = 0.1`, whose tail lies in the mirror-direction
+    /// rings, and 0.99-1.02 for the sharp lobes). Under the
+    /// mirror-direction rings alone (cap 0.005 rad), `alpha = 0.001` came
+    /// out 6.4 times too bright at the pole and 36 times at 80 deg, and
     /// `alpha = 0.05` 15% too dark at 80 deg.
     #[test]
     fn ggx_lobes_of_every_width_match_a_fine_integration() {
@@ -396,11 +509,11 @@ mod tests {
         for alpha in [0.001, 0.004, 0.02, 0.1, 0.4] {
             let f = ggx(alpha, alpha);
             for (deg, tol) in [
-                (0.0, 0.02),
-                (30.0, 0.02),
-                (60.0, 0.02),
-                (80.0, 0.04),
-                (88.0, 0.04),
+                (0.0, 0.025),
+                (30.0, 0.025),
+                (60.0, 0.025),
+                (80.0, 0.025),
+                (88.0, 0.11),
             ] {
                 let v = view(deg);
                 let (c, r) = (by_cells(&f, &v, &one), fine(&f, alpha, &v, &one));
@@ -413,10 +526,10 @@ mod tests {
     }
 
     /// An anisotropic lobe (widths 0.03 and 0.15, turned 40 deg from the
-    /// plane of incidence) under a non-constant environment: within 10%
-    /// (measured 1.035-1.081: a sector of 30 deg is coarse for a lobe of
-    /// aspect 5; 16 sectors would give 0.99 at a third more terms, 8
-    /// sectors 0.73).
+    /// plane of incidence) under a non-constant environment: within 15%
+    /// (measured 0.988 at the pole, 0.955 at 45 deg, 0.866 at 75 deg: a
+    /// sector of 45 deg is coarse for a lobe of aspect 5; 12 half-vector
+    /// sectors give 0.92-1.08 at a third more cells).
     #[test]
     fn an_anisotropic_lobe_under_a_varying_sky_matches() {
         let (ax, ay, turn) = (0.03, 0.15, 40f64.to_radians());
@@ -430,7 +543,7 @@ mod tests {
         for deg in [0.0, 45.0, 75.0] {
             let v = view(deg);
             let (c, r) = (by_cells(&f, &v, &sky), fine(&f, ax, &v, &sky));
-            assert!((c / r - 1.0).abs() < 0.1, "view {deg}: {c} vs {r}");
+            assert!((c / r - 1.0).abs() < 0.15, "view {deg}: {c} vs {r}");
         }
     }
 }
