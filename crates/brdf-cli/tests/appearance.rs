@@ -134,3 +134,46 @@ fn select_by_image_marks_the_least_flip() {
     let best = rows.iter().map(mean).fold(f64::INFINITY, f64::min);
     assert_eq!(mean(&v["choice"]), best);
 }
+
+/// Mean HDR-FLIP over the light sets of a `brdf fit --json` report.
+fn mean_flip(v: &serde_json::Value) -> f64 {
+    let lights = v["image_errors"][0]["lights"]
+        .as_array()
+        .expect("image errors");
+    lights
+        .iter()
+        .map(|l| l["flip"].as_f64().expect("flip"))
+        .sum::<f64>()
+        / lights.len() as f64
+}
+
+#[test]
+fn the_image_objective_alone_refines_the_ngan_fit_for_its_render() {
+    // `--metric image` was listed but failed on data that can be rendered
+    // ("needs data that can be evaluated at any direction pair"): the
+    // objective had no target. It now starts from the Ngan fit, so its
+    // render is at least as close to the data's as that fit's.
+    let Some(p) = data_file("rgl/paper_white_rgb.bsdf") else {
+        return;
+    };
+    let p = p.display().to_string();
+    let fit = |metric: &str| {
+        let (ok, out, err) = brdf(&[
+            "fit", "--data", &p, "--model", "ggx", "--metric", metric, "--json", "--quiet",
+        ]);
+        assert!(ok, "--metric {metric}: {err}");
+        serde_json::from_str::<serde_json::Value>(&out).expect("json")
+    };
+    let (image, ngan) = (fit("image"), fit("ngan"));
+    assert_eq!(image["fits"][0]["objective"], "image");
+    assert!(
+        image["candidates"][0]
+            .as_array()
+            .is_none_or(|c| c.is_empty())
+    );
+    let (fi, fn_) = (mean_flip(&image), mean_flip(&ngan));
+    assert!(
+        fi < fn_,
+        "image objective {fi} against its Ngan start {fn_}"
+    );
+}

@@ -568,6 +568,8 @@ fn fit_judged_by(
         let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
         report.candidates = candidates;
         report
+    } else if fit.needs_image_target() {
+        fit_in_image_objective(fit, samples, data)?
     } else {
         fit.run(samples)?
     };
@@ -578,6 +580,30 @@ fn fit_judged_by(
     report.notes.extend(errors.warnings());
     report.image_error = Some(errors);
     Ok(report)
+}
+
+/// A fit in the image objective alone (a front end's `--metric image`):
+/// `fit` under Ngan's L2, then refined in the image objective at
+/// [`FIT_SIZE`] pixels from there (the objective needs a start; its
+/// basins trap a cold one). Unlike [`fit_for_appearance`] nothing checks
+/// that the result still fits the data's unrendered directions: the
+/// render is the whole objective.
+pub fn fit_in_image_objective(
+    fit: &Fit,
+    samples: &SampleSet,
+    data: &dyn Brdf,
+) -> Result<FitReport, FitError> {
+    let start = fit.clone().objective(Objective::Ngan).run(samples)?;
+    let target = ImageTarget::new(
+        image_terms(FIT_SIZE)?,
+        data,
+        start.model.channels(),
+        start.model.params().to_vec(),
+    );
+    fit.clone()
+        .objective(Objective::Image)
+        .image_target(Arc::new(target))
+        .run(samples)
 }
 
 /// The renderer models `brdf select --by-image` chooses among.

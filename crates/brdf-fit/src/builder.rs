@@ -115,6 +115,13 @@ impl Fit {
         self
     }
 
+    /// Whether the fit is in the image objective without a target yet (a
+    /// front end's `--metric image`: [`crate::appearance::fit_judged`]
+    /// makes the target and its start).
+    pub(crate) fn needs_image_target(&self) -> bool {
+        self.options.objective == Objective::Image && self.options.image.is_none()
+    }
+
     /// Fit in a narrower box: parameters named `prefix` (or `prefix` and a
     /// lobe number) kept within `[lower, upper]`; `[0, 0]` switches a lobe
     /// off (a nested model).

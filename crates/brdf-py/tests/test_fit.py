@@ -51,6 +51,16 @@ def test_fit_of_rgb_file_equals_cli(brdf_cli):
     assert without_seconds(py) == without_seconds(cli)
 
 
+def test_image_objective_fit_equals_cli(brdf_cli):
+    # `metric="image"` starts from the Ngan fit and refines the render,
+    # as `brdf fit --metric image` does.
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    cli = cli_json(brdf_cli, "fit", "--data", path, "--model", "ggx", "--metric", "image")
+    py = brdf.fit(path, "ggx", metric="image").report
+    assert py["fits"][0]["objective"] == "image"
+    assert without_seconds(py) == without_seconds(cli)
+
+
 @pytest.mark.parametrize("material", MATERIALS)
 def test_fit_from_arrays_equals_fit_from_path(material):
     path = data_file(material)
