@@ -41,7 +41,7 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::{Path, PathBuf};
 
-use brdf_core::Brdf;
+use brdf_core::{Brdf, DirPairs};
 use nalgebra::Vector3;
 
 use crate::IoError;
@@ -430,10 +430,30 @@ impl Interp2D {
         }
     }
 
+    /// [`Interp2D::eval_at`] in each of the parameter cells `corners`,
+    /// the cell of `u` found once (the same arithmetic per value).
+    fn eval_many_at<const K: usize>(&self, u: [f64; 2], corners: &[Corners; K]) -> [f64; K] {
+        let (ix, iy, fx, fy) = self.cell(u);
+        let n = self.nx * self.ny;
+        let i = iy * self.nx + ix;
+        let scale = ((self.nx - 1) * (self.ny - 1)) as f64;
+        corners.map(|c| {
+            let v = |k: usize| Self::look(&self.data, k, n, &c);
+            let (v00, v10, v01, v11) = (v(i), v(i + 1), v(i + self.nx), v(i + self.nx + 1));
+            let val =
+                (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
+            if self.marginal.is_empty() {
+                val
+            } else {
+                val * scale
+            }
+        })
+    }
+
     /// Map a point of the warped domain back to the sample space (the
-    /// inverse of [`Interp2D::sample`]).
-    fn invert(&self, u: [f64; 2], p: &[f64]) -> [f64; 2] {
-        let corners = self.weights(p);
+    /// inverse of [`Interp2D::sample`]) in the parameter cell `corners`.
+    fn invert_at(&self, u: [f64; 2], corners: &Corners) -> [f64; 2] {
+        let corners = *corners;
         let (ix, iy, fx, fy) = self.cell(u);
         let n = self.nx * self.ny;
         let i = iy * self.nx + ix;
@@ -550,6 +570,20 @@ impl Brdf for MeasuredRange<'_> {
 /// horizon. The incident direction needs no such rule (nothing is divided
 /// by its cosine; the files tabulate incidence up to 90 deg).
 pub const HORIZON_COS: f64 = 1e-6;
+
+/// What evaluating an [`Rgl`] table needs of the incident direction alone:
+/// computed once for a run of pairs that share it ([`Brdf::eval_pairs`];
+/// every term of a rendered pixel has the camera's direction there).
+struct Incidence {
+    l: Vector3<f64>,
+    phi_i: f64,
+    /// the `(phi_i, theta_i)` cell of the VNDF warp
+    vndf: Corners,
+    /// the `(phi_i, theta_i, channel)` cells of the RGB table
+    rgb: [Corners; 3],
+    /// `sigma(u_i)` (the projected area), when the file needs the factor
+    sigma: f64,
+}
 
 fn theta2u(t: f64) -> f64 {
     (t * 2.0 / PI).max(0.0).sqrt()
@@ -717,20 +751,69 @@ impl Rgl {
     /// file's `jacobian` flag is 0.
     pub fn jacobian_factor(&self, l: &Vector3<f64>, v: &Vector3<f64>) -> f64 {
         let m = (l + v).normalize();
-        let (phi_i, theta_i) = Self::params(l);
-        self.factor(&self.u_m(&m, phi_i), theta_i, phi_i, v.z)
+        let inc = self.incidence(l);
+        self.factor(&self.u_m(&m, inc.phi_i), inc.sigma, v.z)
     }
 
-    fn factor(&self, u_m: &[f64; 2], theta_i: f64, phi_i: f64, cos_v: f64) -> f64 {
+    fn factor(&self, u_m: &[f64; 2], sigma: f64, cos_v: f64) -> f64 {
         if !self.jacobian {
             return 1.0 / cos_v;
         }
-        let u_i = [theta2u(theta_i), phi2u(phi_i)];
-        let sigma = self.sigma.eval(u_i, &[]);
         if !(sigma > 0.0) {
             return f64::NAN;
         }
         self.ndf.eval(*u_m, &[]) / (4.0 * sigma * cos_v)
+    }
+
+    fn incidence(&self, l: &Vector3<f64>) -> Incidence {
+        let (phi_i, theta_i) = Self::params(l);
+        let mut angles = Corners::one();
+        self.rgb.extend(&mut angles, 0, phi_i);
+        self.rgb.extend(&mut angles, 1, theta_i);
+        let rgb = [0, 1, 2].map(|c| {
+            let mut corners = angles;
+            self.rgb.extend(&mut corners, 2, c as f64);
+            corners
+        });
+        let sigma = if self.jacobian {
+            self.sigma.eval([theta2u(theta_i), phi2u(phi_i)], &[])
+        } else {
+            1.0
+        };
+        Incidence {
+            l: *l,
+            phi_i,
+            vndf: self.vndf.weights(&[phi_i, theta_i]),
+            rgb,
+            sigma,
+        }
+    }
+
+    /// [`Brdf::eval`] with the incident direction's part done.
+    fn eval_with(&self, inc: &Incidence, v: &Vector3<f64>, out: &mut [f64]) {
+        out[..3].fill(0.0);
+        let l = &inc.l;
+        if !(l.z > 0.0 && v.z > HORIZON_COS) {
+            return;
+        }
+        let sum = l + v;
+        let len = sum.norm();
+        if !(len > 0.0) {
+            return;
+        }
+        let m = sum / len;
+        let u_m = self.u_m(&m, inc.phi_i);
+        let s = self.vndf.invert_at(u_m, &inc.vndf);
+        let k = self.factor(&u_m, inc.sigma, v.z);
+        if !(k.is_finite()) {
+            return;
+        }
+        // Negative values come from out-of-gamut spectra: clamped, as the
+        // format's authors do.
+        let values = self.rgb.eval_many_at(s, &inc.rgb);
+        for (o, x) in out.iter_mut().zip(values) {
+            *o = x.max(0.0) * k;
+        }
     }
 
     fn u_m(&self, m: &Vector3<f64>, phi_i: f64) -> [f64; 2] {
@@ -746,34 +829,23 @@ impl Brdf for Rgl {
         3
     }
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
-        out[..3].fill(0.0);
-        if !(l.z > 0.0 && v.z > HORIZON_COS) {
-            return;
-        }
-        let sum = l + v;
-        let len = sum.norm();
-        if !(len > 0.0) {
-            return;
-        }
-        let m = sum / len;
-        let (phi_i, theta_i) = Self::params(l);
-        let u_m = self.u_m(&m, phi_i);
-        let s = self.vndf.invert(u_m, &[phi_i, theta_i]);
-        let k = self.factor(&u_m, theta_i, phi_i, v.z);
-        if !(k.is_finite()) {
-            return;
-        }
-        // The (phi_i, theta_i) cell once, then each channel's corners
-        // (the same weights, in the same order, as a whole-cell lookup).
-        let mut angles = Corners::one();
-        self.rgb.extend(&mut angles, 0, phi_i);
-        self.rgb.extend(&mut angles, 1, theta_i);
-        for c in 0..3 {
-            let mut corners = angles;
-            self.rgb.extend(&mut corners, 2, c as f64);
-            // Negative values come from out-of-gamut spectra: clamped, as
-            // the format's authors do.
-            out[c] = self.rgb.eval_at(s, &corners).max(0.0) * k;
+        self.eval_with(&self.incidence(l), v, out);
+    }
+    fn eval_pairs(&self, pairs: &DirPairs, out: &mut [f64]) {
+        let n = pairs.len();
+        let mut inc: Option<Incidence> = None;
+        let mut f = [0.0; 3];
+        for j in 0..n {
+            let l = pairs.l(j);
+            if inc.as_ref().is_none_or(|i| i.l != l) {
+                inc = Some(self.incidence(&l));
+            }
+            if let Some(i) = &inc {
+                self.eval_with(i, &pairs.v(j), &mut f);
+            }
+            for (c, x) in f.iter().enumerate() {
+                out[c * n + j] = *x;
+            }
         }
     }
 }
