@@ -2,7 +2,7 @@
 
 Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.
 
-converted by fitting: `ggx` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 1.5353e-2 1/sr, relative L2 6.9215e-2; image error at 128 px: HDR-FLIP sky 0.0125, studio 0.0123 (mean 0.0124), mean-colour CIEDE2000 at most 0.03
+converted by fitting: `ggx` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 1.5352e-2 1/sr, relative L2 6.9209e-2; image error at 128 px: HDR-FLIP sky 0.0124, studio 0.0122 (mean 0.0123), mean-colour CIEDE2000 at most 0.03
 """
 
 import os
@@ -12,9 +12,9 @@ import bpy
 
 NAME = "paper_white_rgb"
 INPUTS = {
-    "Base Color": (0.8397750206829713, 0.8525653861787131, 1, 1.0),
-    "Metallic": 0.08679080877382167,
-    "Roughness": 0.6822490948341005,
+    "Base Color": (0.8397799100939681, 0.8525694281846694, 1, 1.0),
+    "Metallic": 0.08680115304302052,
+    "Roughness": 0.682254762882041,
     "IOR": 1.5,
     "Specular IOR Level": 0.5,
 }

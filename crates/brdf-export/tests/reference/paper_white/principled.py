@@ -2,7 +2,7 @@
 
 Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.
 
-converted by fitting: `principled` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 3.0915e-2 1/sr, relative L2 1.3702e-1; image error at 128 px: HDR-FLIP sky 0.0340, studio 0.0244 (mean 0.0292), mean-colour CIEDE2000 at most 0.09
+converted by fitting: `principled` has no exact equivalent here, so `gltf` was fitted to its values at 2048 direction pairs up to 80 deg; Ngan L2 3.0893e-2 1/sr, relative L2 1.3692e-1; image error at 128 px: HDR-FLIP sky 0.0341, studio 0.0242 (mean 0.0291), mean-colour CIEDE2000 at most 0.09
 """
 
 import os
@@ -12,9 +12,9 @@ import bpy
 
 NAME = "paper_white_rgb"
 INPUTS = {
-    "Base Color": (0.8335493693127181, 0.8436998653259662, 0.9917314140365425, 1.0),
-    "Metallic": 0.04610478370837484,
-    "Roughness": 0.6661340337168591,
+    "Base Color": (0.8335671778866408, 0.8437181730032122, 0.9917517939844809, 1.0),
+    "Metallic": 0.0461426098382294,
+    "Roughness": 0.6662007316624774,
     "IOR": 1.5,
     "Specular IOR Level": 0.5,
 }
