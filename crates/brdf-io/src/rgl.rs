@@ -417,17 +417,8 @@ impl Interp2D {
 
     /// [`Interp2D::eval`] in the parameter cell `corners`.
     fn eval_at(&self, u: [f64; 2], corners: &Corners) -> f64 {
-        let (ix, iy, fx, fy) = self.cell(u);
-        let n = self.nx * self.ny;
-        let i = iy * self.nx + ix;
-        let v = |k: usize| Self::look(&self.data, k, n, corners);
-        let (v00, v10, v01, v11) = (v(i), v(i + 1), v(i + self.nx), v(i + self.nx + 1));
-        let val = (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
-        if self.marginal.is_empty() {
-            val
-        } else {
-            val * ((self.nx - 1) * (self.ny - 1)) as f64
-        }
+        let [value] = self.eval_many_at(u, &[*corners]);
+        value
     }
 
     /// [`Interp2D::eval_at`] in each of the parameter cells `corners`,
