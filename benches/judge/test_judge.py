@@ -36,16 +36,17 @@ import scene as S  # noqa: E402
 # (ibiza 0.372/0.244, iris 0.443/0.266, golden yellow 0.612/0.393, colodur
 # 0.111/0.096, paper 0.069/0.047), and every film's dE bound below the
 # issue's 5. Measured:
-# - paper_white 0.057/0.041, colodur 0.073/0.051 (issue goals 0.06/0.04:
-#   paper's sky met, its studio missed by 0.001, colodur missed by
-#   0.013/0.011);
+# - paper_white 0.053/0.038 (the Ngan fit with sheen and clear coat, tried
+#   together since ecc00fb; was cube-root + sheen, 0.057/0.041), colodur
+#   0.073/0.051 (issue goals 0.06/0.04: paper meets both, so its bounds are
+#   the goals where those are tighter; colodur misses by 0.013/0.011);
 # - films, before issue 23 (Ngan's L2): ibiza 0.506/0.314, iris 0.638/0.450,
 #   golden yellow 0.540/0.391; now 0.314/0.216 (dE 3.2), 0.330/0.230
 #   (dE 1.6), 0.235/0.185 (dE 1.7): golden yellow meets every goal, ibiza
 #   and iris none of the FLIP halvings (results/render_fidelity.md lists
 #   each goal and its margin).
 BOUNDS = {
-    "paper_white_rgb": ((0.062, 0.046), 1.0),
+    "paper_white_rgb": ((0.058, 0.040), 1.0),
     "colodur_napoli_4f_rgb": ((0.078, 0.056), 1.0),
     "cc_ibiza_sunset_rgb": ((0.330, 0.227), 3.8),
     "cc_iris_purple_gem_rgb": ((0.347, 0.242), 2.1),
