@@ -69,11 +69,12 @@ def files():
 # FLIP bounds (sky, studio) of what the tabulation alone changes, checked on
 # a film and a matte material. Measured when written: cc_ibiza_sunset
 # 0.077 / 0.019 (the sun's small highlight falls between the grid's nodes),
-# paper_white 0.045 / 0.026 (two renders of the measurement alone: 0.041 /
-# 0.013 and 0.016 / 0.011); the bounds add 10%.
+# paper_white 0.046 / 0.028 with the fit of ecc00fb (0.045 / 0.026 before;
+# two renders of the measurement alone: 0.041 / 0.013 and 0.016 / 0.011);
+# the bounds add 10%.
 TABULATION_BOUNDS = {
     "cc_ibiza_sunset_rgb": (0.085, 0.021),
-    "paper_white_rgb": (0.050, 0.029),
+    "paper_white_rgb": (0.050, 0.031),
 }
 
 
