@@ -39,7 +39,7 @@ use brdf_render::{LightSet, ShadingPoints};
 use serde::Serialize;
 
 use crate::image_objective::{ImageTarget, ImageTerms};
-use crate::render_batch::Reference;
+use crate::reference::Reference;
 use crate::{Fit, FitError, FitReport, Objective};
 
 /// Mean-colour CIEDE2000 above which a report warns.
@@ -151,7 +151,7 @@ pub fn standard_lights() -> Vec<LightSet> {
 }
 
 /// Renders data and fits under the standard light sets and compares them
-/// (renders by batch evaluation, [`crate::render_batch`]).
+/// (the data rendered once, [`crate::reference`]).
 pub struct Judge {
     size: usize,
     points: Vec<(LightSet, ShadingPoints)>,
