@@ -604,18 +604,34 @@ fn fit_judged_by(
     for_appearance: bool,
     report_judge: Option<&Judge>,
 ) -> Result<FitReport, FitError> {
-    let mut report = if for_appearance {
-        let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
-        report.candidates = candidates;
-        report
-    } else if fit.needs_image_target() {
-        fit_in_image_objective(fit, samples, data)?
-    } else {
-        fit.run(samples)?
+    let run = || -> Result<FitReport, FitError> {
+        if for_appearance {
+            let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
+            report.candidates = candidates;
+            Ok(report)
+        } else if fit.needs_image_target() {
+            fit_in_image_objective(fit, samples, data)
+        } else {
+            fit.run(samples)
+        }
     };
-    let errors = match report_judge {
-        Some(j) => j.fit_errors(report.model.as_ref())?,
-        None => Judge::new(REPORT_SIZE).errors(data, report.model.as_ref())?,
+    let errors = |report: &FitReport, judge: &Judge| judge.fit_errors(report.model.as_ref());
+    let (mut report, errors) = match report_judge {
+        Some(j) => {
+            let report = run()?;
+            let e = errors(&report, j)?;
+            (report, e)
+        }
+        None => {
+            // The report's judge (its cells and the data's renders) does
+            // not depend on the fit: built beside it, on another thread
+            // when there is one.
+            let (report, judge) =
+                rayon::join(run, || Judge::with_data(REPORT_SIZE, data));
+            let report = report?;
+            let e = errors(&report, &judge?)?;
+            (report, e)
+        }
     };
     report.notes.extend(errors.warnings());
     report.image_error = Some(errors);
