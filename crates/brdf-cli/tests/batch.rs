@@ -1,6 +1,7 @@
 //! `brdf batch`: two shards merged give the same fits as one run; a rerun
 //! skips what is done (resumable); a truncated last line from a killed run
-//! is refitted; bad shard specs and unknown models are errors naming them.
+//! is refitted; bad shard specs and unknown models are errors naming them;
+//! each fit is the one `brdf fit` makes, image errors included.
 
 mod common;
 
@@ -94,5 +95,76 @@ fn bad_requests_name_what_is_wrong() {
         &out,
     ]);
     assert!(!ok && err.contains("did you mean `blinn-phong`"), "{err}");
+    let _ = std::fs::remove_dir_all(&tmp);
+}
+
+#[test]
+fn each_fit_is_brdf_fits_with_its_image_errors() {
+    // A renderer model on data that can be rendered is fitted for
+    // appearance, as `brdf fit` does by default, and the line carries the
+    // same image errors as `brdf fit --json`; scattered data carry the
+    // note why none can be formed, and the summary shows "-" there.
+    let (Some(paper), Some(curet)) = (
+        data_file("rgl/paper_white_rgb.bsdf"),
+        data_file("curet/abrdf.dat"),
+    ) else {
+        return;
+    };
+    let tmp = std::env::temp_dir().join(format!("brdf-batch-image-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    let (p, c) = (
+        paper.display().to_string(),
+        format!("{}#25", curet.display()),
+    );
+    let out = tmp.display().to_string();
+    let (ok, _, err) = brdf(&[
+        "batch", "--data", &p, &c, "--models", "ggx", "--out", &out, "--quiet",
+    ]);
+    assert!(ok, "{err}");
+    let text = std::fs::read_to_string(tmp.join("fits.jsonl")).expect("fits.jsonl");
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("json line"))
+        .collect();
+    let of = |name: &str| {
+        lines
+            .iter()
+            .find(|v| v["data"].as_str().is_some_and(|d| d.contains(name)))
+            .unwrap_or_else(|| panic!("no line of {name} in {text}"))
+    };
+    let (rgl, scattered) = (of("paper_white"), of("abrdf"));
+    let (ok, fit, err) = brdf(&["fit", "--data", &p, "--model", "ggx", "--json", "--quiet"]);
+    assert!(ok, "{err}");
+    let fit: serde_json::Value = serde_json::from_str(&fit).expect("json");
+    assert_eq!(rgl["image_error"], fit["image_errors"][0]);
+    assert_eq!(rgl["fit"]["ngan_l2"], fit["fits"][0]["ngan_l2"]);
+    let chosen = fit["candidates"][0]
+        .as_array()
+        .and_then(|c| c.iter().find(|c| c["chosen"] == true))
+        .expect("chosen candidate");
+    assert_eq!(rgl["for_appearance"]["objective"], chosen["objective"]);
+    assert!(scattered["image_error"].is_null());
+    assert!(
+        scattered["image_note"]
+            .as_str()
+            .is_some_and(|n| n.contains("no image error")),
+        "{scattered}"
+    );
+    let summary = std::fs::read_to_string(tmp.join("summary.csv")).expect("summary");
+    let header: Vec<&str> = summary.lines().next().expect("header").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).expect(name);
+    let (sky, studio) = (col("FLIP sky"), col("FLIP studio"));
+    for line in summary.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        if line.contains("abrdf") {
+            assert_eq!((cells[sky], cells[studio]), ("-", "-"), "{line}");
+        } else {
+            let flip: f64 = cells[sky].parse().expect("a FLIP");
+            let expected = fit["image_errors"][0]["lights"][0]["flip"]
+                .as_f64()
+                .expect("flip");
+            assert!((flip - expected).abs() <= 1e-3 * expected, "{line}");
+        }
+    }
     let _ = std::fs::remove_dir_all(&tmp);
 }

@@ -39,7 +39,7 @@ use brdf_render::{LightSet, ShadingPoints};
 use serde::Serialize;
 
 use crate::image_objective::{ImageTarget, ImageTerms};
-use crate::render_batch::Reference;
+use crate::reference::Reference;
 use crate::{Fit, FitError, FitReport, Objective};
 
 /// Mean-colour CIEDE2000 above which a report warns.
@@ -151,10 +151,10 @@ pub fn standard_lights() -> Vec<LightSet> {
 }
 
 /// Renders data and fits under the standard light sets and compares them
-/// (renders by batch evaluation, [`crate::render_batch`]).
+/// (the data rendered once, [`crate::reference`]).
 pub struct Judge {
     size: usize,
-    points: Vec<(LightSet, ShadingPoints)>,
+    points: Arc<Vec<(LightSet, ShadingPoints)>>,
     /// The data's renders, one per light set, when made once
     /// ([`Judge::with_data`]).
     reference: Vec<Reference>,
@@ -164,13 +164,15 @@ impl Judge {
     /// The judge at `size x size` pixels (backgrounds shown, as the
     /// reference renderer's images; the terms are computed once).
     pub fn new(size: usize) -> Self {
-        let points = standard_lights()
-            .into_iter()
-            .map(|l| {
-                let sp = ShadingPoints::judge_with_background(&l, size);
-                (l, sp)
-            })
-            .collect();
+        let points = Arc::new(
+            standard_lights()
+                .into_iter()
+                .map(|l| {
+                    let sp = ShadingPoints::judge_with_background(&l, size);
+                    (l, sp)
+                })
+                .collect(),
+        );
         Judge {
             size,
             points,
@@ -181,13 +183,22 @@ impl Judge {
     /// The judge with `data` rendered once, for [`Judge::fit_errors`] of
     /// many fits of the same data.
     pub fn with_data(size: usize, data: &dyn Brdf) -> Result<Self, FitError> {
-        let mut judge = Judge::new(size);
-        judge.reference = judge
+        Judge::new(size).rendering(data)
+    }
+
+    /// This judge's terms (shared, not copied) with `data` rendered on
+    /// them: one set of terms serves every material of a batch.
+    pub fn rendering(&self, data: &dyn Brdf) -> Result<Self, FitError> {
+        let reference = self
             .points
             .iter()
             .map(|(_, sp)| Reference::new(sp, data).map_err(|e| FitError::Usage(e.to_string())))
             .collect::<Result<_, _>>()?;
-        Ok(judge)
+        Ok(Judge {
+            size: self.size,
+            points: Arc::clone(&self.points),
+            reference,
+        })
     }
 
     /// The image errors of `fit` against `data`.
@@ -594,6 +605,19 @@ pub fn fit_judged(
     fit_judged_by(fit, samples, data, for_appearance, None)
 }
 
+/// [`fit_judged`] on data that can be rendered, judged by `judge` (the
+/// report-size judge holding the data's renders, [`Judge::with_data`] or
+/// [`Judge::rendering`]) when several fits of the same data are judged.
+pub fn fit_judged_on(
+    fit: &Fit,
+    samples: &SampleSet,
+    data: &dyn Brdf,
+    for_appearance: bool,
+    judge: &Judge,
+) -> Result<FitReport, FitError> {
+    fit_judged_by(fit, samples, data, for_appearance, Some(judge))
+}
+
 /// [`fit_judged`] on renderable data, with the report-size judge `report`
 /// already holding the data's renders ([`Judge::with_data`]) when several
 /// fits of the same data are judged (`None`: rendered here).
@@ -604,18 +628,33 @@ fn fit_judged_by(
     for_appearance: bool,
     report_judge: Option<&Judge>,
 ) -> Result<FitReport, FitError> {
-    let mut report = if for_appearance {
-        let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
-        report.candidates = candidates;
-        report
-    } else if fit.needs_image_target() {
-        fit_in_image_objective(fit, samples, data)?
-    } else {
-        fit.run(samples)?
+    let run = || -> Result<FitReport, FitError> {
+        if for_appearance {
+            let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
+            report.candidates = candidates;
+            Ok(report)
+        } else if fit.needs_image_target() {
+            fit_in_image_objective(fit, samples, data)
+        } else {
+            fit.run(samples)
+        }
     };
-    let errors = match report_judge {
-        Some(j) => j.fit_errors(report.model.as_ref())?,
-        None => Judge::new(REPORT_SIZE).errors(data, report.model.as_ref())?,
+    let errors = |report: &FitReport, judge: &Judge| judge.fit_errors(report.model.as_ref());
+    let (mut report, errors) = match report_judge {
+        Some(j) => {
+            let report = run()?;
+            let e = errors(&report, j)?;
+            (report, e)
+        }
+        None => {
+            // The report's judge (its cells and the data's renders) does
+            // not depend on the fit: built beside it, on another thread
+            // when there is one.
+            let (report, judge) = rayon::join(run, || Judge::with_data(REPORT_SIZE, data));
+            let report = report?;
+            let e = errors(&report, &judge?)?;
+            (report, e)
+        }
     };
     report.notes.extend(errors.warnings());
     report.image_error = Some(errors);

@@ -12,17 +12,28 @@
 //! summary (`summary.csv`, `summary.md`) is sorted by material and model,
 //! so it is the same for any thread count, shard split or completion
 //! order.
+//!
+//! Each fit is what `brdf fit` runs on the same file with the same
+//! `--metric` ([`crate::appearance::fit_judged`]): renderer models are
+//! fitted for appearance on data that can be rendered (RGL, MERL), and
+//! every fit of such data carries its image errors (the sphere under the
+//! sky and studio light sets at [`REPORT_SIZE`] pixels: FLIP, PSNR, mean
+//! colour CIEDE2000) in its line and the summary; scattered data (CUReT,
+//! Cornell, CSV) carry the note why none can be formed. The judge's terms
+//! are computed once per batch and each material's renders once for all
+//! its models.
 
 use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 use rayon::prelude::*;
 use serde_json::Value;
 
+use crate::appearance::{self, Judge, REPORT_SIZE};
 use crate::table::{Cell, Table};
-use crate::{Channels, Fit, FitError, data_name};
+use crate::{Channels, Fit, FitError, Objective, data_name};
 
 /// The file of fits in a batch folder.
 pub const FITS: &str = "fits.jsonl";
@@ -76,6 +87,10 @@ pub struct BatchOptions {
     pub limit_deg: f64,
     /// Multi-start count.
     pub starts: usize,
+    /// Objective, as `brdf fit --metric`: `auto` (for appearance when the
+    /// model is a renderer's and the data can be rendered, else Ngan's
+    /// L2), `appearance`, or an objective's name.
+    pub metric: String,
 }
 
 /// How a batch went.
@@ -256,18 +271,21 @@ fn fit_all(
     for (m, x) in todo {
         by_material.entry(m.as_str()).or_default().push(x);
     }
+    // The judge's terms, computed once for every renderable material (the
+    // first one builds them).
+    let terms: OnceLock<Judge> = OnceLock::new();
     // Materials in parallel, and each material's models in parallel too
     // (a few materials would otherwise leave cores idle).
     let failures: Vec<String> = by_material
         .par_iter()
         .flat_map_iter(|(material, models)| {
-            let samples = brdf_io::load(material);
+            let loaded = load(material, &terms);
             let lines: Vec<Result<Value, String>> = models
                 .par_iter()
                 .map(|model| {
-                    let r = match &samples {
-                        Ok(s) => fit_one(s, material, model, opts),
-                        Err(e) => Err(e.to_string()),
+                    let r = match &loaded {
+                        Ok(m) => fit_one(m, material, model, opts),
+                        Err(e) => Err(format!("{}: {e}", data_name(material))),
                     };
                     progress();
                     r
@@ -283,22 +301,58 @@ fn fit_all(
     Ok(failures)
 }
 
+/// A material as its fits need it: the samples, and for data that can be
+/// rendered the data itself with the judge holding its renders.
+struct Material {
+    samples: brdf_core::SampleSet,
+    rendered: Option<(Box<dyn brdf_core::Brdf>, Judge)>,
+}
+
+/// Load `material`; render it on the judge's `terms` when it can be.
+fn load(material: &str, terms: &OnceLock<Judge>) -> Result<Material, FitError> {
+    let samples = brdf_io::load(material)?;
+    let rendered = match brdf_io::load_dense(material)? {
+        Some(data) => {
+            let judge = terms
+                .get_or_init(|| Judge::new(REPORT_SIZE))
+                .rendering(data.as_ref())?;
+            Some((data, judge))
+        }
+        None => None,
+    };
+    Ok(Material { samples, rendered })
+}
+
 /// One fit as a JSON line.
 fn fit_one(
-    samples: &brdf_core::SampleSet,
-    material: &str,
+    material: &Material,
+    spec: &str,
     model: &str,
     opts: &BatchOptions,
 ) -> Result<Value, String> {
-    let name = data_name(material);
-    let rep = Fit::model(model)
-        .and_then(|f| {
-            f.channels(opts.channels)
+    let name = data_name(spec);
+    let renderable = material.rendered.is_some();
+    let (for_appearance, metric) = appearance::metric_choice(&opts.metric, model, renderable);
+    let rep = Objective::parse(metric)
+        .and_then(|objective| {
+            let fit = Fit::model(model)?
+                .objective(objective)
+                .channels(opts.channels)
                 .limit_deg(opts.limit_deg)
-                .starts(opts.starts)
-                .run(samples)
+                .starts(opts.starts);
+            match &material.rendered {
+                Some((data, judge)) => appearance::fit_judged_on(
+                    &fit,
+                    &material.samples,
+                    data.as_ref(),
+                    for_appearance,
+                    judge,
+                ),
+                None => appearance::fit_judged(&fit, &material.samples, None, false),
+            }
         })
         .map_err(|e| format!("{name} x {model}: {e}"))?;
+    let chosen = rep.candidates.iter().find(|c| c.chosen);
     Ok(serde_json::json!({
         "data": name,
         "model": model,
@@ -306,6 +360,14 @@ fn fit_one(
         "samples_present": rep.samples_present,
         "limit_deg": opts.limit_deg,
         "fit": rep.summary,
+        "for_appearance": chosen.map(|c| serde_json::json!({
+            "objective": c.objective,
+            "lobes": c.lobes,
+            "candidates": rep.candidates.len(),
+        })),
+        "image_error": rep.image_error,
+        "image_note": rep.image_note,
+        "notes": rep.notes,
     }))
 }
 
@@ -341,6 +403,9 @@ pub fn write_summary(dir: &Path, fits: &Fits) -> Result<(), FitError> {
             "samples used",
             "samples present",
             "Ngan L2",
+            "FLIP sky",
+            "FLIP studio",
+            "dE2000 (max)",
             "termination",
             "seconds",
         ],
@@ -348,12 +413,27 @@ pub fn write_summary(dir: &Path, fits: &Fits) -> Result<(), FitError> {
     for ((data, model), v) in fits {
         let f = &v["fit"];
         let num = |x: &Value, d| Cell::Num(x.as_f64().unwrap_or(f64::NAN), d);
+        // Image errors: "-" for scattered data (and lines of older runs).
+        let lights = v["image_error"]["lights"].as_array();
+        let light = |name: &str, key: &str| {
+            lights
+                .and_then(|ls| ls.iter().find(|l| l["light"] == name))
+                .and_then(|l| l[key].as_f64())
+        };
+        let image = |x: Option<f64>, d| x.map_or(Cell::Text("-".into()), |x| Cell::Num(x, d));
+        let de = match (light("sky", "delta_e"), light("studio", "delta_e")) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
         t.rows.push(vec![
             Cell::Text(data.clone()),
             Cell::Text(model.clone()),
             Cell::Text(v["samples_used"].to_string()),
             Cell::Text(v["samples_present"].to_string()),
             num(&f["ngan_l2"], 6),
+            image(light("sky", "flip"), 3),
+            image(light("studio", "flip"), 3),
+            image(de, 2),
             Cell::Text(f["termination"].as_str().unwrap_or_default().to_string()),
             num(&f["seconds"], 3),
         ]);

@@ -38,7 +38,7 @@
 //! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
 //! | [`image_objective`] | the image objective: residuals of tone-mapped sphere pixels |
-//! | [`render_batch`] | judge renders by batch evaluation, the data's render made once |
+//! | [`reference`] | the data's judge render made once, and fits' image errors against it |
 //! | [`boxed`] | [`BoxedModel`]: a model fitted in other parameter boxes than its own |
 //! | [`scaling`] | internal scaling of extreme data and weights (scale invariance) |
 //! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
@@ -69,7 +69,7 @@ pub mod image_objective;
 pub mod linear_box;
 pub mod names;
 pub mod pipeline;
-pub mod render_batch;
+pub mod reference;
 pub mod report_json;
 pub mod report_text;
 pub mod resample;

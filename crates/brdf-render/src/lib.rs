@@ -22,7 +22,8 @@
 //!   light sets (`directional`, `sky`, `studio`) as weighted incident
 //!   directions;
 //! - [`shading`]: [`ShadingPoints`], the precomputed `(pixel, l, v, weight)`
-//!   terms of a scene, and the batched render of any BRDF from them;
+//!   terms of a scene; [`batch`]: the render of any BRDF from them, a row
+//!   of terms per batch evaluation;
 //! - [`film`]: Mitsuba's film (antialiased silhouette, Gaussian pixel
 //!   filter) for pictures compared with the judge's;
 //! - [`tonemap`], [`openexr`]: exposure `1 / p99`, gamma 2.2, PNG and EXR;
@@ -37,6 +38,7 @@
 //! the `brdf` command and the Python module call it.
 
 pub mod area_light;
+pub mod batch;
 pub mod camera;
 pub mod colour;
 pub mod compare;

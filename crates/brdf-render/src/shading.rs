@@ -9,7 +9,7 @@
 //!
 //! (`weight` includes the light's RGB irradiance and the receiver cosine
 //! `n . l`). The BRDF is evaluated in the renderers' order, the direction
-//! towards the camera first ([`ShadingPoints::render`]): Mitsuba 3's
+//! towards the camera first ([`ShadingPoints::render`], in [`crate::batch`]): Mitsuba 3's
 //! `measured` plugin and pbrt-v4's `MeasuredBxDF` look an RGL table up with
 //! the camera's direction as the table's incident direction. A reciprocal
 //! model renders the same either way; a measurement does not (it is not
@@ -41,7 +41,7 @@ use rayon::prelude::*;
 
 use crate::Image;
 use crate::camera::Camera;
-use crate::film::{SILHOUETTE_SAMPLES, filter};
+use crate::film::SILHOUETTE_SAMPLES;
 use crate::light::LightSet;
 use crate::scene::{SphereHit, hit_of, intersect_unit_sphere, sphere_hits};
 
@@ -190,7 +190,7 @@ impl ShadingPoints {
     pub fn film(camera: &Camera, lights: &LightSet, size: usize) -> ShadingPoints {
         let k = SILHOUETTE_SAMPLES;
         let share = 1.0 / (k * k) as f64;
-        type Row = (Vec<(SphereHit, f64)>, Vec<f64>, Vec<bool>);
+        type Row = (ShadingPoints, Vec<f64>, Vec<bool>);
         let rows: Vec<Row> = (0..size)
             .into_par_iter()
             .map(|py| {
@@ -229,14 +229,16 @@ impl ShadingPoints {
                         }
                     }
                 }
-                (hits, bg, centre)
+                // The row's terms here, in parallel: the light set's
+                // cells are most of the set-up's work.
+                let row = ShadingPoints::from_scaled_hits(&hits, lights, size);
+                (row, bg, centre)
             })
             .collect();
         let mut sp = ShadingPoints::from_hits(&[], lights, size);
         let mut background = Vec::with_capacity(size * size * 3);
         let mut mask = Vec::with_capacity(size * size);
-        for (hits, bg, centre) in rows {
-            let row = ShadingPoints::from_scaled_hits(&hits, lights, size);
+        for (row, bg, centre) in rows {
             let offset = sp.l_local.len();
             sp.pixels.extend(row.pixels.iter().map(|p| ShadedPixel {
                 start: p.start + offset,
@@ -305,79 +307,6 @@ impl ShadingPoints {
             m[p.pixel] = true;
         }
         m
-    }
-
-    /// Render `brdf` (1 channel: grey, 3 channels: RGB) as an RGB image,
-    /// evaluated as renderers do: `brdf.eval(v_local, l_local)` (see the
-    /// module doc).
-    pub fn render(&self, brdf: &(impl Brdf + ?Sized)) -> Image {
-        self.render_with(brdf, false)
-    }
-
-    /// Render with the arguments exchanged in every evaluation,
-    /// `brdf.eval(l_local, v_local)` (reciprocity check: a reciprocal BRDF
-    /// gives the same image).
-    pub fn render_swapped(&self, brdf: &(impl Brdf + ?Sized)) -> Image {
-        self.render_with(brdf, true)
-    }
-
-    fn render_with(&self, brdf: &(impl Brdf + ?Sized), swap: bool) -> Image {
-        let size = self.size;
-        let mut data = if self.background.len() == size * size * 3 {
-            self.background.clone()
-        } else {
-            vec![0.0; size * size * 3]
-        };
-        // Pixels are in pixel order: the first pixel of each row.
-        let row_start: Vec<usize> = (0..=size)
-            .map(|r| self.pixels.partition_point(|p| p.pixel < r * size))
-            .collect();
-        data.par_chunks_mut(size * 3)
-            .enumerate()
-            .for_each(|(row, out)| {
-                let mut f = vec![0.0; brdf.channels().max(1)];
-                for p in &self.pixels[row_start[row]..row_start[row + 1]] {
-                    let rgb = self.shade_pixel(brdf, p, swap, &mut f);
-                    let x = p.pixel % size;
-                    for c in 0..3 {
-                        out[x * 3 + c] += rgb[c];
-                    }
-                }
-            });
-        let mut image = Image {
-            width: size,
-            height: size,
-            channels: 3,
-            data,
-        };
-        if !self.film_mask.is_empty() {
-            filter(&mut image);
-        }
-        image
-    }
-
-    fn shade_pixel(
-        &self,
-        brdf: &(impl Brdf + ?Sized),
-        p: &ShadedPixel,
-        swap: bool,
-        f: &mut [f64],
-    ) -> [f64; 3] {
-        let grey = brdf.channels() < 3;
-        let mut acc = [0.0; 3];
-        for k in p.start..p.end {
-            let l = &self.l_local[k];
-            if swap {
-                brdf.eval(l, &p.v_local, f);
-            } else {
-                brdf.eval(&p.v_local, l, f);
-            }
-            let w = &self.weight[k];
-            for c in 0..3 {
-                acc[c] += w[c] * if grey { f[0] } else { f[c] };
-            }
-        }
-        acc
     }
 }
 

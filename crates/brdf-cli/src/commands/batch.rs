@@ -36,6 +36,11 @@ pub struct BatchArgs {
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
+    /// Objective and metric, as `brdf fit --metric`: auto (for appearance
+    /// when the model is a renderer's and the data can be rendered, else
+    /// ngan), appearance, ngan, log, cube-root, relative, image, ...
+    #[arg(long, default_value = "auto")]
+    pub metric: String,
     /// Also write an HTML index of the fits and one page per fit into
     /// OUT/report/.
     #[arg(long)]
@@ -73,6 +78,7 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         channels,
         limit_deg: args.limit,
         starts: args.starts,
+        metric: args.metric.clone(),
     };
     let fits = opts.out.join(brdf_fit::batch::FITS);
     brdf_study::context::progress::set_quiet(args.quiet);
