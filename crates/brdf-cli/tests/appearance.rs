@@ -229,3 +229,58 @@ fn lobes_that_pay_only_together_are_tried_together() {
         .fold(f64::INFINITY, f64::min);
     assert!(l2(chosen) <= l2_fewer, "{chosen} against {l2_fewer}");
 }
+
+#[test]
+fn select_reports_the_image_errors_of_its_choice() {
+    // `brdf select` (by Ngan's L2) on data that can be rendered carries
+    // the chosen fit's image errors, the same as `brdf fit` of that model
+    // (koenderink order 6 on paper_white: a direct solve, so the same
+    // fit); on scattered data the note why there are none.
+    let (Some(p), Some(curet)) = (
+        data_file("rgl/paper_white_rgb.bsdf"),
+        data_file("curet/abrdf.dat"),
+    ) else {
+        return;
+    };
+    let p = p.display().to_string();
+    let (ok, out, err) = brdf(&["select", "--data", &p, "--json", "--quiet"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    assert_eq!(
+        v["choice"]["label"], "koenderink order 6",
+        "{}",
+        v["choice"]
+    );
+    let (ok, out, err) = brdf(&[
+        "fit",
+        "--data",
+        &p,
+        "--model",
+        "koenderink",
+        "--order",
+        "6",
+        "--json",
+        "--quiet",
+    ]);
+    assert!(ok, "{err}");
+    let fit: serde_json::Value = serde_json::from_str(&out).expect("json");
+    assert_eq!(v["choice"]["error"], fit["fits"][0]["ngan_l2"]);
+    assert_eq!(v["choice_image_error"], fit["image_errors"][0]);
+    let (ok, out, err) = brdf(&["select", "--data", &p, "--quiet"]);
+    assert!(ok, "{err}");
+    assert!(
+        out.contains("The choice, koenderink order 6:\nimage error (sky, 128 px): FLIP"),
+        "{out}"
+    );
+    let spec = format!("{}#25", curet.display());
+    let (ok, out, err) = brdf(&["select", "--data", &spec, "--json", "--quiet"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    assert!(v["choice_image_error"].is_null());
+    assert!(
+        v["image_note"]
+            .as_str()
+            .is_some_and(|n| n.contains("no image error")),
+        "{v}"
+    );
+}

@@ -750,6 +750,30 @@ pub fn select_by_image(
     Ok((rows, choice))
 }
 
+/// [`crate::select::select_fitted`] and, when the data can be rendered
+/// (`dense`, the same measurement as `samples`), the chosen model's image
+/// errors at [`REPORT_SIZE`] pixels; the judge's terms and the data's
+/// renders do not depend on the choice, so they are made beside the
+/// selection.
+pub fn select_judged(
+    samples: &SampleSet,
+    dense: Option<&dyn Brdf>,
+    tolerance: f64,
+    opts: &crate::FitOptions,
+    among: &crate::select::Among,
+    search: crate::select::Search,
+) -> Result<(Vec<crate::select::SelectRow>, usize, Option<ImageError>), FitError> {
+    let select = || crate::select::select_fitted(samples, tolerance, opts, among, search);
+    let judge = || dense.map(|d| Judge::with_data(REPORT_SIZE, d)).transpose();
+    let (selected, judge) = rayon::join(select, judge);
+    let (rows, choice, model) = selected?;
+    let image = match judge? {
+        Some(j) => Some(j.fit_errors(model.as_ref())?),
+        None => None,
+    };
+    Ok((rows, choice, image))
+}
+
 /// What a front end's `--metric` (or `metric=`) means for `model`:
 /// whether to fit for appearance, and the objective of the fit (of the
 /// candidates' first, for appearance). `auto` is the appearance fit for a

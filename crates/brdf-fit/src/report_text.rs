@@ -5,6 +5,7 @@
 
 use std::fmt::Write as _;
 
+use crate::appearance::ImageError;
 use crate::{FitReport, FitSummary};
 
 /// The readable report of one fit (several lines).
@@ -86,17 +87,24 @@ fn image_lines(s: &mut String, rep: &FitReport) {
         );
     }
     if let Some(e) = &rep.image_error {
-        for l in &e.lights {
-            let _ = writeln!(
-                s,
-                "image error ({}, {} px): FLIP {:.3}  PSNR {:.1} dB  mean colour CIEDE2000 {:.2}",
-                l.light, e.size, l.flip, l.psnr, l.delta_e
-            );
-        }
+        s.push_str(&image_error_lines(e));
     }
     if let Some(n) = &rep.image_note {
         let _ = writeln!(s, "{n}");
     }
+}
+
+/// One line per light set of image errors (`brdf fit`, `brdf select`).
+pub fn image_error_lines(e: &ImageError) -> String {
+    let mut s = String::new();
+    for l in &e.lights {
+        let _ = writeln!(
+            s,
+            "image error ({}, {} px): FLIP {:.3}  PSNR {:.1} dB  mean colour CIEDE2000 {:.2}",
+            l.light, e.size, l.flip, l.psnr, l.delta_e
+        );
+    }
+    s
 }
 
 /// Names of the non-linear parameters a fit leaves undetermined: the

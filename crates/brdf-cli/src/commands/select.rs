@@ -5,6 +5,8 @@
 
 use crate::error::CliError;
 use brdf_fit::FitOptions;
+use brdf_fit::appearance::SCATTERED_NOTE;
+use brdf_fit::report_text::image_error_lines;
 
 /// Arguments of `brdf select`.
 #[derive(Debug, clap::Args)]
@@ -66,14 +68,17 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     } else {
         brdf_fit::select::Search::CoarseToFine
     };
-    let (rows, choice) = brdf_fit::select::select_with(
+    let dense = brdf_io::load_dense(&args.data)?;
+    let (rows, choice, image) = brdf_fit::appearance::select_judged(
         &data,
+        dense.as_deref(),
         args.tolerance,
         &FitOptions::default(),
         &among,
         search,
     )?;
     bar.finish_and_clear();
+    let note = image.is_none().then_some(SCATTERED_NOTE);
     if args.json {
         let v = serde_json::json!({
             "data": data.name,
@@ -81,12 +86,28 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
             "tolerance": args.tolerance,
             "search": if args.exhaustive { "exhaustive" } else { "coarse to fine" },
             "choice": rows[choice],
+            "choice_image_error": image,
+            "image_note": note,
             "candidates": rows,
         });
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     let table = brdf_fit::select::table(&data.name, &rows, choice, args.tolerance);
-    say_raw!("{}", table.markdown())
+    say_raw!("{}", table.markdown())?;
+    match &image {
+        Some(e) => {
+            say_raw!(
+                "\nThe choice, {}:\n{}",
+                rows[choice].label,
+                image_error_lines(e)
+            )?;
+            for w in e.warnings() {
+                say!("warning: {w}")?;
+            }
+            Ok(())
+        }
+        None => say!("\n{}", note.unwrap_or_default()),
+    }
 }
 
 /// `brdf select --by-image`: a thin layer over

@@ -17,7 +17,7 @@ use brdf_solve::{BoundStatus, LmOptions, ModelProblem, SolverReport, bounded_lea
 use rayon::prelude::*;
 
 use super::candidates::{Candidate, Todo};
-use super::{SelectRow, fit_candidate};
+use super::{Fitted, SelectRow, fit_candidate};
 use crate::FitError;
 use crate::pipeline::{FitOptions, FitSummary, Objective, box_constraints, fit};
 
@@ -52,7 +52,7 @@ pub(super) fn coarse_to_fine(
     tolerance: f64,
     opts: &FitOptions,
     todo: Vec<Todo>,
-) -> Vec<SelectRow> {
+) -> Vec<Fitted> {
     let (sub, _) = crate::pipeline::stratified_subsample(data, COARSE_SAMPLES);
     if sub.len() == data.len() {
         return super::fit_all(data, opts, todo);
@@ -97,8 +97,8 @@ pub(super) fn coarse_to_fine(
     coarse
         .into_par_iter()
         .map(|t| match t {
-            Stage::Failed(row) => row,
-            Stage::Coarse(c) if c.row.error > bar => c.row.screened(data.len(), bar),
+            Stage::Failed(row) => (row, None),
+            Stage::Coarse(c) if c.row.error > bar => (c.row.screened(data.len(), bar), None),
             Stage::Coarse(c) => c.fine(data, opts),
         })
         .collect()
@@ -122,17 +122,17 @@ struct Coarse {
 
 impl Coarse {
     /// The candidate fitted to all samples, from its coarse optimum too.
-    fn fine(self, data: &SampleSet, opts: &FitOptions) -> SelectRow {
+    fn fine(self, data: &SampleSet, opts: &FitOptions) -> Fitted {
         let Candidate { label, name, model } = self.candidate;
         let coarse_error = self.row.error.is_finite().then_some(self.row.error);
         let (model, from_coarse) = match self.fitted {
             Some(m) => (m, true),
             None => (model, false),
         };
-        let (mut row, _) = fit_candidate(data, opts, label, name, model, from_coarse);
+        let (mut row, fitted) = fit_candidate(data, opts, label, name, model, from_coarse);
         row.seconds += self.row.seconds;
         row.coarse_error = coarse_error;
-        row
+        (row, fitted)
     }
 }
 

@@ -77,27 +77,52 @@ pub fn select_with(
     among: &Among,
     search: Search,
 ) -> Result<(Vec<SelectRow>, usize), FitError> {
+    let (rows, choice, _) = select_fitted(data, tolerance, opts, among, search)?;
+    Ok((rows, choice))
+}
+
+/// [`select_with`], with the chosen model at its fitted parameters (to
+/// render it, save it, judge its image error).
+pub fn select_fitted(
+    data: &SampleSet,
+    tolerance: f64,
+    opts: &FitOptions,
+    among: &Among,
+    search: Search,
+) -> Result<(Vec<SelectRow>, usize, Box<dyn Parametric>), FitError> {
     if !(tolerance >= 0.0 && tolerance.is_finite()) {
         return Err(FitError::Usage(format!(
             "--tolerance {tolerance} must be >= 0"
         )));
     }
     let todo = candidates::admitted(data, among)?;
-    let rows = match search {
+    let fitted = match search {
         Search::Exhaustive => fit_all(data, opts, todo),
         Search::CoarseToFine => coarse::coarse_to_fine(data, tolerance, opts, todo),
     };
+    let (rows, mut models): (Vec<SelectRow>, Vec<Option<Box<dyn Parametric>>>) =
+        fitted.into_iter().unzip();
     let choice = choose(&data.name, &rows, tolerance)?;
-    Ok((rows, choice))
+    // A row fitted to all samples with a finite error has its model.
+    let model = models[choice].take().ok_or_else(|| {
+        FitError::Usage(format!(
+            "`{}`: the chosen candidate {} kept no model",
+            data.name, rows[choice].label
+        ))
+    })?;
+    Ok((rows, choice, model))
 }
+
+/// A candidate's row and, when it was fitted to all samples, its model.
+type Fitted = (SelectRow, Option<Box<dyn Parametric>>);
 
 /// Every candidate of `todo` fitted to all of `data`, in parallel, rows in
 /// candidate order.
-fn fit_all(data: &SampleSet, opts: &FitOptions, todo: Vec<Todo>) -> Vec<SelectRow> {
+fn fit_all(data: &SampleSet, opts: &FitOptions, todo: Vec<Todo>) -> Vec<Fitted> {
     todo.into_par_iter()
         .map(|t| match t {
-            Todo::Fit(c) => fit_candidate(data, opts, c.label, c.name, c.model, false).0,
-            Todo::Failed(row) => row,
+            Todo::Fit(c) => fit_candidate(data, opts, c.label, c.name, c.model, false),
+            Todo::Failed(row) => (row, None),
         })
         .collect()
 }
