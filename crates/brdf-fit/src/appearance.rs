@@ -762,16 +762,16 @@ pub fn select_judged(
     opts: &crate::FitOptions,
     among: &crate::select::Among,
     search: crate::select::Search,
-) -> Result<(Vec<crate::select::SelectRow>, usize, Option<ImageError>), FitError> {
+) -> Result<(crate::select::Selection, Option<ImageError>), FitError> {
     let select = || crate::select::select_fitted(samples, tolerance, opts, among, search);
     let judge = || dense.map(|d| Judge::with_data(REPORT_SIZE, d)).transpose();
     let (selected, judge) = rayon::join(select, judge);
-    let (rows, choice, model) = selected?;
+    let selection = selected?;
     let image = match judge? {
-        Some(j) => Some(j.fit_errors(model.as_ref())?),
+        Some(j) => Some(j.fit_errors(selection.model.as_ref())?),
         None => None,
     };
-    Ok((rows, choice, image))
+    Ok((selection, image))
 }
 
 /// What a front end's `--metric` (or `metric=`) means for `model`:

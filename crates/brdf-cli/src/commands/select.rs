@@ -69,7 +69,7 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
         brdf_fit::select::Search::CoarseToFine
     };
     let dense = brdf_io::load_dense(&args.data)?;
-    let (rows, choice, image) = brdf_fit::appearance::select_judged(
+    let (selection, image) = brdf_fit::appearance::select_judged(
         &data,
         dense.as_deref(),
         args.tolerance,
@@ -77,6 +77,7 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
         &among,
         search,
     )?;
+    let (rows, choice) = (selection.rows, selection.choice);
     bar.finish_and_clear();
     let note = image.is_none().then_some(SCATTERED_NOTE);
     if args.json {

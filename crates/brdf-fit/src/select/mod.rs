@@ -77,8 +77,18 @@ pub fn select_with(
     among: &Among,
     search: Search,
 ) -> Result<(Vec<SelectRow>, usize), FitError> {
-    let (rows, choice, _) = select_fitted(data, tolerance, opts, among, search)?;
-    Ok((rows, choice))
+    let s = select_fitted(data, tolerance, opts, among, search)?;
+    Ok((s.rows, s.choice))
+}
+
+/// A selection: every candidate's row, the choice, and the chosen model.
+pub struct Selection {
+    /// One row per candidate, in candidate order.
+    pub rows: Vec<SelectRow>,
+    /// Index of the choice in `rows`.
+    pub choice: usize,
+    /// The chosen model at its fitted parameters.
+    pub model: Box<dyn Parametric>,
 }
 
 /// [`select_with`], with the chosen model at its fitted parameters (to
@@ -89,7 +99,7 @@ pub fn select_fitted(
     opts: &FitOptions,
     among: &Among,
     search: Search,
-) -> Result<(Vec<SelectRow>, usize, Box<dyn Parametric>), FitError> {
+) -> Result<Selection, FitError> {
     if !(tolerance >= 0.0 && tolerance.is_finite()) {
         return Err(FitError::Usage(format!(
             "--tolerance {tolerance} must be >= 0"
@@ -110,7 +120,11 @@ pub fn select_fitted(
             data.name, rows[choice].label
         ))
     })?;
-    Ok((rows, choice, model))
+    Ok(Selection {
+        rows,
+        choice,
+        model,
+    })
 }
 
 /// A candidate's row and, when it was fitted to all samples, its model.
