@@ -38,7 +38,7 @@
 //! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
 //! | [`image_objective`] | the image objective: residuals of tone-mapped sphere pixels |
-//! | [`reference`] | the data's judge render made once, and fits' image errors against it |
+//! | [`reference`](mod@reference) | the data's judge render made once, and fits' image errors against it |
 //! | [`boxed`] | [`BoxedModel`]: a model fitted in other parameter boxes than its own |
 //! | [`scaling`] | internal scaling of extreme data and weights (scale invariance) |
 //! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
