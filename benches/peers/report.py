@@ -449,7 +449,8 @@ def issue28_section(d):
                        f"{len(c)} candidates on the coarse subsample, {full} refitted on all samples{slowest}; goal <= 5 s |")
         for r in bat:
             out.append(f"| `brdf batch` RGL folder x 5 models | {r['tag']['threads']} | {r['cpu']:.2f} | {r['wall']:.2f} | "
-                       f"{r['tag']['fits'] / r['wall']:.3f} fits/s |")
+                       f"{r['tag']['fits'] / r['wall']:.3f} fits/s (each as `brdf fit` runs it: the renderer models "
+                       "for appearance; image errors included) |")
         if len(bat) == 2:
             out += ["", f"Batch throughput, 2 threads over 1 thread: {bat[0]['wall'] / bat[1]['wall']:.2f}x (goal >= 1.8x; "
                     "wall clock, so other work on the shared machine counts against it)."]
