@@ -285,7 +285,7 @@ fn fit_all(
                 .map(|model| {
                     let r = match &loaded {
                         Ok(m) => fit_one(m, material, model, opts),
-                        Err(e) => Err(format!("{}: {e}", data_name(material))),
+                        Err(e) => Err(e.to_string()),
                     };
                     progress();
                     r

@@ -17,6 +17,8 @@ pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::V
         "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
         "notes": reports.iter().map(|r| &r.notes).collect::<Vec<_>>(),
         "image_errors": reports.iter().map(|r| &r.image_error).collect::<Vec<_>>(),
+        // Why a fit has no image error (scattered data), or null.
+        "image_notes": reports.iter().map(|r| &r.image_note).collect::<Vec<_>>(),
         "candidates": reports.iter().map(|r| &r.candidates).collect::<Vec<_>>(),
         "samples_present": first.samples_present,
         "dropped_invalid": first.dropped_invalid,

@@ -13,8 +13,10 @@ the `brdf` wheel installed and the data at the same path):
 
     python ray_batch.py --address ray://HEAD:10001 --data ... --models ... --out ...
 
-A material is one Ray task: it is loaded once and fitted with every model,
-as `brdf batch` does. A rerun skips the fits already in OUT/fits.jsonl.
+A material is one Ray task, fitted with every model as `brdf batch` fits
+(by its path: renderer models fitted for appearance on data that can be
+rendered, each line with its image errors). A rerun skips the fits already
+in OUT/fits.jsonl.
 """
 
 import argparse
@@ -23,6 +25,7 @@ import json
 import math
 import os
 import sys
+import time
 from decimal import Decimal
 from typing import Any, Optional, Union
 
@@ -35,26 +38,31 @@ Fits = dict[tuple[str, str], dict[str, Any]]
 Cell = tuple[Any, ...]
 
 COLUMNS = ["data", "model", "samples used", "samples present", "Ngan L2",
-           "termination", "seconds"]
+           "FLIP sky", "FLIP studio", "dE2000 (max)", "termination", "seconds"]
 
 
 @ray.remote
 def fit_material(material: str, name: str, models: list[str], channels: str, limit: float,
                  starts: int) -> list[Union[str, dict[str, Any]]]:
-    """Load one material and fit every model: batch lines, or error strings."""
+    """Load one material and fit every model: batch lines, or error strings.
+    Fitted by its path, as `brdf batch` fits: renderer models for appearance
+    on data that can be rendered, with its image errors."""
     try:
-        samples = brdf.load(material)
+        brdf.load(material)
     except brdf.BrdfError as e:
         return [str(e) for _ in models]
     out: list[Union[str, dict[str, Any]]] = []
     for model in models:
+        t0 = time.perf_counter()
         try:
-            report = brdf.fit(samples, model, channels=channels,
+            report = brdf.fit(material, model, channels=channels,
                               limit_deg=limit, starts=starts).report
         except brdf.BrdfError as e:
             out.append(f"{name} x {model}: {e}")
             continue
         fit = report["fits"][0]
+        candidates = report["candidates"][0]
+        chosen = next((c for c in candidates if c["chosen"]), None)
         out.append({
             "data": name,
             "model": model,
@@ -62,6 +70,13 @@ def fit_material(material: str, name: str, models: list[str], channels: str, lim
             "samples_present": report["samples_present"],
             "limit_deg": limit,
             "fit": fit,
+            "seconds": time.perf_counter() - t0,
+            "for_appearance": None if chosen is None else {
+                "objective": chosen["objective"], "lobes": chosen["lobes"],
+                "candidates": len(candidates)},
+            "image_error": report["image_errors"][0],
+            "image_note": report["image_notes"][0],
+            "notes": report["notes"][0],
         })
     return out
 
@@ -118,13 +133,21 @@ def summary_rows(fits: Fits) -> list[list[Cell]]:
     for (data, model) in sorted(fits):
         v = fits[(data, model)]
         f = v["fit"]
+        lights = {l["light"]: l for l in (v.get("image_error") or {}).get("lights", [])}
+        des = [l["delta_e"] for l in lights.values()]
+
+        def image(x: Optional[float], digits: int) -> Cell:
+            return ("text", "-") if x is None else ("num", x, digits)
         rows.append([
             ("text", data), ("text", model),
             ("text", json.dumps(v["samples_used"])),
             ("text", json.dumps(v["samples_present"])),
             ("num", f.get("ngan_l2"), 6),
+            image(lights.get("sky", {}).get("flip"), 3),
+            image(lights.get("studio", {}).get("flip"), 3),
+            image(max(des) if des else None, 2),
             ("text", f.get("termination") or ""),
-            ("num", f.get("seconds"), 3),
+            ("num", v.get("seconds", f.get("seconds")), 3),
         ])
     return rows
 
