@@ -415,7 +415,6 @@ pub fn fit_for_appearance_with(
     }
     let (mut report, mut k) = best.ok_or_else(|| FitError::Usage("no candidate fit".into()))?;
     let objective = Objective::parse(&candidates[k].objective)?;
-    let winning = objective;
     let isotropic = is_isotropic(data);
     let (winner, mut single_gain) = (k, false);
     for on in optional_lobes(fit.model_name()) {
@@ -450,13 +449,13 @@ pub fn fit_for_appearance_with(
             .iter()
             .map(|(_, j)| flip(&candidates, *j))
             .fold(f64::INFINITY, f64::min);
-        for (objective, (_, b)) in CANDIDATE_OBJECTIVES.into_iter().zip(&base_params) {
+        for (o, (_, b)) in CANDIDATE_OBJECTIVES.into_iter().zip(&base_params) {
             let in_reach = flip(&candidates, *b) <= PAIR_REACH * best_base;
-            if !in_reach || (objective == winning && !single_gain) {
+            if !in_reach || (o == objective && !single_gain) {
                 continue;
             }
             let f = with_lobes(fit, &all);
-            let (r, c) = candidate(&f, objective, all.clone(), samples, &judge)?;
+            let (r, c) = candidate(&f, o, all.clone(), samples, &judge)?;
             candidates.push(c);
             let j = candidates.len() - 1;
             if flip(&candidates, j) < flip(&candidates, k) * (1.0 - LOBE_MARGIN) {
@@ -611,7 +610,15 @@ pub fn fit_judged(
         report.image_note = Some(SCATTERED_NOTE.to_string());
         return Ok(report);
     };
-    fit_judged_by(fit, samples, data, for_appearance, None)
+    // The report's judge (its cells and the data's renders) does not
+    // depend on the fit: built beside it, on another thread when there is
+    // one.
+    let (report, judge) = rayon::join(
+        || fit_rendered(fit, samples, data, for_appearance),
+        || Judge::with_data(REPORT_SIZE, data),
+    );
+    let report = report?;
+    with_image_errors(report, &judge?)
 }
 
 /// [`fit_judged`] on data that can be rendered, judged by `judge` (the
@@ -624,47 +631,31 @@ pub fn fit_judged_on(
     for_appearance: bool,
     judge: &Judge,
 ) -> Result<FitReport, FitError> {
-    fit_judged_by(fit, samples, data, for_appearance, Some(judge))
+    with_image_errors(fit_rendered(fit, samples, data, for_appearance)?, judge)
 }
 
-/// [`fit_judged`] on renderable data, with the report-size judge `report`
-/// already holding the data's renders ([`Judge::with_data`]) when several
-/// fits of the same data are judged (`None`: rendered here).
-fn fit_judged_by(
+/// The fit of [`fit_judged`] on data that can be rendered, before its
+/// image errors.
+fn fit_rendered(
     fit: &Fit,
     samples: &SampleSet,
     data: &dyn Brdf,
     for_appearance: bool,
-    report_judge: Option<&Judge>,
 ) -> Result<FitReport, FitError> {
-    let run = || -> Result<FitReport, FitError> {
-        if for_appearance {
-            let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
-            report.candidates = candidates;
-            Ok(report)
-        } else if fit.needs_image_target() {
-            fit_in_image_objective(fit, samples, data)
-        } else {
-            fit.run(samples)
-        }
-    };
-    let errors = |report: &FitReport, judge: &Judge| judge.fit_errors(report.model.as_ref());
-    let (mut report, errors) = match report_judge {
-        Some(j) => {
-            let report = run()?;
-            let e = errors(&report, j)?;
-            (report, e)
-        }
-        None => {
-            // The report's judge (its cells and the data's renders) does
-            // not depend on the fit: built beside it, on another thread
-            // when there is one.
-            let (report, judge) = rayon::join(run, || Judge::with_data(REPORT_SIZE, data));
-            let report = report?;
-            let e = errors(&report, &judge?)?;
-            (report, e)
-        }
-    };
+    if for_appearance {
+        let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
+        report.candidates = candidates;
+        Ok(report)
+    } else if fit.needs_image_target() {
+        fit_in_image_objective(fit, samples, data)
+    } else {
+        fit.run(samples)
+    }
+}
+
+/// `report` with its image errors by `judge` and their warnings attached.
+fn with_image_errors(mut report: FitReport, judge: &Judge) -> Result<FitReport, FitError> {
+    let errors = judge.fit_errors(report.model.as_ref())?;
     report.notes.extend(errors.warnings());
     report.image_error = Some(errors);
     Ok(report)
@@ -733,7 +724,7 @@ pub fn select_by_image(
         .par_iter()
         .map(|name| {
             let t0 = Instant::now();
-            let report = fit_judged_by(&Fit::model(name)?, samples, data, true, Some(&judge))?;
+            let report = fit_judged_on(&Fit::model(name)?, samples, data, true, &judge)?;
             let chosen = report.candidates.iter().find(|c| c.chosen);
             Ok(ImageChoice {
                 model: report.summary.model.clone(),

@@ -425,10 +425,11 @@ pub fn write_summary(dir: &Path, fits: &Fits) -> Result<(), FitError> {
                 .and_then(|l| l[key].as_f64())
         };
         let image = |x: Option<f64>, d| x.map_or(Cell::Text("-".into()), |x| Cell::Num(x, d));
-        let de = match (light("sky", "delta_e"), light("studio", "delta_e")) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            (a, b) => a.or(b),
-        };
+        let de = lights
+            .into_iter()
+            .flatten()
+            .filter_map(|l| l["delta_e"].as_f64())
+            .reduce(f64::max);
         t.rows.push(vec![
             Cell::Text(data.clone()),
             Cell::Text(model.clone()),

@@ -1,5 +1,5 @@
-//! Precomputed shading terms of a scene and the batched render built on
-//! them: the key to image-space fitting.
+//! Precomputed shading terms of a scene, the key to image-space fitting
+//! (the render built on them is [`crate::batch`]).
 //!
 //! For a camera, a light set and an image size, [`ShadingPoints`] holds, for
 //! every pixel that sees the sphere, the view direction in the local frame
@@ -31,9 +31,6 @@
 //! supersampled (a pixel then has several entries in
 //! [`ShadingPoints::pixels`], one per sub-pixel ray, its weights scaled by
 //! the ray's share) and renders are filtered by Mitsuba's Gaussian.
-//!
-//! Rendering sums each pixel's terms in a fixed order, in parallel over image
-//! rows, so the image is identical for any number of threads.
 
 use brdf_core::Brdf;
 use nalgebra::Vector3;
