@@ -166,5 +166,40 @@ fn each_fit_is_brdf_fits_with_its_image_errors() {
             assert!((flip - expected).abs() <= 1e-3 * expected, "{line}");
         }
     }
+    // The batch's report shows the line's image errors (the pages render
+    // on the judge's film, as the batch did) and its whole-fit seconds.
+    let (ok, _, err) = brdf(&["report", "--batch", &out, "--quiet"]);
+    assert!(ok, "{err}");
+    let index = std::fs::read_to_string(tmp.join("report").join("index.html")).expect("index");
+    let row = index
+        .split("<tr>")
+        .find(|r| r.contains("paper_white"))
+        .expect("paper_white's row");
+    let values: Vec<f64> = row
+        .split("data-value=\"")
+        .skip(1)
+        .map(|v| {
+            v.split('"')
+                .next()
+                .and_then(|x| x.parse().ok())
+                .expect("a number")
+        })
+        .collect();
+    let lights = rgl["image_error"]["lights"].as_array().expect("lights");
+    let mean = lights
+        .iter()
+        .map(|l| l["flip"].as_f64().expect("flip"))
+        .sum::<f64>()
+        / lights.len() as f64;
+    let seconds = rgl["seconds"].as_f64().expect("seconds");
+    // Columns: Ngan L2, FLIP, dE (max), seconds.
+    assert!(
+        (values[1] - mean).abs() <= 1e-12 * mean,
+        "{values:?} vs {mean}"
+    );
+    assert!(
+        (values[3] - seconds).abs() <= 1e-9 * seconds,
+        "{values:?} vs {seconds}"
+    );
     let _ = std::fs::remove_dir_all(&tmp);
 }

@@ -35,7 +35,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use brdf_core::{Brdf, DirPairs, SampleSet};
-use brdf_render::{LightSet, ShadingPoints};
+use brdf_render::{Image, LightSet, ShadingPoints};
 use serde::Serialize;
 
 use crate::image_objective::{ImageTarget, ImageTerms};
@@ -213,21 +213,46 @@ impl Judge {
 
     /// The image errors of `fit` against the data of [`Judge::with_data`].
     pub fn fit_errors(&self, fit: &dyn Brdf) -> Result<ImageError, FitError> {
-        if self.reference.len() != self.points.len() {
-            return Err(FitError::Usage(
-                "Judge::fit_errors needs the data's renders: build the judge with Judge::with_data"
-                    .into(),
-            ));
-        }
         self.errors_against(&self.reference, fit)
     }
 
+    /// The image errors of `fit` against the data of [`Judge::with_data`]
+    /// and the renders they compare, one per light set: what a report
+    /// shows beside its numbers (the fit rendered once for both).
+    pub fn fit_renders(&self, fit: &dyn Brdf) -> Result<(ImageError, Vec<LightRenders>), FitError> {
+        let renders: Vec<Image> = self.points.iter().map(|(_, sp)| sp.render(fit)).collect();
+        let errors = self.errors_of(&self.reference, &renders)?;
+        let renders = self
+            .points
+            .iter()
+            .zip(&self.reference)
+            .zip(renders)
+            .map(|(((light, _), r), fit)| LightRenders {
+                light: light.name().to_string(),
+                data: r.image().clone(),
+                fit,
+                exposure: r.exposure(),
+            })
+            .collect();
+        Ok((errors, renders))
+    }
+
     fn errors_against(&self, refs: &[Reference], fit: &dyn Brdf) -> Result<ImageError, FitError> {
+        let renders: Vec<Image> = self.points.iter().map(|(_, sp)| sp.render(fit)).collect();
+        self.errors_of(refs, &renders)
+    }
+
+    /// The image errors of the fit's `renders` (one per light set) against
+    /// the data's `refs`.
+    fn errors_of(&self, refs: &[Reference], renders: &[Image]) -> Result<ImageError, FitError> {
+        if refs.len() != self.points.len() {
+            return Err(FitError::Usage(
+                "the judge has no renders of the data: build it with Judge::with_data".into(),
+            ));
+        }
         let mut lights = Vec::with_capacity(self.points.len());
-        for ((light, sp), r) in self.points.iter().zip(refs) {
-            let e = r
-                .errors(sp, fit)
-                .map_err(|e| FitError::Usage(e.to_string()))?;
+        for ((light, _), (r, t)) in self.points.iter().zip(refs.iter().zip(renders)) {
+            let e = r.errors_of(t).map_err(|e| FitError::Usage(e.to_string()))?;
             lights.push(LightError {
                 light: light.name().to_string(),
                 flip: e.flip,
@@ -243,6 +268,20 @@ impl Judge {
             lights,
         })
     }
+}
+
+/// A light set's renders of the data and of a fit on the judge's film
+/// (background included), as [`Judge`] compares them.
+#[derive(Clone, Debug)]
+pub struct LightRenders {
+    /// Light set name.
+    pub light: String,
+    /// The data's render.
+    pub data: Image,
+    /// The fit's render.
+    pub fit: Image,
+    /// The exposure `1 / p99` of the data's sphere pixels.
+    pub exposure: f64,
 }
 
 /// The shading terms of the standard light sets at `size` pixels (no

@@ -38,14 +38,29 @@ impl Reference {
         })
     }
 
+    /// The data's render.
+    pub fn image(&self) -> &Image {
+        &self.image
+    }
+
+    /// The exposure `1 / p99` of the data's sphere pixels.
+    pub fn exposure(&self) -> f64 {
+        self.exposure
+    }
+
     /// The image errors of `fit` rendered on `sp` (the terms this
     /// reference was rendered on), as `brdf_render::compare::compare_with`.
     pub fn errors(&self, sp: &ShadingPoints, fit: &dyn Brdf) -> Result<ImageErrors, RenderError> {
-        let t = sp.render(fit);
-        let mean_colour_test = mean_colour(&t, &self.mask);
+        self.errors_of(&sp.render(fit))
+    }
+
+    /// The image errors of `t`, a fit rendered on the terms this reference
+    /// was rendered on.
+    pub fn errors_of(&self, t: &Image) -> Result<ImageErrors, RenderError> {
+        let mean_colour_test = mean_colour(t, &self.mask);
         Ok(ImageErrors {
-            flip: hdr_flip(&self.image, &t)?,
-            psnr: psnr(&self.image, &t, self.exposure)?,
+            flip: hdr_flip(&self.image, t)?,
+            psnr: psnr(&self.image, t, self.exposure)?,
             delta_e_mean_colour: delta_e_mean_colours(self.mean_colour, mean_colour_test),
             mean_colour_ref: self.mean_colour,
             mean_colour_test,

@@ -11,12 +11,14 @@ use brdf_models::saved_model::{SCHEMA, SavedModel, VERSION};
 use serde::Serialize;
 use serde_json::{Value, json};
 
-use crate::fit_page::{FitInput, RunInfo, analyse, render};
+use crate::fit_page::{Analyser, FitInput, RunInfo, render};
 use crate::{ReportError, templates};
 
-/// Pixels per side of the spheres of batch pages (smaller than a single
-/// report's, so a large batch stays quick).
-pub const SPHERE_SIZE: usize = 96;
+/// Pixels per side of the spheres of batch pages: the judge's film, so
+/// a page's image errors are the ones `brdf batch` wrote for its line.
+/// The judge's terms are made once per index and each material is
+/// rendered once for all its models ([`Analyser`]).
+pub const SPHERE_SIZE: usize = brdf_fit::appearance::REPORT_SIZE;
 
 /// What was written.
 #[derive(Clone, Debug)]
@@ -93,9 +95,16 @@ fn page_name(data: &str, model: &str) -> String {
     format!("{}__{}.html", clean(data), clean(model))
 }
 
-fn run_info(fit: &Value) -> RunInfo {
+/// How the fit of a `fits.jsonl` line ran: the whole fit's seconds (the
+/// line's, as the batch summary gives them; older lines have only the kept
+/// solve's) and how its kept solve ended.
+fn run_info(line: &Value) -> RunInfo {
+    let fit = &line["fit"];
     RunInfo {
-        seconds: fit["seconds"].as_f64().unwrap_or(f64::NAN),
+        seconds: line["seconds"]
+            .as_f64()
+            .or_else(|| fit["seconds"].as_f64())
+            .unwrap_or(f64::NAN),
         termination: fit["termination"].as_str().unwrap_or("not recorded").into(),
         iterations: fit["iterations"].as_u64().map(|n| n as usize),
     }
@@ -103,7 +112,7 @@ fn run_info(fit: &Value) -> RunInfo {
 
 /// The row of a `fits.jsonl` line before its page is made.
 fn base_row(line: &Value) -> Row {
-    let run = run_info(&line["fit"]);
+    let run = run_info(line);
     Row {
         data: line["data"].as_str().unwrap_or_default().to_string(),
         model: line["model"].as_str().unwrap_or_default().to_string(),
@@ -116,7 +125,13 @@ fn base_row(line: &Value) -> Row {
 
 /// Make the fit page of `line` in `dir` (its thumbnails and errors go into
 /// `r`); the page's file name.
-fn page(line: &Value, r: &mut Row, dir: &Path, back: &str) -> Result<String, ReportError> {
+fn page(
+    line: &Value,
+    r: &mut Row,
+    dir: &Path,
+    back: &str,
+    analyser: &mut Analyser,
+) -> Result<String, ReportError> {
     let what = format!("{} x {}", r.data, r.model);
     let saved = saved_model(line, &what)?;
     let spec = resolve_data(&r.data);
@@ -124,10 +139,10 @@ fn page(line: &Value, r: &mut Row, dir: &Path, back: &str) -> Result<String, Rep
         data: &spec,
         saved: &saved,
         fit_source: "fits.jsonl",
-        run: Some(run_info(&line["fit"])),
+        run: Some(run_info(line)),
         selection: None,
     };
-    let a = analyse(&input, SPHERE_SIZE)?;
+    let a = analyser.analyse(&input)?;
     r.flip = a.image.as_ref().map(|i| i.mean_flip());
     r.delta_e = a.image.as_ref().map(|i| i.max_delta_e());
     r.measured = a.spheres.first().and_then(|s| s.measured.clone());
@@ -168,10 +183,11 @@ pub fn write_batch_report(
         .file_name()
         .map_or("index.html".into(), |n| n.to_string_lossy().to_string());
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    let mut analyser = Analyser::new(SPHERE_SIZE);
     for (k, ((data, model), line)) in fits.iter().enumerate() {
         progress(k, fits.len(), &format!("{data} x {model}"));
         let mut r = base_row(line);
-        match page(line, &mut r, dir, &back) {
+        match page(line, &mut r, dir, &back, &mut analyser) {
             Ok(name) => r.page = Some(name),
             Err(e) => {
                 r.note = format!("{data} x {model}: {e}");

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use brdf_core::Brdf;
+use brdf_core::{Brdf, SampleSet};
 use brdf_fit::appearance::{ImageError, Judge};
 use brdf_models::saved_model::SavedModel;
 use serde::Serialize;
@@ -62,28 +62,96 @@ pub struct Analysis {
 
 /// Load the data, rebuild the model, render and measure everything.
 pub fn analyse(input: &FitInput, sphere_size: usize) -> Result<Analysis, ReportError> {
-    let data = brdf_io::load(input.data)?;
-    let dense = brdf_io::load_dense(input.data)?;
-    let model = input.saved.build().map_err(|e| ReportError::Model {
-        what: input.fit_source.into(),
-        reason: e.to_string(),
-    })?;
-    let model: &dyn Brdf = model.as_ref();
-    let dense_ref = dense.as_deref();
-    let image = match dense_ref {
-        Some(d) => Some(Judge::new(sphere_size).errors(d, model)?),
-        None => None,
-    };
-    let termination = input.run.as_ref().map(|r| r.termination.as_str());
-    Ok(Analysis {
-        samples: data.len(),
-        dense: dense.is_some(),
-        slices: polar::slices(&data, dense_ref, model),
-        coverage_svg: coverage::svg(&data)?,
-        spheres: spheres::rows(dense_ref, model, sphere_size)?,
-        verdict: verdict(input.saved, image.as_ref(), termination),
-        image,
-    })
+    Analyser::new(sphere_size).analyse(input)
+}
+
+/// Analyses pages of one sphere size, keeping what consecutive pages share:
+/// the judge's terms (they do not depend on the data) and the last data
+/// set with its renders (a batch's lines come sorted by data, each
+/// material's models in a row). A page is what [`analyse`] makes.
+pub struct Analyser {
+    size: usize,
+    /// the judge's terms, made at the first dense data set
+    terms: Option<Judge>,
+    /// the last data set read
+    data: Option<Loaded>,
+}
+
+/// A data set as read for its pages.
+struct Loaded {
+    spec: String,
+    samples: SampleSet,
+    dense: Option<Box<dyn Brdf>>,
+    /// the judge with the dense data's renders
+    judge: Option<Judge>,
+}
+
+impl Analyser {
+    /// An analyser of pages whose spheres are `size` pixels wide.
+    pub fn new(size: usize) -> Self {
+        Analyser {
+            size,
+            terms: None,
+            data: None,
+        }
+    }
+
+    /// The data set `spec`, read (and rendered) unless it was the last one.
+    fn load(&mut self, spec: &str) -> Result<&Loaded, ReportError> {
+        let loaded = match self.data.take() {
+            Some(d) if d.spec == spec => d,
+            _ => self.read(spec)?,
+        };
+        Ok(self.data.insert(loaded))
+    }
+
+    /// Read `spec` and render it on the judge's terms when it is dense.
+    fn read(&mut self, spec: &str) -> Result<Loaded, ReportError> {
+        let samples = brdf_io::load(spec)?;
+        let dense = brdf_io::load_dense(spec)?;
+        let judge = match dense.as_deref() {
+            Some(d) => {
+                let terms = self.terms.get_or_insert_with(|| Judge::new(self.size));
+                Some(terms.rendering(d)?)
+            }
+            None => None,
+        };
+        Ok(Loaded {
+            spec: spec.to_string(),
+            samples,
+            dense,
+            judge,
+        })
+    }
+
+    /// The analysis of one page.
+    pub fn analyse(&mut self, input: &FitInput) -> Result<Analysis, ReportError> {
+        let size = self.size;
+        let data = self.load(input.data)?;
+        let model = input.saved.build().map_err(|e| ReportError::Model {
+            what: input.fit_source.into(),
+            reason: e.to_string(),
+        })?;
+        let model: &dyn Brdf = model.as_ref();
+        let dense_ref = data.dense.as_deref();
+        let (image, spheres) = match &data.judge {
+            Some(judge) => {
+                let (errors, renders) = judge.fit_renders(model)?;
+                (Some(errors), spheres::rows_of(&renders)?)
+            }
+            None => (None, spheres::fitted_rows(model, size)?),
+        };
+        let termination = input.run.as_ref().map(|r| r.termination.as_str());
+        Ok(Analysis {
+            samples: data.samples.len(),
+            dense: dense_ref.is_some(),
+            slices: polar::slices(&data.samples, dense_ref, model),
+            coverage_svg: coverage::svg(&data.samples)?,
+            spheres,
+            verdict: verdict(input.saved, image.as_ref(), termination),
+            image,
+        })
+    }
 }
 
 /// One parameter row.

@@ -1,8 +1,11 @@
 //! Spheres under the judge's light sets: measured | fitted | FLIP map per
-//! light (dense data), or the fitted sphere alone (scattered data, where no
-//! image error can be formed), each as a PNG `data:` URI with its exposure.
+//! light (dense data: the judge's own renders, [`rows_of`], so the map is
+//! the one whose mean the page reports), or the fitted sphere alone
+//! (scattered data, where no image error can be formed, [`fitted_rows`]),
+//! each as a PNG `data:` URI with its exposure.
 
 use brdf_core::Brdf;
+use brdf_fit::appearance::LightRenders;
 use brdf_render::LightSet;
 use brdf_render::ShadingPoints;
 use brdf_render::tonemap::p99_exposure;
@@ -35,46 +38,43 @@ pub fn lights() -> Vec<LightSet> {
     vec![LightSet::sky(), LightSet::studio()]
 }
 
-/// The spheres of `fitted` (and `dense`, when given) under [`lights`] at
-/// `size` pixels.
-pub fn rows(
-    dense: Option<&dyn Brdf>,
-    fitted: &dyn Brdf,
-    size: usize,
-) -> Result<Vec<SphereRow>, ReportError> {
-    lights()
+/// The spheres of the judge's renders (dense data): measured | fitted |
+/// FLIP map per light set, the pictures whose FLIP the report gives
+/// (the judge's film, background included), at the measured sphere's
+/// exposure.
+pub fn rows_of(renders: &[LightRenders]) -> Result<Vec<SphereRow>, ReportError> {
+    renders
         .iter()
-        .map(|light| row(dense, fitted, light, size))
+        .map(|r| {
+            let exposure = r.exposure;
+            let flip = brdf_render::flip::hdr_flip_map(&r.data, &r.fit)?.to_magma();
+            Ok(SphereRow {
+                light: r.light.clone(),
+                exposure,
+                measured: Some(png_uri(&r.data, exposure)?),
+                fitted: png_uri(&r.fit, exposure)?,
+                flip: Some(png_uri(&flip, 1.0)?),
+            })
+        })
         .collect()
 }
 
-fn row(
-    dense: Option<&dyn Brdf>,
-    fitted: &dyn Brdf,
-    light: &LightSet,
-    size: usize,
-) -> Result<SphereRow, ReportError> {
-    let sp = ShadingPoints::judge(light, size);
-    let mask = sp.mask();
-    let fit_img = sp.render(fitted);
-    let Some(dense) = dense else {
-        let exposure = p99_exposure(&fit_img, Some(&mask))?;
-        return Ok(SphereRow {
-            light: light.name().into(),
-            exposure,
-            measured: None,
-            fitted: png_uri(&fit_img, exposure)?,
-            flip: None,
-        });
-    };
-    let data_img = sp.render(dense);
-    let exposure = p99_exposure(&data_img, Some(&mask))?;
-    let flip = brdf_render::flip::hdr_flip_map(&data_img, &fit_img)?.to_magma();
-    Ok(SphereRow {
-        light: light.name().into(),
-        exposure,
-        measured: Some(png_uri(&data_img, exposure)?),
-        fitted: png_uri(&fit_img, exposure)?,
-        flip: Some(png_uri(&flip, 1.0)?),
-    })
+/// The spheres of `fitted` alone under [`lights`] at `size` pixels
+/// (scattered data: nothing measured to show beside it).
+pub fn fitted_rows(fitted: &dyn Brdf, size: usize) -> Result<Vec<SphereRow>, ReportError> {
+    lights()
+        .iter()
+        .map(|light| {
+            let sp = ShadingPoints::judge(light, size);
+            let fit_img = sp.render(fitted);
+            let exposure = p99_exposure(&fit_img, Some(&sp.mask()))?;
+            Ok(SphereRow {
+                light: light.name().into(),
+                exposure,
+                measured: None,
+                fitted: png_uri(&fit_img, exposure)?,
+                flip: None,
+            })
+        })
+        .collect()
 }
