@@ -17,7 +17,8 @@
 #    against SciPy trf on the same problem (peer_fits + peers.py, same
 #    run), and principled RGB with --metric ngan;
 # 3. `brdf select` on one RGL file, 1 and 2 threads;
-# 4. `brdf batch` over the RGL folder x 5 models, 1 and 2 threads;
+# 4. `brdf batch` over the RGL folder x 5 models, 1 and 2 threads, and
+#    `brdf report --batch` of it, one thread;
 # 5. criterion: the principled and glTF batch kernels.
 #
 # Called by run.sh; PEERS_ONLY=issue28 runs it alone (about 15 minutes of
@@ -108,6 +109,12 @@ for t in 1 2; do
 		"$brdf" batch --data "$BRDF_DATA/rgl" --models "$models" --out "$d/batch_$t" --quiet
 	cp "$d/batch_$t/summary.csv" "$d/batch_$t.csv"
 done
+
+# 4b. The HTML report of the 1-thread batch (25 pages and the index), one
+# thread. The batch names its data relative to the folder it was given.
+echo "RAYON_NUM_THREADS=1 BRDF_DATA=\$BRDF_DATA/rgl brdf report --batch \$PEERS_OUT/issue28/batch_1 --quiet" >>"$cmds"
+RAYON_NUM_THREADS=1 BRDF_DATA="$BRDF_DATA/rgl" timed "{\"kind\": \"report_batch\", \"threads\": 1, \"pages\": 25}" \
+	"$brdf" report --batch "$d/batch_1" --quiet
 
 # 5. The renderer kernels.
 echo "cargo bench -p brdf-benches --bench models -- 'renderer_kernels/' --warm-up-time 2 --measurement-time 5" >>"$cmds"
