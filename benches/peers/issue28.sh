@@ -111,10 +111,16 @@ for t in 1 2; do
 done
 
 # 4b. The HTML report of the 1-thread batch (25 pages and the index), one
-# thread. The batch names its data relative to the folder it was given.
-echo "RAYON_NUM_THREADS=1 BRDF_DATA=\$BRDF_DATA/rgl brdf report --batch \$PEERS_OUT/issue28/batch_1 --quiet" >>"$cmds"
-RAYON_NUM_THREADS=1 BRDF_DATA="$BRDF_DATA/rgl" timed "{\"kind\": \"report_batch\", \"threads\": 1, \"pages\": 25}" \
+# thread (the batch names its data under $BRDF_DATA, where the report finds
+# them).
+echo "RAYON_NUM_THREADS=1 brdf report --batch \$PEERS_OUT/issue28/batch_1 --quiet" >>"$cmds"
+RAYON_NUM_THREADS=1 timed "{\"kind\": \"report_batch\", \"threads\": 1, \"pages\": 25}" \
 	"$brdf" report --batch "$d/batch_1" --quiet
+pages=$(find "$d/batch_1/report" -name '*.html' ! -name index.html | wc -l)
+if [ "$pages" -ne 25 ]; then
+	echo "issue28.sh: brdf report --batch wrote $pages of 25 pages" >&2
+	exit 1
+fi
 
 # 5. The renderer kernels.
 echo "cargo bench -p brdf-benches --bench models -- 'renderer_kernels/' --warm-up-time 2 --measurement-time 5" >>"$cmds"
