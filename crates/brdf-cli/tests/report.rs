@@ -57,7 +57,7 @@ fn fit_report_and_report_command_on_dense_data() {
     let dir = tmp("dense");
     let (json, html) = (dir.join("fit.json"), dir.join("fit.html"));
     let p = paper.display().to_string();
-    let (ok, _, err) = brdf(&[
+    let (ok, out, err) = brdf(&[
         "fit",
         "--data",
         &p,
@@ -70,8 +70,10 @@ fn fit_report_and_report_command_on_dense_data() {
         &json.display().to_string(),
         "--report",
         &html.display().to_string(),
+        "--json",
     ]);
     assert!(ok, "{err}");
+    let fit: serde_json::Value = serde_json::from_str(&out).expect("fit JSON");
     let all = [
         "summary", "params", "verdict", "slices", "coverage", "spheres", "errors",
     ];
@@ -89,7 +91,22 @@ fn fit_report_and_report_command_on_dense_data() {
         &again.display().to_string(),
     ]);
     assert!(ok, "{err}");
-    assert_page(&read(&again), &all);
+    let again = read(&again);
+    assert_page(&again, &all);
+    // The page of `--report` is made by the judge of the fit's image
+    // errors: its table is the fit's errors, and a fresh judge
+    // (`brdf report`) gives the same table.
+    let table = |html: &str| -> String {
+        let from = html.find("id=\"errors\"").expect("errors table");
+        let to = from + html[from..].find("</table>").expect("table end");
+        html[from..to].to_string()
+    };
+    assert_eq!(table(&page), table(&again));
+    for light in fit["image_errors"][0]["lights"].as_array().expect("lights") {
+        let flip = light["flip"].as_f64().expect("flip");
+        let cell = format!("<td class=\"num\">{flip:.3}</td>");
+        assert!(table(&page).contains(&cell), "{cell} in {}", table(&page));
+    }
 }
 
 #[test]

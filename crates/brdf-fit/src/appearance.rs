@@ -180,6 +180,11 @@ impl Judge {
         }
     }
 
+    /// Pixels per side of the judge's images.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
     /// The judge with `data` rendered once, for [`Judge::fit_errors`] of
     /// many fits of the same data.
     pub fn with_data(size: usize, data: &dyn Brdf) -> Result<Self, FitError> {

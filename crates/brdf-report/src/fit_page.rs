@@ -96,6 +96,31 @@ impl Analyser {
         }
     }
 
+    /// An analyser of the pages of `spec`, a dense data set that `judge`
+    /// has rendered ([`Judge::with_data`]): `brdf fit --report` hands over
+    /// the judge of its fit's image errors, so the page renders only the
+    /// fit. Its spheres are `judge.size()` pixels wide.
+    pub fn with_judge(spec: &str, judge: Judge) -> Result<Self, ReportError> {
+        let samples = brdf_io::load(spec)?;
+        let dense = brdf_io::load_dense(spec)?;
+        if dense.is_none() {
+            return Err(ReportError::Input {
+                path: spec.to_string(),
+                reason: "a judge was given for data that cannot be rendered".into(),
+            });
+        }
+        Ok(Analyser {
+            size: judge.size(),
+            terms: None,
+            data: Some(Loaded {
+                spec: spec.to_string(),
+                samples,
+                dense,
+                judge: Some(judge),
+            }),
+        })
+    }
+
     /// The data set `spec`, read (and rendered) unless it was the last one.
     fn load(&mut self, spec: &str) -> Result<&Loaded, ReportError> {
         let loaded = match self.data.take() {
@@ -220,13 +245,28 @@ pub fn material(spec: &str) -> String {
 
 /// The self-contained HTML page of a fit.
 pub fn fit_page(input: &FitInput) -> Result<String, ReportError> {
-    let a = analyse(input, spheres::SIZE)?;
+    fit_page_with(input, &mut Analyser::new(spheres::SIZE))
+}
+
+/// [`fit_page`] analysed by `analyser` (one holding the data's renders,
+/// [`Analyser::with_judge`]).
+pub fn fit_page_with(input: &FitInput, analyser: &mut Analyser) -> Result<String, ReportError> {
+    let a = analyser.analyse(input)?;
     render(input, &a, None)
 }
 
 /// [`fit_page`] written to `out`.
 pub fn write_fit_page(input: &FitInput, out: &Path) -> Result<(), ReportError> {
-    let html = fit_page(input)?;
+    write_fit_page_with(input, out, &mut Analyser::new(spheres::SIZE))
+}
+
+/// [`fit_page_with`] written to `out`.
+pub fn write_fit_page_with(
+    input: &FitInput,
+    out: &Path,
+    analyser: &mut Analyser,
+) -> Result<(), ReportError> {
+    let html = fit_page_with(input, analyser)?;
     std::fs::write(out, html).map_err(ReportError::io(out))
 }
 

@@ -30,4 +30,6 @@ pub mod verdict;
 
 pub use batch_page::{BatchReport, write_batch_report};
 pub use error::ReportError;
-pub use fit_page::{FitInput, RunInfo, fit_page, write_fit_page};
+pub use fit_page::{
+    Analyser, FitInput, RunInfo, fit_page, fit_page_with, write_fit_page, write_fit_page_with,
+};

@@ -1,8 +1,13 @@
 //! The verdict in plain words: what, if anything, is wrong with a fit —
 //! visible colour difference, FLIP above threshold, parameters on their
-//! bounds, a solver that did not converge.
+//! bounds, a solver that did not converge — and what only looks wrong:
+//! optional lobes switched off (at 0 on their lower bound by design,
+//! `brdf_fit::appearance::optional_lobes`), and a refinement in the image
+//! objective that stopped at its iteration cap (it is kept only because it
+//! renders closer to the data, and the verdict judges the render).
 
-use brdf_fit::appearance::ImageError;
+use brdf_fit::Objective;
+use brdf_fit::appearance::{ImageError, optional_lobes};
 use brdf_models::saved_model::SavedModel;
 use serde::Serialize;
 
@@ -15,6 +20,8 @@ pub struct Verdict {
     pub headline: String,
     /// each problem, in words
     pub reasons: Vec<String>,
+    /// what looks like a problem and is not, in words
+    pub notes: Vec<String>,
 }
 
 /// Whether a termination text means the solver did not converge.
@@ -31,9 +38,18 @@ pub fn verdict(
     termination: Option<&str>,
 ) -> Verdict {
     let mut reasons = image.map(ImageError::warnings).unwrap_or_default();
+    let mut notes = Vec::new();
+    let off = lobes_off(saved);
+    if !off.is_empty() {
+        notes.push(format!(
+            "optional lobes off (at 0; the data did not need them): {}",
+            off.join(", ")
+        ));
+    }
     let on_bound: Vec<String> = saved
         .parameters
         .iter()
+        .filter(|p| !off.iter().any(|l| p.name.starts_with(l.as_str())))
         .filter_map(|p| p.at_bound.as_ref().map(|b| format!("{} ({b})", p.name)))
         .collect();
     if !on_bound.is_empty() {
@@ -43,9 +59,15 @@ pub fn verdict(
         ));
     }
     if let Some(t) = termination.filter(|t| not_converged(t)) {
-        reasons.push(format!(
-            "the solver did not converge ({t}); try more --starts or another --solver"
-        ));
+        if image.is_some() && saved.provenance.objective == Objective::Image.name() {
+            notes.push(format!(
+                "the kept solve, a refinement in the image objective, ended without meeting its convergence test ({t}); it was kept because it renders closer to the data, and this verdict judges the render"
+            ));
+        } else {
+            reasons.push(format!(
+                "the solver did not converge ({t}); try more --starts or another --solver"
+            ));
+        }
     }
     let good = reasons.is_empty();
     let headline = match (good, image.is_some()) {
@@ -57,7 +79,23 @@ pub fn verdict(
         good,
         headline,
         reasons,
+        notes,
     }
+}
+
+/// The optional lobes of `saved`'s model that are off: the lobe's own
+/// parameter (named as the lobe) is 0.
+fn lobes_off(saved: &SavedModel) -> Vec<String> {
+    optional_lobes(&saved.model)
+        .iter()
+        .filter(|l| {
+            saved
+                .parameters
+                .iter()
+                .any(|p| p.name == **l && p.value == 0.0)
+        })
+        .map(|l| l.to_string())
+        .collect()
 }
 
 #[cfg(test)]
@@ -77,5 +115,78 @@ mod tests {
         assert!(v.reasons[0].contains("kd (lower)"));
         let ok = verdict(&saved, None, Some("converged: gradient"));
         assert_eq!(ok.reasons.len(), 1);
+    }
+
+    /// A principled fit with its sheen and clear coat off and metallic on
+    /// its upper bound, refined in the image objective to its cap.
+    fn principled(objective: &str) -> SavedModel {
+        let text = format!(
+            r#"{{ "schema": "brdf-fit/saved-model", "version": 1,
+          "model": "principled", "structure": {{ "channels": 1 }},
+          "parameters": [
+            {{ "name": "base_color", "value": 0.3 }},
+            {{ "name": "metallic", "value": 1.0, "at_bound": "upper" }},
+            {{ "name": "specular", "value": 0.5 }}, {{ "name": "spec_tint", "value": 0.2 }},
+            {{ "name": "roughness", "value": 0.3 }},
+            {{ "name": "anisotropic", "value": 0.2 }},
+            {{ "name": "sheen", "value": 0.0, "at_bound": "lower" }},
+            {{ "name": "sheen_tint", "value": 0.0, "at_bound": "lower" }},
+            {{ "name": "clearcoat", "value": 0.0, "at_bound": "lower" }},
+            {{ "name": "clearcoat_gloss", "value": 1.0, "at_bound": "upper" }} ],
+          "provenance": {{ "data": "inline", "samples_used": 10, "samples_present": 10,
+            "objective": "{objective}", "limit_deg": 80.0, "error": 0.1,
+            "solver": "test", "software": "test" }} }}"#
+        );
+        SavedModel::from_json(&text, "inline").expect("valid")
+    }
+
+    fn looks_right() -> ImageError {
+        let light = |name: &str| brdf_fit::appearance::LightError {
+            light: name.into(),
+            flip: 0.05,
+            psnr: 35.0,
+            delta_e: 0.5,
+            mean_colour_data: [0.2; 3],
+            mean_colour_fit: [0.2; 3],
+            exposure: 1.0,
+        };
+        ImageError {
+            size: 128,
+            lights: vec![light("sky"), light("studio")],
+        }
+    }
+
+    #[test]
+    fn lobes_switched_off_are_not_parameters_on_bounds() {
+        let v = verdict(&principled("ngan"), None, Some("converged: gradient"));
+        assert_eq!(v.reasons.len(), 1, "{:?}", v.reasons);
+        assert!(v.reasons[0].contains("metallic (upper)"));
+        assert!(!v.reasons[0].contains("sheen") && !v.reasons[0].contains("clearcoat"));
+        assert_eq!(
+            v.notes,
+            ["optional lobes off (at 0; the data did not need them): sheen, clearcoat"]
+        );
+    }
+
+    #[test]
+    fn an_image_refinement_at_its_cap_is_judged_by_its_render() {
+        let image = looks_right();
+        let capped = Some("NOT converged: iteration cap");
+        let v = verdict(&principled("image"), Some(&image), capped);
+        assert!(
+            v.reasons.iter().all(|r| !r.contains("did not converge")),
+            "{:?}",
+            v.reasons
+        );
+        assert!(
+            v.notes
+                .iter()
+                .any(|n| n.contains("(NOT converged: iteration cap)"))
+        );
+        // Not so for a BRDF-space fit, nor without image errors.
+        for (objective, image) in [("ngan", Some(&image)), ("image", None)] {
+            let v = verdict(&principled(objective), image, capped);
+            assert!(v.reasons.iter().any(|r| r.contains("did not converge")));
+        }
     }
 }

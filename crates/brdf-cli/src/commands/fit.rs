@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use brdf_fit::appearance::{Judge, REPORT_SIZE};
 use brdf_fit::{Channels, Fit, Objective, Solver, appearance};
 
 use crate::error::CliError;
@@ -109,7 +110,16 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
             .order(args.order)
             .degree(args.degree);
         let t0 = std::time::Instant::now();
-        let report = appearance::fit_judged(&fit, set, dense, appearance)?;
+        // With --report on data that can be rendered, the judge of the
+        // fit's image errors also makes the page (the data rendered once).
+        let (report, judge) = match dense.filter(|_| args.report.is_some()) {
+            Some(d) => {
+                let judge = Judge::with_data(REPORT_SIZE, d)?;
+                let report = appearance::fit_judged_on(&fit, set, d, appearance, &judge)?;
+                (report, Some(judge))
+            }
+            None => (appearance::fit_judged(&fit, set, dense, appearance)?, None),
+        };
         let seconds = t0.elapsed().as_secs_f64();
         if let Some(path) = &args.save {
             report
@@ -117,7 +127,7 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
                 .save(path)?;
         }
         if let Some(path) = &args.report {
-            write_report(args, &report, seconds, path)?;
+            write_report(args, &report, seconds, judge, path)?;
         }
         reports.push(report);
         bar.inc(1);
@@ -141,6 +151,7 @@ fn write_report(
     args: &FitArgs,
     report: &brdf_fit::FitReport,
     seconds: f64,
+    judge: Option<Judge>,
     path: &std::path::Path,
 ) -> Result<(), CliError> {
     let saved = report.saved_model(&brdf_fit::data_name(&args.data))?;
@@ -156,5 +167,9 @@ fn write_report(
         run: Some(run),
         selection: None,
     };
-    crate::commands::report::fit_report(&input, path, args.quiet)
+    let mut analyser = match judge {
+        Some(judge) => brdf_report::Analyser::with_judge(&args.data, judge)?,
+        None => brdf_report::Analyser::new(brdf_report::spheres::SIZE),
+    };
+    crate::commands::report::fit_report(&input, path, args.quiet, &mut analyser)
 }

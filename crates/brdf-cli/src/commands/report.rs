@@ -62,7 +62,8 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         run: None,
         selection: selection.as_ref().zip(select_name.as_deref()),
     };
-    fit_report(&input, &out, args.quiet)
+    let mut analyser = brdf_report::Analyser::new(brdf_report::spheres::SIZE);
+    fit_report(&input, &out, args.quiet, &mut analyser)
 }
 
 fn read_json(path: &Path) -> Result<serde_json::Value, CliError> {
@@ -79,13 +80,18 @@ fn read_json(path: &Path) -> Result<serde_json::Value, CliError> {
 }
 
 /// Write the page of one fit to `out` (shared with `brdf fit --report`).
-pub fn fit_report(input: &brdf_report::FitInput, out: &Path, quiet: bool) -> Result<(), CliError> {
+pub fn fit_report(
+    input: &brdf_report::FitInput,
+    out: &Path,
+    quiet: bool,
+    analyser: &mut brdf_report::Analyser,
+) -> Result<(), CliError> {
     let bar = {
         progress::set_quiet(quiet);
         progress::bar(1, "report")
     };
     bar.set_message(format!("{} on {}", input.saved.model, input.data));
-    brdf_report::write_fit_page(input, out)?;
+    brdf_report::write_fit_page_with(input, out, analyser)?;
     bar.finish_and_clear();
     eprintln!("brdf report: wrote {}", out.display());
     Ok(())
