@@ -93,6 +93,18 @@ def fit(
 ) -> Fit:
     """Fit a model to measured data, as ``brdf fit``."""
 
+def select(
+    data: Union[StrPath, Samples],
+    *,
+    tolerance: float = 0.1,
+    limit_deg: float = 80.0,
+    grey: bool = False,
+    models: Optional[list[str]] = None,
+    max_parameters: Optional[int] = None,
+    exhaustive: bool = False,
+) -> dict[str, Any]:
+    """Choose the smallest adequate model, as ``brdf select --json``."""
+
 def eval(
     model: Union[str, "os.PathLike[str]", dict[str, Any]],
     wi: ArrayLike,

@@ -1,9 +1,12 @@
-//! What a fit reports to a program: the JSON of `brdf fit --json` (also what
-//! the Python module's `fit` returns), and data-set names for outputs, so
-//! every front end names fits and data the same way.
+//! What a fit reports to a program: the JSON of `brdf fit --json` and of
+//! `brdf select --json` (also what the Python module's `fit` and `select`
+//! return), and data-set names for outputs, so every front end names fits
+//! and data the same way.
 
 use brdf_core::SampleSet;
 
+use crate::appearance::{ImageError, SCATTERED_NOTE};
+use crate::select::{Search, SelectRow};
 use crate::{FitError, FitReport};
 
 /// The JSON report of the fits of one data set (one per channel set): the
@@ -24,6 +27,36 @@ pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::V
         "dropped_invalid": first.dropped_invalid,
         "dropped_angle": first.dropped_angle,
         "negative_values_kept": data.count_negative(),
+    }))
+}
+
+/// The JSON report of a selection (`brdf select --json`): every
+/// candidate's row, the choice's, and the choice's image errors (`null`
+/// on scattered data, with the note why; `image` as
+/// [`crate::appearance::select_judged`] returns it).
+pub fn select_json(
+    data: &SampleSet,
+    tolerance: f64,
+    search: Search,
+    rows: &[SelectRow],
+    choice: usize,
+    image: Option<&ImageError>,
+) -> Result<serde_json::Value, FitError> {
+    let chosen = rows
+        .get(choice)
+        .ok_or_else(|| FitError::Usage(format!("`{}`: no candidate chosen", data.name)))?;
+    Ok(serde_json::json!({
+        "data": data.name,
+        "samples": data.len(),
+        "tolerance": tolerance,
+        "search": match search {
+            Search::Exhaustive => "exhaustive",
+            Search::CoarseToFine => "coarse to fine",
+        },
+        "choice": chosen,
+        "choice_image_error": image,
+        "image_note": image.is_none().then_some(SCATTERED_NOTE),
+        "candidates": rows,
     }))
 }
 

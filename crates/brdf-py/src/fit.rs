@@ -110,7 +110,7 @@ pub fn fit<'py>(
 }
 
 /// The data set and its name for outputs (relative to `BRDF_DATA`).
-fn data_set(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<(SampleSet, String)> {
+pub(crate) fn data_set(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<(SampleSet, String)> {
     if let Ok(d) = data.cast::<PyDict>() {
         let set = crate::samples::from_dict(d)?;
         let name = set.name.clone();

@@ -16,6 +16,7 @@
 //! | --- | --- |
 //! | [`samples`] | `load`, `save_samples`: data sets as numpy arrays and back |
 //! | [`fit`] | `fit`: a `Fit` (model, `brdf fit --json` report), GIL released |
+//! | [`select`] | `select`: the dict of `brdf select --json`, GIL released |
 //! | [`fitted`] | `Fit` and `Model` (`eval`, `params`, `export`, `save`, `load`) |
 //! | [`model`] | `eval` (vectorised), `export`; model arguments |
 //! | [`catalogue`] | `models`, `materials`, `canonical_name`, `data_name` |
@@ -42,6 +43,7 @@ pub mod fitted;
 pub mod json;
 pub mod model;
 pub mod samples;
+pub mod select;
 
 use pyo3::prelude::*;
 
@@ -49,7 +51,8 @@ use pyo3::prelude::*;
 ///
 /// The fits, models and exports of the ``brdf`` command with NumPy arrays
 /// in and out: ``load`` reads a data set, ``fit`` returns a ``Fit`` (its
-/// ``model`` evaluates, saves, exports and renders), ``eval`` evaluates a
+/// ``model`` evaluates, saves, exports and renders), ``select`` chooses
+/// the smallest adequate model, ``eval`` evaluates a
 /// catalogue or saved model, ``export`` writes a renderer's material,
 /// ``models`` lists the catalogue. Relative data paths that do not exist
 /// from the working directory are looked up under ``$BRDF_DATA``. Errors
@@ -74,6 +77,7 @@ fn brdf_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(samples::load, m)?)?;
     m.add_function(wrap_pyfunction!(samples::save_samples, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit, m)?)?;
+    m.add_function(wrap_pyfunction!(select::select, m)?)?;
     m.add_class::<fitted::PyFit>()?;
     m.add_class::<fitted::PyModel>()?;
     m.add_function(wrap_pyfunction!(model::eval, m)?)?;

@@ -79,18 +79,9 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     )?;
     let (rows, choice) = (selection.rows, selection.choice);
     bar.finish_and_clear();
-    let note = image.is_none().then_some(SCATTERED_NOTE);
     if args.json {
-        let v = serde_json::json!({
-            "data": data.name,
-            "samples": data.len(),
-            "tolerance": args.tolerance,
-            "search": if args.exhaustive { "exhaustive" } else { "coarse to fine" },
-            "choice": rows[choice],
-            "choice_image_error": image,
-            "image_note": note,
-            "candidates": rows,
-        });
+        let v =
+            brdf_fit::select_json(&data, args.tolerance, search, &rows, choice, image.as_ref())?;
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     let table = brdf_fit::select::table(&data.name, &rows, choice, args.tolerance);
@@ -107,7 +98,7 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
             }
             Ok(())
         }
-        None => say!("\n{}", note.unwrap_or_default()),
+        None => say!("\n{SCATTERED_NOTE}"),
     }
 }
 

@@ -1,0 +1,44 @@
+"""Python selections equal the `brdf select` command's, number for number
+(only the wall-clock times differ): on a measured RGB file, with the
+choice's image errors, and on numpy arrays of scattered data, which say why
+they have none; bad arguments raise BrdfError naming the fix."""
+
+import pytest
+
+import brdf
+from conftest import cli_json, data_file, without_seconds
+
+
+def test_select_of_rgb_file_equals_cli(brdf_cli):
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    models = "lambert,ward,ggx"
+    cli = cli_json(brdf_cli, "select", "--data", path, "--models", models, "--quiet")
+    py = brdf.select(path, models=models.split(","))
+    assert without_seconds(py) == without_seconds(cli)
+    assert py["choice"]["model"] in models.split(",")
+    lights = [l["light"] for l in py["choice_image_error"]["lights"]]
+    assert lights == ["sky", "studio"]
+    assert py["image_note"] is None
+
+
+def test_select_of_arrays_equals_cli_and_has_no_image_error(brdf_cli):
+    path = data_file("curet/abrdf.dat#25")
+    flags = ["--models", "lambert,blinn-phong", "--tolerance", "0.2", "--exhaustive", "--grey"]
+    cli = cli_json(brdf_cli, "select", "--data", path, *flags, "--quiet")
+    py = brdf.select(brdf.load(path), models=["lambert", "blinn-phong"], tolerance=0.2,
+                     exhaustive=True, grey=True)
+    assert without_seconds(py) == without_seconds(cli)
+    assert py["search"] == "exhaustive"
+    assert py["choice_image_error"] is None
+    assert "no image error" in py["image_note"]
+
+
+@pytest.mark.parametrize(
+    "options, words",
+    [(dict(models=[]), "models=[]"), (dict(tolerance=-1.0), "tolerance"),
+     (dict(limit_deg=120.0), "limit"), (dict(models=["no-such-model"]), "no-such-model")],
+)
+def test_bad_arguments_raise_brdf_error(options, words):
+    path = data_file("curet/abrdf.dat#25")
+    with pytest.raises(brdf.BrdfError, match=words.replace("[", r"\[").replace("]", r"\]")):
+        brdf.select(path, **options)
