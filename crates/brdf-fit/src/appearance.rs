@@ -35,6 +35,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use brdf_core::{Brdf, DirPairs, SampleSet};
+use brdf_render::flip::FlipMap;
 use brdf_render::{Image, LightSet, ShadingPoints};
 use serde::Serialize;
 
@@ -225,17 +226,17 @@ impl Judge {
     /// and the renders they compare, one per light set: what a report
     /// shows beside its numbers (the fit rendered once for both).
     pub fn fit_renders(&self, fit: &dyn Brdf) -> Result<(ImageError, Vec<LightRenders>), FitError> {
-        let renders: Vec<Image> = self.points.iter().map(|(_, sp)| sp.render(fit)).collect();
-        let errors = self.errors_of(&self.reference, &renders)?;
+        let (errors, compared) = self.compare(&self.reference, fit)?;
         let renders = self
             .points
             .iter()
             .zip(&self.reference)
-            .zip(renders)
-            .map(|(((light, _), r), fit)| LightRenders {
+            .zip(compared)
+            .map(|(((light, _), r), (fit, flip))| LightRenders {
                 light: light.name().to_string(),
                 data: r.image().clone(),
                 fit,
+                flip,
                 exposure: r.exposure(),
             })
             .collect();
@@ -243,21 +244,27 @@ impl Judge {
     }
 
     fn errors_against(&self, refs: &[Reference], fit: &dyn Brdf) -> Result<ImageError, FitError> {
-        let renders: Vec<Image> = self.points.iter().map(|(_, sp)| sp.render(fit)).collect();
-        self.errors_of(refs, &renders)
+        Ok(self.compare(refs, fit)?.0)
     }
 
-    /// The image errors of the fit's `renders` (one per light set) against
-    /// the data's `refs`.
-    fn errors_of(&self, refs: &[Reference], renders: &[Image]) -> Result<ImageError, FitError> {
+    /// The image errors of `fit` against the data's `refs`, and per light
+    /// set the fit's render and its FLIP map.
+    fn compare(
+        &self,
+        refs: &[Reference],
+        fit: &dyn Brdf,
+    ) -> Result<(ImageError, Vec<(Image, FlipMap)>), FitError> {
         if refs.len() != self.points.len() {
             return Err(FitError::Usage(
                 "the judge has no renders of the data: build it with Judge::with_data".into(),
             ));
         }
         let mut lights = Vec::with_capacity(self.points.len());
-        for ((light, _), (r, t)) in self.points.iter().zip(refs.iter().zip(renders)) {
-            let e = r.errors_of(t).map_err(|e| FitError::Usage(e.to_string()))?;
+        let mut compared = Vec::with_capacity(self.points.len());
+        for ((light, sp), r) in self.points.iter().zip(refs) {
+            let t = sp.render(fit);
+            let (e, map) = r.compare(&t).map_err(|e| FitError::Usage(e.to_string()))?;
+            compared.push((t, map));
             lights.push(LightError {
                 light: light.name().to_string(),
                 flip: e.flip,
@@ -268,10 +275,11 @@ impl Judge {
                 exposure: e.exposure,
             });
         }
-        Ok(ImageError {
+        let errors = ImageError {
             size: self.size,
             lights,
-        })
+        };
+        Ok((errors, compared))
     }
 }
 
@@ -285,6 +293,8 @@ pub struct LightRenders {
     pub data: Image,
     /// The fit's render.
     pub fit: Image,
+    /// The HDR-FLIP map between them (its mean is the light's FLIP).
+    pub flip: FlipMap,
     /// The exposure `1 / p99` of the data's sphere pixels.
     pub exposure: f64,
 }

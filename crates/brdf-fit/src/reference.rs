@@ -9,7 +9,7 @@
 use brdf_core::Brdf;
 use brdf_render::colour::{delta_e_mean_colours, mean_colour};
 use brdf_render::compare::ImageErrors;
-use brdf_render::flip::hdr_flip;
+use brdf_render::flip::{FlipMap, hdr_flip_map};
 use brdf_render::psnr::psnr;
 use brdf_render::tonemap::p99_exposure;
 use brdf_render::{Image, RenderError, ShadingPoints};
@@ -48,24 +48,22 @@ impl Reference {
         self.exposure
     }
 
-    /// The image errors of `fit` rendered on `sp` (the terms this
-    /// reference was rendered on), as `brdf_render::compare::compare_with`.
-    pub fn errors(&self, sp: &ShadingPoints, fit: &dyn Brdf) -> Result<ImageErrors, RenderError> {
-        self.errors_of(&sp.render(fit))
-    }
-
     /// The image errors of `t`, a fit rendered on the terms this reference
-    /// was rendered on.
-    pub fn errors_of(&self, t: &Image) -> Result<ImageErrors, RenderError> {
+    /// was rendered on (as `brdf_render::compare::compare_with`), and the
+    /// HDR-FLIP map whose mean is their FLIP (a report shows it beside the
+    /// number).
+    pub fn compare(&self, t: &Image) -> Result<(ImageErrors, FlipMap), RenderError> {
+        let map = hdr_flip_map(&self.image, t)?;
         let mean_colour_test = mean_colour(t, &self.mask);
-        Ok(ImageErrors {
-            flip: hdr_flip(&self.image, t)?,
+        let errors = ImageErrors {
+            flip: map.mean(),
             psnr: psnr(&self.image, t, self.exposure)?,
             delta_e_mean_colour: delta_e_mean_colours(self.mean_colour, mean_colour_test),
             mean_colour_ref: self.mean_colour,
             mean_colour_test,
             exposure: self.exposure,
-        })
+        };
+        Ok((errors, map))
     }
 }
 

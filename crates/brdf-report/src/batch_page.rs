@@ -12,13 +12,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use crate::fit_page::{Analyser, FitInput, RunInfo, render};
-use crate::{ReportError, templates};
-
-/// Pixels per side of the spheres of batch pages: the judge's film, so
-/// a page's image errors are the ones `brdf batch` wrote for its line.
-/// The judge's terms are made once per index and each material is
-/// rendered once for all its models ([`Analyser`]).
-pub const SPHERE_SIZE: usize = brdf_fit::appearance::REPORT_SIZE;
+use crate::{ReportError, spheres, templates};
 
 /// What was written.
 #[derive(Clone, Debug)]
@@ -183,7 +177,10 @@ pub fn write_batch_report(
         .file_name()
         .map_or("index.html".into(), |n| n.to_string_lossy().to_string());
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
-    let mut analyser = Analyser::new(SPHERE_SIZE);
+    // The judge's terms made once for the index, each material rendered
+    // once for all its models; at the judge's size, so a page's image
+    // errors are the ones `brdf batch` wrote for its line.
+    let mut analyser = Analyser::new(spheres::SIZE);
     for (k, ((data, model), line)) in fits.iter().enumerate() {
         progress(k, fits.len(), &format!("{data} x {model}"));
         let mut r = base_row(line);

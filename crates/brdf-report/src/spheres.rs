@@ -14,8 +14,9 @@ use serde::Serialize;
 use crate::ReportError;
 use crate::embed::png_uri;
 
-/// Pixels per side of the report's spheres.
-pub const SIZE: usize = 128;
+/// Pixels per side of the report's spheres: the judge's film, so a page's
+/// image errors are those `brdf fit` and `brdf batch` report.
+pub const SIZE: usize = brdf_fit::appearance::REPORT_SIZE;
 
 /// The spheres of one light set.
 #[derive(Clone, Debug, Serialize)]
@@ -46,14 +47,12 @@ pub fn rows_of(renders: &[LightRenders]) -> Result<Vec<SphereRow>, ReportError> 
     renders
         .iter()
         .map(|r| {
-            let exposure = r.exposure;
-            let flip = brdf_render::flip::hdr_flip_map(&r.data, &r.fit)?.to_magma();
             Ok(SphereRow {
                 light: r.light.clone(),
-                exposure,
-                measured: Some(png_uri(&r.data, exposure)?),
-                fitted: png_uri(&r.fit, exposure)?,
-                flip: Some(png_uri(&flip, 1.0)?),
+                exposure: r.exposure,
+                measured: Some(png_uri(&r.data, r.exposure)?),
+                fitted: png_uri(&r.fit, r.exposure)?,
+                flip: Some(png_uri(&r.flip.to_magma(), 1.0)?),
             })
         })
         .collect()
