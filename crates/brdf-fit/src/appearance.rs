@@ -352,6 +352,21 @@ pub fn optional_lobes(model: &str) -> &'static [&'static str] {
     }
 }
 
+/// The parameters of an optional lobe besides its strength (the lobe's own
+/// name): they act only through the lobe, so while it is off they are held
+/// at their defaults. Left free, such a parameter has no influence at all:
+/// the solver then reported the fit as "NOT converged: stopped on a plateau
+/// with a singular Jacobian" (4 of the 5 RGL files' default fits), and the
+/// saved model carried whatever value a random start gave it.
+pub fn lobe_companions(model: &str, lobe: &str) -> &'static [&'static str] {
+    match (model, lobe) {
+        ("principled", "sheen") => &["sheen_tint"],
+        ("principled", "clearcoat") => &["clearcoat_gloss"],
+        ("gltf-ext", "clearcoat") => &["clearcoat_roughness"],
+        _ => &[],
+    }
+}
+
 /// Whether `data` is isotropic: its values do not change when both
 /// directions of a pair turn about the normal (64 fixed pairs, each turned by
 /// a fixed angle, relative agreement `1e-6`). Anisotropy is a lobe such data
@@ -409,12 +424,22 @@ fn candidate(
     Ok((report, c))
 }
 
-/// `fit` with every optional lobe but those in `on` held at 0.
-fn with_lobes(fit: &Fit, on: &[String]) -> Fit {
-    optional_lobes(fit.model_name())
-        .iter()
-        .filter(|l| !on.iter().any(|o| o == *l))
-        .fold(fit.clone(), |f, l| f.narrow(l, 0.0, 0.0))
+/// `fit` with every optional lobe but those in `on` held at 0, and its
+/// [`lobe_companions`] at their defaults.
+fn with_lobes(fit: &Fit, on: &[String]) -> Result<Fit, FitError> {
+    let mut out = fit.clone();
+    for lobe in optional_lobes(fit.model_name()) {
+        if on.iter().any(|o| o == lobe) {
+            continue;
+        }
+        out = out.narrow(lobe, 0.0, 0.0);
+        for name in lobe_companions(fit.model_name(), lobe) {
+            if let Some(d) = fit.default_value(name)? {
+                out = out.narrow(name, d, d);
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// Fit `fit`'s model to `samples` so that it looks like `data` (the same
@@ -451,7 +476,7 @@ pub fn fit_for_appearance_with(
     refine_l2_growth: f64,
 ) -> Result<(FitReport, Vec<Candidate>), FitError> {
     let judge = Judge::with_data(FIT_SIZE, data)?;
-    let base = with_lobes(fit, &[]);
+    let base = with_lobes(fit, &[])?;
     let mut candidates: Vec<Candidate> = Vec::new();
     let mut best: Option<(FitReport, usize)> = None;
     let mut base_params: Vec<(Vec<f64>, usize)> = Vec::new();
@@ -476,7 +501,7 @@ pub fn fit_for_appearance_with(
             continue;
         }
         let on = vec![on.to_string()];
-        let (r, c) = candidate(&with_lobes(fit, &on), objective, on, samples, &judge)?;
+        let (r, c) = candidate(&with_lobes(fit, &on)?, objective, on, samples, &judge)?;
         candidates.push(c);
         let j = candidates.len() - 1;
         single_gain |= flip(&candidates, j) < flip(&candidates, winner);
@@ -508,7 +533,7 @@ pub fn fit_for_appearance_with(
             if !in_reach || (o == objective && !single_gain) {
                 continue;
             }
-            let f = with_lobes(fit, &all);
+            let f = with_lobes(fit, &all)?;
             let (r, c) = candidate(&f, o, all.clone(), samples, &judge)?;
             candidates.push(c);
             let j = candidates.len() - 1;
@@ -618,7 +643,7 @@ impl Refiner<'_> {
             start,
             ..self.target.clone()
         };
-        let refine = with_lobes(self.fit, &lobes).image_target(Arc::new(target));
+        let refine = with_lobes(self.fit, &lobes)?.image_target(Arc::new(target));
         let (refined, c) = candidate(&refine, Objective::Image, lobes, self.samples, self.judge)?;
         let keeps_data = c.ngan_l2 <= self.max_l2;
         candidates.push(c);

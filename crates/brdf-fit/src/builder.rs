@@ -191,6 +191,17 @@ impl Fit {
         self.entry.name
     }
 
+    /// The default value of the parameter `name` of this fit's model at its
+    /// configuration (`None`: the model has no such parameter).
+    pub fn default_value(&self, name: &str) -> Result<Option<f64>, FitError> {
+        let model = (self.entry.build)(&self.config)?;
+        Ok(model
+            .param_specs()
+            .iter()
+            .find(|s| s.name == name)
+            .map(|s| s.default))
+    }
+
     /// Filter `samples` (invalid values, the angle limit), build the model
     /// for them and fit it.
     pub fn run(&self, samples: &SampleSet) -> Result<FitReport, FitError> {

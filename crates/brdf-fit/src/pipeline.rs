@@ -1114,11 +1114,13 @@ fn summarise(
     })
 }
 
-/// The termination in words. A plateau where a linear parameter sits at
-/// its lower bound 0 is a degenerate but genuine fit (the model's term has
-/// vanished, e.g. `ks = 0`, and the parameters only that term used have no
-/// influence): it is reported as such, naming them, rather than as a
-/// failure; any other plateau stays "not converged".
+/// The termination in words. A plateau where some free parameters have no
+/// influence at all (their Jacobian columns are exactly 0) while others sit
+/// on bounds is a degenerate but genuine fit: a term of the model has
+/// vanished (a linear `ks = 0`; principled's dielectric lobe at
+/// `metallic = 1`, where `specular` no longer acts) and the parameters only
+/// that term used cannot be identified. It is reported as such, naming
+/// them, rather than as a failure; any other plateau stays "not converged".
 fn describe_termination(
     mp: &ModelProblem<'_>,
     p: &[f64],
@@ -1144,13 +1146,19 @@ fn describe_termination(
         .filter(|k| (0..m).all(|i| jac[i * n + k] == 0.0))
         .map(|k| specs[k].name.as_str())
         .collect();
-    if zero_term && !lost.is_empty() {
+    let on_bound = status.iter().any(|b| *b != BoundStatus::Free);
+    if lost.is_empty() || !on_bound {
+        rep.termination.describe().to_string()
+    } else if zero_term {
         format!(
             "converged to a degenerate fit: a linear term is 0, so {} have no influence",
             lost.join(", ")
         )
     } else {
-        rep.termination.describe().to_string()
+        format!(
+            "converged to a degenerate fit: parameters on their bounds switch off the term of {}, which then have no influence",
+            lost.join(", ")
+        )
     }
 }
 
