@@ -203,3 +203,64 @@ fn each_fit_is_brdf_fits_with_its_image_errors() {
     );
     let _ = std::fs::remove_dir_all(&tmp);
 }
+
+/// Data outside `$BRDF_DATA`, given by an absolute folder: the fits name
+/// the file by its name only (no machine path), so `brdf batch --report`
+/// looks for it in the batch's own `--data` folders, and `brdf report
+/// --batch` needs them again with `--data-dir` (without it, the page is
+/// skipped with a message naming the option).
+#[test]
+fn batch_reports_find_data_given_by_an_absolute_folder() {
+    let tmp = std::env::temp_dir().join(format!("brdf-batch-datadir-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    let data = tmp.join("my data");
+    std::fs::create_dir_all(&data).unwrap();
+    // Lambert kd = 0.4 (0.4 / pi 1/sr) at 36 pairs.
+    let mut csv = String::from("theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,value,weight\n");
+    for i in 0..6 {
+        for o in 0..6 {
+            let v = 0.4 / std::f64::consts::PI;
+            csv += &format!("{},0,{},{},{v},1\n", 10 * i, 5 + 12 * o, 30 * o);
+        }
+    }
+    std::fs::write(data.join("paint.csv"), csv).unwrap();
+    let (data_s, out) = (data.display().to_string(), tmp.join("out"));
+    let out_s = out.display().to_string();
+    let (ok, _, err) = brdf(&[
+        "batch",
+        "--data",
+        &data_s,
+        "--models",
+        "lambert",
+        "--channels",
+        "grey",
+        "--out",
+        &out_s,
+        "--report",
+        "--quiet",
+    ]);
+    assert!(ok, "{err}");
+    assert!(err.contains("and 1 fit pages"), "{err}");
+    let fits = std::fs::read_to_string(out.join("fits.jsonl")).unwrap();
+    assert!(fits.contains("\"data\":\"paint.csv\""), "{fits}");
+    let again = tmp.join("again").join("index.html").display().to_string();
+    let (ok, _, err) = brdf(&["report", "--batch", &out_s, "--out", &again, "--quiet"]);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("and 0 fit pages") && err.contains("--data-dir DIR"),
+        "{err}"
+    );
+    let (ok, _, err) = brdf(&[
+        "report",
+        "--batch",
+        &out_s,
+        "--out",
+        &again,
+        "--data-dir",
+        &data_s,
+        "--quiet",
+    ]);
+    assert!(ok, "{err}");
+    assert!(err.contains("and 1 fit pages"), "{err}");
+    let _ = std::fs::remove_dir_all(&tmp);
+}

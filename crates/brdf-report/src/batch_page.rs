@@ -41,16 +41,29 @@ struct Row {
 }
 
 /// The data file of a `fits.jsonl` name: as written when it exists, else
-/// under `$BRDF_DATA` (where `brdf batch` shortens names to).
-pub fn resolve_data(name: &str) -> String {
-    let (path, _) = brdf_io::split_sample(name);
-    if path.exists() {
-        return name.to_string();
+/// the first of `dirs` holding it, else under `$BRDF_DATA` (where `brdf
+/// batch` shortens names to). `brdf batch` writes a file outside
+/// `$BRDF_DATA` by its file name only (never an absolute machine path), so
+/// its folder must be given again here. An error naming the places looked
+/// in and the fix when none holds it.
+pub fn resolve_data(name: &str, dirs: &[PathBuf]) -> Result<String, ReportError> {
+    let exists = |spec: &str| brdf_io::split_sample(spec).0.exists();
+    if exists(name) {
+        return Ok(name.to_string());
     }
-    match std::env::var_os("BRDF_DATA") {
-        Some(root) => Path::new(&root).join(name).display().to_string(),
-        None => name.to_string(),
-    }
+    let root = std::env::var_os("BRDF_DATA").map(PathBuf::from);
+    dirs.iter()
+        .chain(root.as_ref())
+        .map(|d| d.join(name).display().to_string())
+        .find(|spec| exists(spec))
+        .ok_or_else(|| ReportError::Input {
+            path: name.to_string(),
+            reason: format!(
+                "data not found in the working directory, {} folder(s) given with --data-dir, or $BRDF_DATA{}: give the folder that holds it with --data-dir DIR",
+                dirs.len(),
+                if root.is_some() { "" } else { " (not set)" }
+            ),
+        })
 }
 
 /// The saved model of a `fits.jsonl` line (3 channels, else 1).
@@ -124,11 +137,12 @@ fn page(
     r: &mut Row,
     dir: &Path,
     back: &str,
+    data_dirs: &[PathBuf],
     analyser: &mut Analyser,
 ) -> Result<String, ReportError> {
     let what = format!("{} x {}", r.data, r.model);
     let saved = saved_model(line, &what)?;
-    let spec = resolve_data(&r.data);
+    let spec = resolve_data(&r.data, data_dirs)?;
     let input = FitInput {
         data: &spec,
         saved: &saved,
@@ -154,10 +168,12 @@ fn page(
 }
 
 /// Write the index of `batch_dir/fits.jsonl` to `out` and every fit page
-/// beside it; `progress(done, total, current)` before each fit.
+/// beside it, finding each line's data as [`resolve_data`] does in
+/// `data_dirs`; `progress(done, total, current)` before each fit.
 pub fn write_batch_report(
     batch_dir: &Path,
     out: &Path,
+    data_dirs: &[PathBuf],
     progress: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<BatchReport, ReportError> {
     let fits_path = batch_dir.join(brdf_fit::batch::FITS);
@@ -184,7 +200,7 @@ pub fn write_batch_report(
     for (k, ((data, model), line)) in fits.iter().enumerate() {
         progress(k, fits.len(), &format!("{data} x {model}"));
         let mut r = base_row(line);
-        match page(line, &mut r, dir, &back, &mut analyser) {
+        match page(line, &mut r, dir, &back, data_dirs, &mut analyser) {
             Ok(name) => r.page = Some(name),
             Err(e) => {
                 r.note = format!("{data} x {model}: {e}");

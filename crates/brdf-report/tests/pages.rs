@@ -120,7 +120,7 @@ fn a_batch_index_links_its_pages_and_sorts() {
     std::fs::write(dir.join("fits.jsonl"), text).expect("fits written");
     let out = dir.join("report").join("index.html");
     let mut calls = 0;
-    let done = write_batch_report(&dir, &out, &mut |_, _, _| calls += 1).expect("index");
+    let done = write_batch_report(&dir, &out, &[], &mut |_, _, _| calls += 1).expect("index");
     assert_eq!((done.pages, done.skipped.len(), calls), (1, 1, 3));
     let html = std::fs::read_to_string(&out).expect("index written");
     assert_self_contained(&html);

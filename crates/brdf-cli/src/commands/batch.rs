@@ -2,7 +2,7 @@
 //! and shardable; the runner is [`brdf_fit::batch`] (see there for
 //! `fits.jsonl`, shards and merging).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use brdf_fit::Channels;
 use brdf_fit::batch::{BatchOptions, Shard};
@@ -115,11 +115,29 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
     )))
 }
 
-/// `--report`: the index and fit pages in `OUT/report/`.
+/// `--report`: the index and fit pages in `OUT/report/`, the data found
+/// where this batch read them ([`data_dirs`]).
 fn report(args: &BatchArgs) -> Result<(), CliError> {
     if !args.report {
         return Ok(());
     }
     let out = args.out.join("report").join("index.html");
-    crate::commands::report::batch_report(&args.out, &out, args.quiet)
+    let dirs = data_dirs(&args.data);
+    crate::commands::report::batch_report(&args.out, &out, &dirs, args.quiet)
+}
+
+/// The folders of the batch's `--data`: a folder itself, a file's parent.
+/// The fits name a file outside `$BRDF_DATA` by its file name only, so
+/// the report looks for it there.
+fn data_dirs(data: &[String]) -> Vec<PathBuf> {
+    data.iter()
+        .map(|spec| brdf_io::split_sample(spec).0)
+        .filter_map(|p| {
+            if p.is_dir() {
+                Some(p)
+            } else {
+                p.parent().map(Path::to_path_buf)
+            }
+        })
+        .collect()
 }

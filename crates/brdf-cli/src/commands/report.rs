@@ -25,6 +25,11 @@ pub struct ReportArgs {
     /// A `brdf batch --out` folder: write its index and one page per fit.
     #[arg(long, conflicts_with_all = ["data", "fit"])]
     pub batch: Option<PathBuf>,
+    /// With --batch: folders holding the batch's data, for the files it
+    /// names by file name only (data outside `$BRDF_DATA` given by an
+    /// absolute path).
+    #[arg(long, num_args = 1.., requires = "batch")]
+    pub data_dir: Vec<PathBuf>,
     /// The HTML file (default: report.html, or DIR/report/index.html
     /// with --batch).
     #[arg(long)]
@@ -41,7 +46,7 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
             .out
             .clone()
             .unwrap_or_else(|| dir.join("report").join("index.html"));
-        return batch_report(dir, &out, args.quiet);
+        return batch_report(dir, &out, &args.data_dir, args.quiet);
     }
     let (Some(data), Some(fit)) = (&args.data, &args.fit) else {
         return Err(CliError::Usage(
@@ -97,9 +102,14 @@ pub fn fit_report(
     Ok(())
 }
 
-/// Write the index of a batch folder and its fit pages (shared with
-/// `brdf batch --report`).
-pub fn batch_report(dir: &Path, out: &Path, quiet: bool) -> Result<(), CliError> {
+/// Write the index of a batch folder and its fit pages, the data looked up
+/// in `data_dirs` too (shared with `brdf batch --report`).
+pub fn batch_report(
+    dir: &Path,
+    out: &Path,
+    data_dirs: &[PathBuf],
+    quiet: bool,
+) -> Result<(), CliError> {
     let bar = {
         progress::set_quiet(quiet);
         progress::bar(0, "report")
@@ -109,7 +119,7 @@ pub fn batch_report(dir: &Path, out: &Path, quiet: bool) -> Result<(), CliError>
         bar.set_position(done as u64);
         bar.set_message(current.to_string());
     };
-    let done = brdf_report::write_batch_report(dir, out, &mut tick)?;
+    let done = brdf_report::write_batch_report(dir, out, data_dirs, &mut tick)?;
     bar.finish_and_clear();
     for s in &done.skipped {
         eprintln!("brdf report: no page for {s}");
