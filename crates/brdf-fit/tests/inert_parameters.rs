@@ -5,18 +5,13 @@
 //! a singular Jacobian" because `sheen_tint` or `clearcoat_gloss` stayed
 //! free with their lobe at 0 (or `specular` at `metallic = 1`).
 
-use std::f64::consts::TAU;
-
-use brdf_core::{Brdf, Direction, Parametric, SampleSet};
+use brdf_core::Parametric;
 use brdf_fit::appearance::{fit_for_appearance, lobe_companions, optional_lobes};
 use brdf_fit::{Fit, Objective};
 use brdf_models::catalogue::{ModelConfig, build};
-use nalgebra::Vector3;
 
-fn dir(a: f64, b: f64) -> Vector3<f64> {
-    let th = a * 1.45;
-    Vector3::new(th.sin() * b.cos(), th.sin() * b.sin(), th.cos())
-}
+mod common;
+use common::rgb_samples;
 
 /// RGB principled at `truth` (base r g b, metallic, specular, spec_tint,
 /// roughness, anisotropic, sheen, sheen_tint, clearcoat, clearcoat_gloss).
@@ -30,36 +25,6 @@ fn principled(truth: &[f64]) -> Box<dyn Parametric> {
     model
 }
 
-/// `model` on 2000 quasi-random pairs.
-fn samples(model: &dyn Brdf) -> SampleSet {
-    let mut s = SampleSet::new(
-        "synthetic",
-        "test",
-        vec!["r".into(), "g".into(), "b".into()],
-    );
-    let mut f = [0.0; 3];
-    for j in 0..2000 {
-        let x = j as f64;
-        let l = dir(
-            (x * 0.618_033_988_75).fract(),
-            TAU * (x * 0.414_213_562_37).fract(),
-        );
-        let v = dir(
-            (x * 0.732_050_807_57).fract(),
-            TAU * (x * 0.236_067_977_5).fract(),
-        );
-        model.eval(&l, &v, &mut f);
-        s.push(
-            &Direction::try_new(l).expect("unit"),
-            &Direction::try_new(v).expect("unit"),
-            &f,
-            1.0,
-        )
-        .expect("push");
-    }
-    s
-}
-
 /// A matte dielectric without sheen or clear coat: the appearance fit keeps
 /// the lobes off, holds their companions at the defaults (0), and its kept
 /// solve converges.
@@ -67,7 +32,7 @@ fn samples(model: &dyn Brdf) -> SampleSet {
 fn lobes_off_hold_their_companions_and_the_fit_converges() {
     let truth = [0.6, 0.3, 0.1, 0.0, 0.5, 0.0, 0.6, 0.0, 0.0, 0.0, 0.0, 0.0];
     let data = principled(&truth);
-    let s = samples(data.as_ref());
+    let s = rgb_samples(data.as_ref(), 2000);
     let fit = Fit::model("principled")
         .expect("model")
         .channels(brdf_fit::Channels::All);
@@ -102,7 +67,7 @@ fn lobes_off_hold_their_companions_and_the_fit_converges() {
 fn a_term_switched_off_by_a_bound_is_named() {
     let truth = [0.5, 0.4, 0.3, 0.3, 0.5, 0.2, 0.4, 0.0, 0.0, 0.0, 0.0, 0.0];
     let data = principled(&truth);
-    let s = samples(data.as_ref());
+    let s = rgb_samples(data.as_ref(), 2000);
     let report = Fit::model("principled")
         .expect("model")
         .objective(Objective::Ngan)

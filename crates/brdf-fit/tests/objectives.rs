@@ -5,17 +5,15 @@
 
 use std::f64::consts::{PI, TAU};
 
-use brdf_core::{Brdf, DirPairs, Direction, Parametric, SampleSet};
+use brdf_core::{Brdf, DirPairs, Parametric, SampleSet};
 use brdf_fit::image_objective::{ImageProblem, ImageTerms};
 use brdf_fit::{Fit, Objective};
 use brdf_models::catalogue::{ModelConfig, build};
 use brdf_solve::LeastSquaresProblem;
 use nalgebra::Vector3;
 
-fn dir(a: f64, b: f64) -> Vector3<f64> {
-    let th = a * 1.45;
-    Vector3::new(th.sin() * b.cos(), th.sin() * b.sin(), th.cos())
-}
+mod common;
+use common::{dir, rgb_samples};
 
 /// RGB data of `name` at `truth` on 3000 quasi-random pairs.
 fn data(name: &str, truth: &[f64]) -> SampleSet {
@@ -25,32 +23,7 @@ fn data(name: &str, truth: &[f64]) -> SampleSet {
     };
     let mut model = build(name, &cfg).expect("model");
     model.set_params(truth).expect("truth in the box");
-    let mut s = SampleSet::new(
-        "synthetic",
-        "test",
-        vec!["r".into(), "g".into(), "b".into()],
-    );
-    let mut f = [0.0; 3];
-    for j in 0..3000 {
-        let x = j as f64;
-        let l = dir(
-            (x * 0.618_033_988_75).fract(),
-            TAU * (x * 0.414_213_562_37).fract(),
-        );
-        let v = dir(
-            (x * 0.732_050_807_57).fract(),
-            TAU * (x * 0.236_067_977_5).fract(),
-        );
-        model.eval(&l, &v, &mut f);
-        s.push(
-            &Direction::try_new(l).expect("unit"),
-            &Direction::try_new(v).expect("unit"),
-            &f,
-            1.0,
-        )
-        .expect("push");
-    }
-    s
+    rgb_samples(model.as_ref(), 3000)
 }
 
 // Blinn-Phong RGB: kd_r kd_g kd_b ks_r ks_g ks_b n.
