@@ -95,9 +95,13 @@ impl BoxedModel {
 
 /// Intersect the box of `spec` with `[lo, hi]` and move its default into
 /// the result; an error (rather than a panic of `clamp`) if they do not meet.
+/// A box open below stays open only where its own bound is the binding one:
+/// `(0, 1]` narrowed to `[0.1, 0.1]` is `[0.1, 0.1]` (a parameter held at
+/// 0.1), not the empty `(0.1, 0.1]`.
 fn narrow(model: &str, spec: &mut ParamSpec, lo: f64, hi: f64) -> Result<(), ParamError> {
     let (lower, upper) = (spec.lower.max(lo), spec.upper.min(hi));
-    if lower.is_nan() || upper.is_nan() || lower > upper {
+    let lower_open = spec.lower_open && spec.lower >= lo;
+    if lower.is_nan() || upper.is_nan() || lower > upper || (lower_open && lower == upper) {
         return Err(ParamError::Config {
             model: model.to_string(),
             reason: format!(
@@ -108,6 +112,7 @@ fn narrow(model: &str, spec: &mut ParamSpec, lo: f64, hi: f64) -> Result<(), Par
         });
     }
     spec.lower = lower;
+    spec.lower_open = lower_open;
     spec.upper = upper;
     spec.default = spec.default.clamp(lower, upper);
     Ok(())
@@ -219,6 +224,21 @@ mod tests {
             m.param_specs()[1].default.clamp(0.0, 0.1),
             m.param_specs()[1].default
         );
+    }
+
+    /// Ward's `a` has the box `(0, 0.5]`: held at 0.1 it is `[0.1, 0.1]`
+    /// (closed: the held value is in it); narrowed to `[0, 0.3]` its own
+    /// open bound still binds; `[0, 0]` meets `(0, 0.5]` nowhere.
+    #[test]
+    fn narrowing_an_open_bound_closes_it_where_the_new_bound_binds() {
+        let m = BoxedModel::narrowed(ward(), &[("a", 0.1, 0.1)]).unwrap();
+        let a = &m.param_specs()[2];
+        assert_eq!((a.lower, a.upper, a.lower_open), (0.1, 0.1, false));
+        assert_eq!(m.params()[2], 0.1);
+        let m = BoxedModel::narrowed(ward(), &[("a", 0.0, 0.3)]).unwrap();
+        let a = &m.param_specs()[2];
+        assert_eq!((a.lower, a.upper, a.lower_open), (0.0, 0.3, true));
+        assert!(BoxedModel::narrowed(ward(), &[("a", 0.0, 0.0)]).is_err());
     }
 
     #[test]

@@ -59,6 +59,32 @@ fn lobes_off_hold_their_companions_and_the_fit_converges() {
     assert!(!t.contains("NOT converged"), "{t}");
 }
 
+/// glTF with KHR clear coat at its defaults (no clear coat): the lobe stays
+/// off and `clearcoat_roughness`, whose box `(0, 1]` is open below, is held
+/// at its default 0.1 (narrowing it to `[0.1, 0.1]` once made the empty
+/// box `(0.1, 0.1]`, and every `gltf-ext` appearance fit failed).
+#[test]
+fn an_open_boxed_companion_is_held_too() {
+    let cfg = ModelConfig {
+        channels: 3,
+        ..ModelConfig::default()
+    };
+    let data = build("gltf-ext", &cfg).expect("model");
+    let s = rgb_samples(data.as_ref(), 2000);
+    let fit = Fit::model("gltf-ext").expect("model");
+    let (report, _) = fit_for_appearance(&fit, &s, data.as_ref()).expect("fit");
+    let specs = report.model.param_specs();
+    let p = report.model.params();
+    let k = |name: &str| specs.iter().position(|s| s.name == name).expect(name);
+    assert_eq!(p[k("clearcoat")], 0.0);
+    let rough = &specs[k("clearcoat_roughness")];
+    assert_eq!(p[k("clearcoat_roughness")], rough.default);
+    assert_eq!(
+        lobe_companions("gltf-ext", "clearcoat"),
+        ["clearcoat_roughness"]
+    );
+}
+
 /// Principled with `metallic` held at 1 on data with a dielectric part:
 /// `specular` and `spec_tint` act only in the dielectric lobe, which
 /// `metallic = 1` switches off. The fit is degenerate, not a failure, and
