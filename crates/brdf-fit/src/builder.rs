@@ -254,6 +254,14 @@ impl Fit {
                 .collect();
             model = Box::new(BoxedModel::narrowed(model, &boxes)?);
         }
+        // Parameters whose box is one value (a lobe switched off, its
+        // companions): held, not pushed onto a bound by the fit.
+        let held: Vec<String> = model
+            .param_specs()
+            .iter()
+            .filter(|s| s.lower == s.upper)
+            .map(|s| s.name.clone())
+            .collect();
         let (model, summary, scale) = fit_scaled(model, &data, options.objective, |m, d, s| {
             self.fit_model(m, d, &config, &options, s)
         })?;
@@ -268,11 +276,16 @@ impl Fit {
         }
         check_finite(&summary, &samples.name)?;
         for fp in &summary.parameters {
-            if let Some(b) = &fp.at_bound {
+            let value = brdf_io::error::short(fp.value);
+            if held.contains(&fp.name) {
                 notes.push(format!(
-                    "`{}` = {} sits on the {b} bound of its box",
-                    fp.name,
-                    brdf_io::error::short(fp.value)
+                    "`{}` = {value} is held there (its box is that value)",
+                    fp.name
+                ));
+            } else if let Some(b) = &fp.at_bound {
+                notes.push(format!(
+                    "`{}` = {value} sits on the {b} bound of its box",
+                    fp.name
                 ));
             }
         }

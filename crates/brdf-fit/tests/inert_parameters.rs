@@ -51,6 +51,15 @@ fn lobes_off_hold_their_companions_and_the_fit_converges() {
         for name in lobe_companions("principled", lobe) {
             let default = specs.iter().find(|s| s.name == *name).expect(name).default;
             assert_eq!(value(name), default, "{name} with {lobe} off");
+            let note = format!("`{name}` = ");
+            assert!(
+                report
+                    .notes
+                    .iter()
+                    .any(|n| n.starts_with(&note) && n.contains("is held there")),
+                "{:?}",
+                report.notes
+            );
             held += 1;
         }
     }
