@@ -427,6 +427,7 @@ fn candidate(
 /// `fit` with every optional lobe but those in `on` held at 0, and its
 /// [`lobe_companions`] at their defaults.
 fn with_lobes(fit: &Fit, on: &[String]) -> Result<Fit, FitError> {
+    let specs = fit.param_specs()?;
     let mut out = fit.clone();
     for lobe in optional_lobes(fit.model_name()) {
         if on.iter().any(|o| o == lobe) {
@@ -434,8 +435,8 @@ fn with_lobes(fit: &Fit, on: &[String]) -> Result<Fit, FitError> {
         }
         out = out.narrow(lobe, 0.0, 0.0);
         for name in lobe_companions(fit.model_name(), lobe) {
-            if let Some(d) = fit.default_value(name)? {
-                out = out.narrow(name, d, d);
+            if let Some(s) = specs.iter().find(|s| s.name == *name) {
+                out = out.narrow(name, s.default, s.default);
             }
         }
     }

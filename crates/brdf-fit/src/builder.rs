@@ -191,15 +191,10 @@ impl Fit {
         self.entry.name
     }
 
-    /// The default value of the parameter `name` of this fit's model at its
-    /// configuration (`None`: the model has no such parameter).
-    pub fn default_value(&self, name: &str) -> Result<Option<f64>, FitError> {
-        let model = (self.entry.build)(&self.config)?;
-        Ok(model
-            .param_specs()
-            .iter()
-            .find(|s| s.name == name)
-            .map(|s| s.default))
+    /// The parameters (names, boxes, defaults) of this fit's model at its
+    /// configuration, before any [`Fit::narrow`].
+    pub fn param_specs(&self) -> Result<Vec<brdf_core::ParamSpec>, FitError> {
+        Ok((self.entry.build)(&self.config)?.param_specs().to_vec())
     }
 
     /// Filter `samples` (invalid values, the angle limit), build the model

@@ -257,30 +257,30 @@ impl EnvironmentCells {
         radiance: impl Fn(&Vector3<f64>) -> [f64; 3],
         out: &mut Vec<Incident>,
     ) {
-        // The per-cell sums, reused by every point this thread sets up (a
-        // fresh vector per point was an allocation and a page-in of ~20 kB
-        // for each of the judge's 2 x 12,868 pixels).
+        // The per-cell sums, reused by every point this thread sets up
+        // rather than allocated and zeroed afresh for each pixel.
         thread_local! {
             static SUMS: RefCell<Vec<CellSum>> = const { RefCell::new(Vec::new()) };
         }
+        let frame = view_frame(n, v);
         SUMS.with_borrow_mut(|sums| {
             sums.clear();
             sums.resize(self.cells, CellSum::default());
-            self.sum_cells(n, v, &radiance, sums);
-            self.emit(n, v, sums, out);
+            self.sum_cells(n, v, frame, &radiance, sums);
+            self.emit(n, v, frame, sums, out);
         });
     }
 
     /// Add every sub-cell's `W` (and the sums of its evaluation point) to
-    /// its cell's sum.
+    /// its cell's sum (`(t1, t2)`: the view's frame, [`view_frame`]).
     fn sum_cells(
         &self,
         n: &Vector3<f64>,
         v: &Vector3<f64>,
+        (t1, t2): (Vector3<f64>, Vector3<f64>),
         radiance: &impl Fn(&Vector3<f64>) -> [f64; 3],
         sums: &mut [CellSum],
     ) {
-        let (t1, t2) = view_frame(n, v);
         let half_world = |h: &Vector3<f64>| t1 * h.x + t2 * h.y + n * h.z;
         for s in &self.half {
             let h = half_world(&s.dir);
@@ -318,9 +318,16 @@ impl EnvironmentCells {
         }
     }
 
-    /// Append each cell with non-zero `W` to `out`, at its evaluation point.
-    fn emit(&self, n: &Vector3<f64>, v: &Vector3<f64>, sums: &[CellSum], out: &mut Vec<Incident>) {
-        let (t1, t2) = view_frame(n, v);
+    /// Append each cell with non-zero `W` to `out`, at its evaluation point
+    /// (`(t1, t2)`: the view's frame, [`view_frame`]).
+    fn emit(
+        &self,
+        n: &Vector3<f64>,
+        v: &Vector3<f64>,
+        (t1, t2): (Vector3<f64>, Vector3<f64>),
+        sums: &[CellSum],
+        out: &mut Vec<Incident>,
+    ) {
         let half_world = |h: &Vector3<f64>| t1 * h.x + t2 * h.y + n * h.z;
         let half_cells = self.half.last().map_or(0, |s| s.cell + 1);
         for (cell, sum) in sums.iter().enumerate() {
