@@ -18,6 +18,7 @@ mitsuba`: exactly, or converted to a model Mitsuba has) or
 `model:objective:tabulated` (the model itself, tabulated on the
 measurement's grid by `brdf export --to mitsuba --tabulate-on` and rendered
 by the `measured` plugin: how the models Mitsuba lacks are judged, issue 24).
+The objective `polish` is the default fit with `brdf fit --polish`.
 `--add` renders only the configurations given and merges their rows into
 the existing table.json (a row of the same material, model and objective is
 replaced), then rewrites the markdown.
@@ -69,7 +70,11 @@ def fit(data, model, objective, workdir):
     stem = f"{data.stem}.{model}.{objective}"
     fit_json = Path(workdir) / f"{stem}.json"
     cmd = [brdf_bin(), "fit", "--data", str(data), "--model", model, "--channels", "rgb"]
-    if objective != "default":
+    # `polish`: the default fit ended by `brdf fit --polish` (a search on
+    # the mean FLIP of brdf-render's renders).
+    if objective == "polish":
+        cmd += ["--polish"]
+    elif objective != "default":
         cmd += ["--metric", objective]
     cmd += ["--save", str(fit_json), "--json", "--quiet"]
     t0 = time.time()
@@ -263,7 +268,9 @@ def markdown(rows, spp):
         "--to mitsuba --tabulate-on DATA.bsdf`) and rendered by the `measured` plugin, as the",
         "measurement is: how the models Mitsuba has no plugin for (SGD, ABC, STD, Dupuy) are",
         "judged without converting them. The default `principled` fit tabulated beside its",
-        "exact export shows what the tabulation alone changes.",
+        "exact export shows what the tabulation alone changes. `polish`: the default fit",
+        "ended by `brdf fit --polish` (a compass search on the mean FLIP of brdf-render's",
+        "32-px renders, the mean colour kept within CIEDE2000 2.3 or the start's).",
         "Time: wall-clock seconds of `brdf fit` (fit, image error included) on this machine.",
         "",
         "| material | model | objective | FLIP sky | FLIP studio | PSNR sky | PSNR studio | dE sky | dE studio | time (s) |",

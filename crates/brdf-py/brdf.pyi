@@ -90,6 +90,7 @@ def fit(
     order: int = 8,
     degree: int = 7,
     save: Optional[StrPath] = None,
+    polish: bool = False,
 ) -> Fit:
     """Fit a model to measured data, as ``brdf fit``."""
 

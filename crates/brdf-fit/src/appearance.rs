@@ -186,6 +186,11 @@ impl Judge {
         self.size
     }
 
+    /// Light sets the judge renders under.
+    pub fn lights(&self) -> usize {
+        self.points.len()
+    }
+
     /// The judge with `data` rendered once, for [`Judge::fit_errors`] of
     /// many fits of the same data.
     pub fn with_data(size: usize, data: &dyn Brdf) -> Result<Self, FitError> {
@@ -607,6 +612,9 @@ pub fn fit_for_appearance_with(
             &mut choice,
         )?;
     }
+    if fit.polishes_on_flip() {
+        refiner.polish(&mut candidates, &mut choice)?;
+    }
     Ok((choice.report, candidates))
 }
 
@@ -654,6 +662,47 @@ impl Refiner<'_> {
             candidates[j].chosen = true;
             *choice = Choice {
                 report: refined,
+                k: j,
+            };
+        }
+        Ok(())
+    }
+}
+
+impl Refiner<'_> {
+    /// The choice moved by [`crate::flip_polish`] to a lower mean FLIP,
+    /// added to `candidates` (objective `flip`) and chosen when it stays a
+    /// fit of the data (Ngan's L2 within `max_l2`).
+    fn polish(&self, candidates: &mut Vec<Candidate>, choice: &mut Choice) -> Result<(), FitError> {
+        let t0 = Instant::now();
+        let lobes = candidates[choice.k].lobes.clone();
+        let fit = with_lobes(self.fit, &lobes)?;
+        let Some(polished) = crate::flip_polish::polish(
+            &fit,
+            &choice.report,
+            self.target,
+            self.judge,
+            self.samples,
+        )?
+        else {
+            return Ok(());
+        };
+        let c = Candidate {
+            objective: "flip".to_string(),
+            lobes,
+            ngan_l2: polished.summary.ngan_l2,
+            image: self.judge.fit_errors(polished.model.as_ref())?,
+            seconds: t0.elapsed().as_secs_f64(),
+            chosen: false,
+        };
+        let keeps_data = c.ngan_l2 <= self.max_l2;
+        candidates.push(c);
+        let j = candidates.len() - 1;
+        if keeps_data && flip(candidates, j) < flip(candidates, choice.k) {
+            candidates[choice.k].chosen = false;
+            candidates[j].chosen = true;
+            *choice = Choice {
+                report: polished,
                 k: j,
             };
         }

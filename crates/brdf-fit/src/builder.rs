@@ -44,6 +44,9 @@ pub struct Fit {
     channels: Channels,
     /// Narrower boxes `(prefix, lower, upper)` ([`BoxedModel::narrowed`]).
     boxes: Vec<(String, f64, f64)>,
+    /// Whether an appearance fit ends with a search on FLIP itself
+    /// ([`Fit::polish_on_flip`]).
+    flip_polish: bool,
 }
 
 /// The outcome of [`Fit::run`].
@@ -96,7 +99,22 @@ impl Fit {
             limit_deg: 80.0,
             channels: Channels::All,
             boxes: Vec::new(),
+            flip_polish: false,
         }
+    }
+
+    /// End a fit for appearance ([`crate::appearance::fit_for_appearance`])
+    /// with a derivative-free search on the judge's own metric, the mean
+    /// HDR-FLIP of the renders ([`crate::flip_polish`]): a lower image
+    /// error for a few seconds more. Off by default; other fits ignore it.
+    pub fn polish_on_flip(mut self, on: bool) -> Self {
+        self.flip_polish = on;
+        self
+    }
+
+    /// Whether [`Fit::polish_on_flip`] is set.
+    pub fn polishes_on_flip(&self) -> bool {
+        self.flip_polish
     }
 
     /// Objective and metric (default Ngan).

@@ -37,6 +37,7 @@
 //! | [`builder`] | [`Fit`] (the builder) and [`FitReport`] |
 //! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
 //! | [`fit_linear`] | all-linear models by (non-negative) least squares |
+//! | [`flip_polish`] | on request, an appearance fit's last step: compass search on the judge's mean FLIP |
 //! | [`image_objective`] | the image objective: residuals of tone-mapped sphere pixels |
 //! | [`reference`](mod@reference) | the data's judge render made once, and fits' image errors against it |
 //! | [`boxed`] | [`BoxedModel`]: a model fitted in other parameter boxes than its own |
@@ -65,6 +66,7 @@ pub mod boxed;
 pub mod builder;
 pub mod error;
 pub mod fit_linear;
+pub mod flip_polish;
 pub mod image_objective;
 pub mod linear_box;
 pub mod names;

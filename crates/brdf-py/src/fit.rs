@@ -40,6 +40,10 @@ use crate::fitted::{PyFit, PyModel};
 ///     Structure: specular lobes, Koenderink order, polynomial degree.
 /// save : str or os.PathLike, optional
 ///     Also write the fitted model (JSON) here.
+/// polish : bool
+///     End the fit for appearance with a search on the judge's mean
+///     HDR-FLIP (as ``brdf fit --polish``): a lower image error for a few
+///     seconds more. Only for fits for appearance.
 ///
 /// Returns
 /// -------
@@ -53,7 +57,7 @@ use crate::fitted::{PyFit, PyModel};
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
 #[pyo3(signature = (data, model, *, channels="rgb", metric="auto", limit_deg=80.0,
-    starts=12, solver="auto", lobes=1, order=8, degree=7, save=None))]
+    starts=12, solver="auto", lobes=1, order=8, degree=7, save=None, polish=false))]
 pub fn fit<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
@@ -67,6 +71,7 @@ pub fn fit<'py>(
     order: usize,
     degree: usize,
     save: Option<PathBuf>,
+    polish: bool,
 ) -> PyResult<PyFit> {
     let (set, name) = data_set(py, data)?;
     let spec = data
@@ -82,6 +87,11 @@ pub fn fit<'py>(
     };
     let (appearance, metric) =
         brdf_fit::appearance::metric_choice(metric, entry.name, dense.is_some());
+    if polish && !appearance {
+        return Err(usage(format!(
+            "polish=True refines a fit for appearance, which `{model}` with metric=\"{metric}\" on these data is not: use a renderer model (principled, gltf, gltf-ext, ggx) or metric=\"appearance\" on an RGL `.bsdf` or MERL `.binary` path"
+        )));
+    }
     let fit = Ok::<_, brdf_fit::FitError>(Fit::entry(entry))
         .and_then(|f| Ok(f.objective(Objective::parse(metric)?)))
         .and_then(|f| Ok(f.solver(Solver::parse(solver)?)))
@@ -90,7 +100,8 @@ pub fn fit<'py>(
         .limit_deg(limit_deg)
         .lobes(lobes)
         .order(order)
-        .degree(degree);
+        .degree(degree)
+        .polish_on_flip(polish);
     let sets = channel_sets(&set, channels)?;
     if save.is_some() && sets.len() > 1 {
         return Err(usage(

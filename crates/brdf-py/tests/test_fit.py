@@ -182,3 +182,16 @@ def test_every_function_has_a_numpy_style_docstring():
     for f in functions:
         doc = f.__doc__ or ""
         assert "Parameters" in doc or "Returns" in doc, f
+
+
+def test_polish_equals_cli(brdf_cli):
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    cli = cli_json(brdf_cli, "fit", "--data", path, "--model", "ggx", "--polish")
+    py = brdf.fit(path, "ggx", polish=True).report
+    assert without_seconds(py) == without_seconds(cli)
+    assert py["candidates"][0][-1]["objective"] == "flip"
+
+
+def test_polish_needs_a_fit_for_appearance():
+    with pytest.raises(brdf.BrdfError, match="polish=True refines a fit for appearance"):
+        brdf.fit(data_file("curet/abrdf.dat#25"), "ggx", channels="grey", polish=True)

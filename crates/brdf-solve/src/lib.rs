@@ -13,6 +13,7 @@
 //! | [`irls`](mod@irls) | robust regression by IRLS (MATLAB `robustfit`; three scale conventions) |
 //! | [`problem`] | [`LeastSquaresProblem`]: what a non-linear solver needs from a problem |
 //! | [`levenberg_marquardt`](mod@levenberg_marquardt) | Levenberg-Marquardt: stacked-QR steps, Marquardt scaling, Nielsen's or Sopp's damping, geodesic acceleration |
+//! | [`compass`] | compass search: derivative-free, in a box, for a scalar objective without a Jacobian (an image metric) |
 //! | [`covariance`] | parameter covariance and standard errors (SVD of `J`) |
 //! | [`constraints`] | box bounds and linear inequalities |
 //! | [`bounded`] | the bounded SQP-style solver (LSI subproblem per iteration) |
@@ -37,6 +38,7 @@
 //! catalogue. `brdf-fit` drives it; `brdf-study` certifies it on NIST StRD.
 
 pub mod bounded;
+pub mod compass;
 pub mod constraints;
 pub mod covariance;
 pub mod error;
@@ -57,6 +59,7 @@ pub mod tall_qr;
 pub mod varpro;
 
 pub use bounded::bounded_least_squares;
+pub use compass::{CompassOptions, CompassReport, CompassTermination, compass_search};
 pub use constraints::Constraints;
 pub use error::SolveError;
 pub use irls::{IrlsOptions, IrlsSolution, IrlsTermination, ScaleConvention, StoppingTest, irls};

@@ -40,6 +40,11 @@ pub struct FitArgs {
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
+    /// End the fit for appearance with a search on the judge's own metric,
+    /// the mean HDR-FLIP of the renders: a lower image error for a few
+    /// seconds more.
+    #[arg(long)]
+    pub polish: bool,
     /// Write the fitted model (JSON) here.
     #[arg(long)]
     pub save: Option<PathBuf>,
@@ -95,6 +100,12 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
     // Per-channel fits are grey models of one channel: not rendered.
     let dense = dense.as_deref().filter(|_| args.channels != "per-channel");
     let (appearance, metric) = appearance::metric_choice(&args.metric, entry.name, dense.is_some());
+    if args.polish && !appearance {
+        return Err(CliError::Usage(format!(
+            "--polish refines a fit for appearance, which `{}` with --metric {} on {} is not: use a renderer model (principled, gltf, gltf-ext, ggx) or --metric appearance on RGL `.bsdf` or MERL `.binary` data",
+            args.model, args.metric, args.data
+        )));
+    }
     let mut reports = Vec::new();
     brdf_study::context::progress::set_quiet(args.quiet);
     let bar = brdf_study::context::progress::bar(sets.len(), "fit");
@@ -108,7 +119,8 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
             .channels(*channels)
             .lobes(args.lobes)
             .order(args.order)
-            .degree(args.degree);
+            .degree(args.degree)
+            .polish_on_flip(args.polish);
         let t0 = std::time::Instant::now();
         // With --report on data that can be rendered, the judge of the
         // fit's image errors also makes the page (the data rendered once).
