@@ -264,3 +264,31 @@ fn batch_reports_find_data_given_by_an_absolute_folder() {
     assert!(err.contains("and 1 fit pages"), "{err}");
     let _ = std::fs::remove_dir_all(&tmp);
 }
+
+/// `brdf batch --polish` fits as `brdf fit --polish`: the same image
+/// errors, the polish's candidate among the fit's.
+#[test]
+fn a_polished_batch_fit_is_brdf_fit_polish() {
+    let Some(paper) = data_file("rgl/paper_white_rgb.bsdf") else {
+        return;
+    };
+    let tmp = std::env::temp_dir().join(format!("brdf-batch-polish-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    let (p, out) = (paper.display().to_string(), tmp.display().to_string());
+    let (ok, _, err) = brdf(&[
+        "batch", "--data", &p, "--models", "ggx", "--out", &out, "--quiet", "--polish",
+    ]);
+    assert!(ok, "{err}");
+    let text = std::fs::read_to_string(tmp.join("fits.jsonl")).expect("fits.jsonl");
+    let line: serde_json::Value = serde_json::from_str(text.trim()).expect("one json line");
+    let (ok, fit, err) = brdf(&[
+        "fit", "--data", &p, "--model", "ggx", "--json", "--quiet", "--polish",
+    ]);
+    assert!(ok, "{err}");
+    let fit: serde_json::Value = serde_json::from_str(&fit).expect("json");
+    assert_eq!(line["image_error"], fit["image_errors"][0]);
+    let candidates = fit["candidates"][0].as_array().expect("candidates");
+    assert!(candidates.iter().any(|c| c["objective"] == "flip"));
+    assert_eq!(line["for_appearance"]["candidates"], candidates.len());
+    let _ = std::fs::remove_dir_all(&tmp);
+}

@@ -91,6 +91,9 @@ pub struct BatchOptions {
     /// model is a renderer's and the data can be rendered, else Ngan's
     /// L2), `appearance`, or an objective's name.
     pub metric: String,
+    /// End each fit for appearance with the search on its render's FLIP
+    /// ([`Fit::polish_on_flip`]); other fits ignore it.
+    pub polish: bool,
 }
 
 /// How a batch went.
@@ -340,7 +343,8 @@ fn fit_one(
                 .objective(objective)
                 .channels(opts.channels)
                 .limit_deg(opts.limit_deg)
-                .starts(opts.starts);
+                .starts(opts.starts)
+                .polish_on_flip(opts.polish);
             match &material.rendered {
                 Some((data, judge)) => appearance::fit_judged_on(
                     &fit,

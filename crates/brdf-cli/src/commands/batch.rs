@@ -41,6 +41,10 @@ pub struct BatchArgs {
     /// ngan), appearance, ngan, log, cube-root, relative, image, ...
     #[arg(long, default_value = "auto")]
     pub metric: String,
+    /// End each fit for appearance with a search on the mean HDR-FLIP of
+    /// its renders, as `brdf fit --polish` (other fits are unchanged).
+    #[arg(long)]
+    pub polish: bool,
     /// Also write an HTML index of the fits and one page per fit into
     /// OUT/report/.
     #[arg(long)]
@@ -79,6 +83,7 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
         limit_deg: args.limit,
         starts: args.starts,
         metric: args.metric.clone(),
+        polish: args.polish,
     };
     let fits = opts.out.join(brdf_fit::batch::FITS);
     brdf_study::context::progress::set_quiet(args.quiet);
