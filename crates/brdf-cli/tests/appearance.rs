@@ -101,23 +101,29 @@ fn scattered_data_say_no_image_error_can_be_formed() {
     );
 }
 
+/// `brdf select --data P --by-image --models MODELS --json` plus `extra`.
+fn select_by_image(p: &str, models: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "select",
+        "--data",
+        p,
+        "--by-image",
+        "--models",
+        models,
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    let (ok, out, err) = brdf(&args);
+    assert!(ok, "{err}");
+    serde_json::from_str(&out).expect("json")
+}
+
 #[test]
 fn select_by_image_marks_the_least_flip() {
     let Some(p) = data_file("rgl/paper_white_rgb.bsdf") else {
         return;
     };
-    let p = p.display().to_string();
-    let (ok, out, err) = brdf(&[
-        "select",
-        "--data",
-        &p,
-        "--by-image",
-        "--models",
-        "gltf,ggx",
-        "--json",
-    ]);
-    assert!(ok, "{err}");
-    let v: serde_json::Value = serde_json::from_str(&out).expect("json");
+    let v = select_by_image(&p.display().to_string(), "gltf,ggx", &[]);
     let rows = v["candidates"].as_array().expect("rows");
     assert_eq!(rows.len(), 2);
     let mean = |r: &serde_json::Value| {
@@ -360,4 +366,25 @@ fn gltf_with_khr_extensions_fits_a_measured_paint_for_appearance() {
     }
     let (_, chosen) = candidates(&v);
     assert!(chosen["objective"].is_string());
+}
+
+#[test]
+fn select_by_image_polishes_as_fit_does() {
+    // `brdf select --by-image --polish`: each model's row is the fit that
+    // `brdf fit --polish` makes, the same image errors; without --by-image
+    // the flag is refused with the way to use it.
+    let Some(p) = data_file("rgl/paper_white_rgb.bsdf") else {
+        return;
+    };
+    let p = p.display().to_string();
+    let v = select_by_image(&p, "ggx", &["--polish"]);
+    let (ok, fit, err) = brdf(&[
+        "fit", "--data", &p, "--model", "ggx", "--polish", "--json", "--quiet",
+    ]);
+    assert!(ok, "{err}");
+    let fit: serde_json::Value = serde_json::from_str(&fit).expect("json");
+    assert_eq!(v["choice"]["image"], fit["image_errors"][0]);
+    let (ok, _, err) = brdf(&["select", "--data", &p, "--polish"]);
+    assert!(!ok);
+    assert!(err.contains("--by-image"), "{err}");
 }

@@ -837,12 +837,15 @@ pub struct ImageChoice {
 }
 
 /// Selection by image error (Bieron and Peers 2020): every model of
-/// `models` fitted for appearance to `samples`, judged against `data` at
-/// [`REPORT_SIZE`] pixels; the index of the least mean FLIP is the choice.
+/// `models` fitted for appearance to `samples` (each fit ended by the
+/// search on its render's FLIP when `polish`, [`Fit::polish_on_flip`]),
+/// judged against `data` at [`REPORT_SIZE`] pixels; the index of the least
+/// mean FLIP is the choice.
 pub fn select_by_image(
     models: &[&str],
     samples: &SampleSet,
     data: &dyn Brdf,
+    polish: bool,
 ) -> Result<(Vec<ImageChoice>, usize), FitError> {
     // The data rendered once at the report size for every model; the
     // models fitted in parallel (rows in the order of `models`, each fit
@@ -853,7 +856,8 @@ pub fn select_by_image(
         .par_iter()
         .map(|name| {
             let t0 = Instant::now();
-            let report = fit_judged_on(&Fit::model(name)?, samples, data, true, &judge)?;
+            let fit = Fit::model(name)?.polish_on_flip(polish);
+            let report = fit_judged_on(&fit, samples, data, true, &judge)?;
             let chosen = report.candidates.iter().find(|c| c.chosen);
             Ok(ImageChoice {
                 model: report.summary.model.clone(),

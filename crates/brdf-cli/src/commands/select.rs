@@ -43,6 +43,10 @@ pub struct SelectArgs {
     /// the standard light sets (data that can be rendered: RGL, MERL).
     #[arg(long)]
     pub by_image: bool,
+    /// With --by-image: end each model's fit with a search on the mean
+    /// HDR-FLIP of its renders, as `brdf fit --polish`.
+    #[arg(long)]
+    pub polish: bool,
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
@@ -52,6 +56,11 @@ pub struct SelectArgs {
 pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     if args.by_image {
         return by_image(args);
+    }
+    if args.polish {
+        return Err(CliError::Usage(
+            "--polish refines fits for appearance: use it with --by-image (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
+        ));
     }
     let data = brdf_io::load(&args.data)?;
     let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
@@ -117,7 +126,8 @@ fn by_image(args: &SelectArgs) -> Result<(), CliError> {
     } else {
         args.models.iter().map(String::as_str).collect()
     };
-    let (rows, choice) = brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref())?;
+    let (rows, choice) =
+        brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref(), args.polish)?;
     if args.json {
         let v =
             serde_json::json!({ "data": samples.name, "choice": rows[choice], "candidates": rows });
