@@ -654,32 +654,21 @@ impl Refiner<'_> {
         };
         let refine = with_lobes(self.fit, &lobes)?.image_target(Arc::new(target));
         let (refined, c) = candidate(&refine, Objective::Image, lobes, self.samples, self.judge)?;
-        let keeps_data = c.ngan_l2 <= self.max_l2;
-        candidates.push(c);
-        let j = candidates.len() - 1;
-        if keeps_data && flip(candidates, j) < gain * flip(candidates, choice.k) {
-            candidates[choice.k].chosen = false;
-            candidates[j].chosen = true;
-            *choice = Choice {
-                report: refined,
-                k: j,
-            };
-        }
+        self.offer(refined, c, gain, candidates, choice);
         Ok(())
     }
-}
 
-impl Refiner<'_> {
     /// The choice moved by [`crate::flip_polish`] to a lower mean FLIP,
     /// added to `candidates` (objective `flip`) and chosen when it stays a
     /// fit of the data (Ngan's L2 within `max_l2`).
     fn polish(&self, candidates: &mut Vec<Candidate>, choice: &mut Choice) -> Result<(), FitError> {
         let t0 = Instant::now();
-        let lobes = candidates[choice.k].lobes.clone();
-        let fit = with_lobes(self.fit, &lobes)?;
+        let start = &candidates[choice.k];
+        let fit = with_lobes(self.fit, &start.lobes)?;
         let Some(polished) = crate::flip_polish::polish(
             &fit,
             &choice.report,
+            &start.image,
             self.target,
             self.judge,
             self.samples,
@@ -689,24 +678,35 @@ impl Refiner<'_> {
         };
         let c = Candidate {
             objective: "flip".to_string(),
-            lobes,
+            lobes: start.lobes.clone(),
             ngan_l2: polished.summary.ngan_l2,
             image: self.judge.fit_errors(polished.model.as_ref())?,
             seconds: t0.elapsed().as_secs_f64(),
             chosen: false,
         };
+        self.offer(polished, c, 1.0, candidates, choice);
+        Ok(())
+    }
+
+    /// Add `c` (the candidate of `report`) to `candidates` and make it the
+    /// choice when its Ngan's L2 is within `max_l2` and its mean FLIP below
+    /// `gain` times the choice's.
+    fn offer(
+        &self,
+        report: FitReport,
+        c: Candidate,
+        gain: f64,
+        candidates: &mut Vec<Candidate>,
+        choice: &mut Choice,
+    ) {
         let keeps_data = c.ngan_l2 <= self.max_l2;
         candidates.push(c);
         let j = candidates.len() - 1;
-        if keeps_data && flip(candidates, j) < flip(candidates, choice.k) {
+        if keeps_data && flip(candidates, j) < gain * flip(candidates, choice.k) {
             candidates[choice.k].chosen = false;
             candidates[j].chosen = true;
-            *choice = Choice {
-                report: polished,
-                k: j,
-            };
+            *choice = Choice { report, k: j };
         }
-        Ok(())
     }
 }
 

@@ -32,7 +32,7 @@ use std::sync::Arc;
 use brdf_core::SampleSet;
 use brdf_solve::{CompassOptions, LmOptions, compass_search};
 
-use crate::appearance::Judge;
+use crate::appearance::{ImageError, Judge};
 use crate::image_objective::ImageTarget;
 use crate::{Fit, FitError, FitReport, Objective};
 
@@ -55,11 +55,12 @@ pub const POLISH_MIN_STEP: f64 = 1e-3;
 pub const COLOUR_DRIFT: f64 = 2.3;
 
 /// `report` (a fit of `fit`, with its lobes set, in the image objective
-/// of `target`) moved to a lower mean FLIP under `judge`; `None` when no
-/// step lowered it.
+/// of `target`; `start` its image errors under `judge`) moved to a lower
+/// mean FLIP under `judge`; `None` when no step lowered it.
 pub(crate) fn polish(
     fit: &Fit,
     report: &FitReport,
+    start: &ImageError,
     target: &ImageTarget,
     judge: &Judge,
     samples: &SampleSet,
@@ -72,10 +73,7 @@ pub(crate) fn polish(
     // render is never taken, nor one whose mean colour drifts beyond
     // COLOUR_DRIFT (FLIP alone let cc_iris_purple_gem's colour difference
     // grow from 1.5 to 4.2 for a sky FLIP 0.04 lower).
-    let colour_limit = judge
-        .fit_errors(report.model.as_ref())?
-        .max_delta_e()
-        .max(COLOUR_DRIFT);
+    let colour_limit = start.max_delta_e().max(COLOUR_DRIFT);
     let mean_flip = |p: &[f64]| -> f64 {
         if model.set_params(p).is_err() {
             return f64::INFINITY;
