@@ -432,17 +432,19 @@ impl<'a> ImageProblem<'a> {
         let (nc, npar) = (self.channels, self.n_params);
         let (nk, w, np) = (ch.pairs.len(), ch.pixels.len(), self.terms.pixels());
         let mut m = vec![0.0; nc * nk];
-        problem.residuals(p, &mut m);
-        let px = self.terms.chunk_pixels(ch, nc, &m);
-        let mut residuals = vec![0.0; nc * w];
         let mut colour = vec![0.0; self.colour_target.len()];
         let (mut jacobian, mut colour_jacobian, mut inner) = (Vec::new(), Vec::new(), Vec::new());
         if with_jacobian {
             jacobian = vec![0.0; nc * w * npar];
             colour_jacobian = vec![0.0; colour.len() * npar];
             inner = vec![0.0; nc * nk * npar];
-            problem.jacobian(p, &mut inner);
+            // One pass of the model's gradient gives the values too.
+            problem.residuals_and_jacobian(p, &mut m, &mut inner);
+        } else {
+            problem.residuals(p, &mut m);
         }
+        let px = self.terms.chunk_pixels(ch, nc, &m);
+        let mut residuals = vec![0.0; nc * w];
         for c in 0..nc {
             for (j, q) in ch.pixels.clone().enumerate() {
                 let (row, e) = (c * w + j, self.exposure[q]);

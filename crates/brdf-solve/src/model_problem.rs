@@ -179,6 +179,32 @@ impl<'a> ModelProblem<'a> {
         self.pairs.len() * self.model.channels()
     }
 
+    /// Residuals and Jacobian at `p` from one pass of the model's batch
+    /// gradient, which yields the values with the derivatives: a caller
+    /// that needs both (the image objective sums them into pixels) would
+    /// otherwise evaluate the model twice, [`LeastSquaresProblem::residuals`]
+    /// then [`LeastSquaresProblem::jacobian`]. Same rows as those two.
+    pub fn residuals_and_jacobian(&self, p: &[f64], out: &mut [f64], jac: &mut [f64]) {
+        if !self.blocks.is_empty() || self.shared().is_some() {
+            // These paths have their own evaluation (cache blocks, the
+            // shared basis): no single gradient pass to share.
+            self.residuals(p, out);
+            return self.jacobian(p, jac);
+        }
+        let (n, np) = (self.pairs.len(), p.len());
+        self.model.eval_grad_batch_at(p, self.pairs, out, jac);
+        for (i, o) in out.iter_mut().enumerate() {
+            let (r, s) = match self.transform {
+                Some(t) => t.apply(i, *o),
+                None => (*o * self.scale[i % n] - self.targets[i], self.scale[i % n]),
+            };
+            *o = r;
+            for v in &mut jac[i * np..(i + 1) * np] {
+                *v *= s;
+            }
+        }
+    }
+
     /// Full residuals through the shared basis.
     fn shared_residuals(&self, sb: &(&dyn SharedBasis, PairGeometry), p: &[f64], out: &mut [f64]) {
         let (b, geom) = sb;
