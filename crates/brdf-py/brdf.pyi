@@ -103,8 +103,12 @@ def select(
     models: Optional[list[str]] = None,
     max_parameters: Optional[int] = None,
     exhaustive: bool = False,
+    by_image: bool = False,
+    polish: bool = False,
 ) -> dict[str, Any]:
-    """Choose the smallest adequate model, as ``brdf select --json``."""
+    """Choose the smallest adequate model, as ``brdf select --json``; with
+    ``by_image=True`` the renderer model of least image error, as
+    ``brdf select --by-image --json``."""
 
 def eval(
     model: Union[str, "os.PathLike[str]", dict[str, Any]],

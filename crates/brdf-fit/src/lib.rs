@@ -84,4 +84,4 @@ pub use builder::{Channels, Fit, FitReport};
 pub use error::FitError;
 pub use names::resolve;
 pub use pipeline::{FitOptions, FitSummary, FittedParam, Objective, Solver};
-pub use report_json::{data_name, fit_json, select_json};
+pub use report_json::{data_name, fit_json, select_by_image_json, select_json};

@@ -1,11 +1,11 @@
-//! What a fit reports to a program: the JSON of `brdf fit --json` and of
-//! `brdf select --json` (also what the Python module's `fit` and `select`
-//! return), and data-set names for outputs, so every front end names fits
+//! What a fit reports to a program: the JSON of `brdf fit --json`, of
+//! `brdf select --json` and of `brdf select --by-image --json` (also what
+//! the Python module's `fit` and `select` return), and data-set names for outputs, so every front end names fits
 //! and data the same way.
 
 use brdf_core::SampleSet;
 
-use crate::appearance::{ImageError, SCATTERED_NOTE};
+use crate::appearance::{ImageChoice, ImageError, SCATTERED_NOTE};
 use crate::select::{Search, SelectRow};
 use crate::{FitError, FitReport};
 
@@ -58,6 +58,22 @@ pub fn select_json(
         "image_note": image.is_none().then_some(SCATTERED_NOTE),
         "candidates": rows,
     }))
+}
+
+/// The JSON report of a selection by image error (`brdf select --by-image
+/// --json`): the data set's name, the choice's row and every row, in the
+/// order [`crate::appearance::select_by_image`] returns them. One function
+/// so that the command and the Python module print the same shape; a
+/// `choice` outside `rows` is an error naming the data rather than a panic.
+pub fn select_by_image_json(
+    data_name: &str,
+    rows: &[ImageChoice],
+    choice: usize,
+) -> Result<serde_json::Value, FitError> {
+    let chosen = rows
+        .get(choice)
+        .ok_or_else(|| FitError::Usage(format!("`{data_name}`: no candidate chosen")))?;
+    Ok(serde_json::json!({ "data": data_name, "choice": chosen, "candidates": rows }))
 }
 
 /// A data set's name for outputs: relative to `BRDF_DATA` when it lies
@@ -117,6 +133,12 @@ mod tests {
     fn no_fit_is_an_error_naming_the_data() {
         let e = fit_json(&[], &samples()).unwrap_err();
         assert_eq!(e.to_string(), "`toy`: no fit to report");
+    }
+
+    #[test]
+    fn by_image_report_without_its_choice_is_an_error_naming_the_data() {
+        let e = select_by_image_json("toy", &[], 0).unwrap_err();
+        assert_eq!(e.to_string(), "`toy`: no candidate chosen");
     }
 
     #[test]

@@ -1,7 +1,9 @@
 """Python selections equal the `brdf select` command's, number for number
 (only the wall-clock times differ): on a measured RGB file, with the
 choice's image errors, and on numpy arrays of scattered data, which say why
-they have none; bad arguments raise BrdfError naming the fix."""
+they have none; selections by image error (`by_image=True`, with or without
+`polish=True`) equal `brdf select --by-image`'s; bad arguments raise
+BrdfError naming the fix."""
 
 import pytest
 
@@ -42,3 +44,34 @@ def test_bad_arguments_raise_brdf_error(options, words):
     path = data_file("curet/abrdf.dat#25")
     with pytest.raises(brdf.BrdfError, match=words.replace("[", r"\[").replace("]", r"\]")):
         brdf.select(path, **options)
+
+
+@pytest.mark.parametrize("polish", [False, True])
+def test_select_by_image_equals_cli(brdf_cli, polish):
+    # GGX alone: the fastest renderer model (a few seconds, polished too).
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    flags = ["--polish"] if polish else []
+    cli = cli_json(brdf_cli, "select", "--data", path, "--by-image", "--models", "ggx",
+                   *flags, "--quiet")
+    py = brdf.select(path, by_image=True, models=["ggx"], polish=polish)
+    assert without_seconds(py) == without_seconds(cli)
+    assert py["choice"]["model"] == "ggx"
+    assert [l["light"] for l in py["choice"]["image"]["lights"]] == ["sky", "studio"]
+
+
+def test_select_by_image_of_arrays_raises_brdf_error():
+    arrays = brdf.load(data_file("curet/abrdf.dat#25"))
+    with pytest.raises(brdf.BrdfError, match="by_image"):
+        brdf.select(arrays, by_image=True, models=["ggx"])
+
+
+def test_select_by_image_of_scattered_file_raises_brdf_error():
+    path = data_file("curet/abrdf.dat#25")
+    with pytest.raises(brdf.BrdfError, match="by_image.*scattered"):
+        brdf.select(path, by_image=True, models=["ggx"])
+
+
+def test_polish_without_by_image_raises_brdf_error():
+    path = data_file("curet/abrdf.dat#25")
+    with pytest.raises(brdf.BrdfError, match="polish=True.*by_image=True"):
+        brdf.select(path, polish=True, models=["ggx"])

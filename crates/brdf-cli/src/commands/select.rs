@@ -129,8 +129,7 @@ fn by_image(args: &SelectArgs) -> Result<(), CliError> {
     let (rows, choice) =
         brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref(), args.polish)?;
     if args.json {
-        let v =
-            serde_json::json!({ "data": samples.name, "choice": rows[choice], "candidates": rows });
+        let v = brdf_fit::select_by_image_json(&samples.name, &rows, choice)?;
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     for (i, r) in rows.iter().enumerate() {
