@@ -347,14 +347,33 @@ pub struct Candidate {
     pub chosen: bool,
 }
 
+/// A model, its optional lobes, and each lobe's companions (in the lobes'
+/// order).
+type LobeRow = (
+    &'static str,
+    &'static [&'static str],
+    &'static [&'static [&'static str]],
+);
+
+/// The optional lobes of each renderer model, in the order they are
+/// tried, and beside each lobe its companions ([`lobe_companions`]): one
+/// table, so a lobe and the parameters held with it cannot drift apart.
+const OPTIONAL_LOBES: &[LobeRow] = &[
+    (
+        "principled",
+        &["sheen", "clearcoat", "anisotropic"],
+        &[&["sheen_tint"], &["clearcoat_gloss"], &[]],
+    ),
+    ("gltf-ext", &["clearcoat"], &[&["clearcoat_roughness"]]),
+];
+
 /// Optional lobes of a model: parameter prefixes that switch a lobe off
 /// when held at 0.
 pub fn optional_lobes(model: &str) -> &'static [&'static str] {
-    match model {
-        "principled" => &["sheen", "clearcoat", "anisotropic"],
-        "gltf-ext" => &["clearcoat"],
-        _ => &[],
-    }
+    OPTIONAL_LOBES
+        .iter()
+        .find(|(m, _, _)| *m == model)
+        .map_or(&[], |(_, lobes, _)| *lobes)
 }
 
 /// The parameters of an optional lobe besides its strength (the lobe's own
@@ -364,12 +383,14 @@ pub fn optional_lobes(model: &str) -> &'static [&'static str] {
 /// with a singular Jacobian" (4 of the 5 RGL files' default fits), and the
 /// saved model carried whatever value a random start gave it.
 pub fn lobe_companions(model: &str, lobe: &str) -> &'static [&'static str] {
-    match (model, lobe) {
-        ("principled", "sheen") => &["sheen_tint"],
-        ("principled", "clearcoat") => &["clearcoat_gloss"],
-        ("gltf-ext", "clearcoat") => &["clearcoat_roughness"],
-        _ => &[],
-    }
+    OPTIONAL_LOBES
+        .iter()
+        .find(|(m, _, _)| *m == model)
+        .and_then(|(_, lobes, companions)| {
+            let k = lobes.iter().position(|l| *l == lobe)?;
+            companions.get(k).copied()
+        })
+        .unwrap_or(&[])
 }
 
 /// Whether `data` is isotropic: its values do not change when both
@@ -917,5 +938,36 @@ pub fn metric_choice<'a>(metric: &'a str, model: &str, renderable: bool) -> (boo
         "auto" => (false, "ngan"),
         "appearance" => (true, "ngan"),
         m => (false, m),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use brdf_models::catalogue::{ModelConfig, build};
+
+    /// Every lobe of the table has its companions beside it, and every
+    /// name in it (lobe and companion) is a parameter of its model, with a
+    /// lower bound of 0 for the lobe (held there to switch it off).
+    #[test]
+    fn the_lobe_table_names_parameters_of_its_models() {
+        for (model, lobes, companions) in OPTIONAL_LOBES {
+            assert_eq!(lobes.len(), companions.len(), "{model}");
+            assert!(is_renderer_model(model), "{model}");
+            let m = build(model, &ModelConfig::default()).expect("model");
+            let specs = m.param_specs();
+            let spec = |n: &str| specs.iter().find(|s| s.name == n);
+            for (lobe, with) in lobes.iter().zip(companions.iter()) {
+                let s = spec(lobe).unwrap_or_else(|| panic!("{model}: no `{lobe}`"));
+                assert_eq!(s.lower, 0.0, "{model}: {lobe}");
+                assert_eq!(optional_lobes(model), *lobes);
+                assert_eq!(lobe_companions(model, lobe), *with);
+                for c in *with {
+                    assert!(spec(c).is_some(), "{model}: no `{c}`");
+                }
+            }
+        }
+        assert!(optional_lobes("lambert").is_empty());
+        assert!(lobe_companions("principled", "metallic").is_empty());
     }
 }

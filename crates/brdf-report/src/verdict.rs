@@ -24,10 +24,14 @@ pub struct Verdict {
     pub notes: Vec<String>,
 }
 
-/// Whether a termination text means the solver did not converge.
+/// Whether a termination text means the solver did not converge: the
+/// solvers' "NOT converged", an iteration limit, or the FLIP search's
+/// "stopped at the evaluation budget" (`brdf_solve::compass`).
 pub fn not_converged(termination: &str) -> bool {
     let t = termination.to_ascii_lowercase();
-    t.contains("not converged") || t.contains("max") && t.contains("iteration")
+    t.contains("not converged")
+        || t.contains("max") && t.contains("iteration")
+        || t.contains("evaluation budget")
 }
 
 /// The verdict on `saved`, its image errors (`None`: scattered data) and
@@ -61,7 +65,7 @@ pub fn verdict(
     if let Some(t) = termination.filter(|t| not_converged(t)) {
         if image.is_some() && saved.provenance.objective == Objective::Image.name() {
             notes.push(format!(
-                "the kept solve, a refinement in the image objective, ended without meeting its convergence test ({t}); it was kept because it renders closer to the data, and this verdict judges the render"
+                "the kept solve, a refinement of the render (in the image objective, or the search on its FLIP of --polish), ended without meeting its convergence test ({t}); it was kept because it renders closer to the data, and this verdict judges the render"
             ));
         } else {
             reasons.push(format!(
@@ -188,5 +192,36 @@ mod tests {
             let v = verdict(&principled(objective), image, capped);
             assert!(v.reasons.iter().any(|r| r.contains("did not converge")));
         }
+    }
+
+    /// The FLIP search of `--polish` (recorded with the image objective)
+    /// stopped at its budget is named as not converged: a note beside
+    /// image errors, a reason without them; converged, nothing.
+    #[test]
+    fn a_polish_at_its_budget_is_named() {
+        let image = looks_right();
+        use brdf_solve::compass::CompassTermination;
+        // As brdf_fit::flip_polish words the termination of its search.
+        let text =
+            |t: CompassTermination| format!("{}; mean FLIP 0.2510 from 0.2600", t.describe());
+        let (budget, done) = (
+            text(CompassTermination::EvaluationBudget),
+            text(CompassTermination::StepBelowTolerance),
+        );
+        let (budget, done) = (Some(budget.as_str()), Some(done.as_str()));
+        let v = verdict(&principled("image"), Some(&image), budget);
+        assert!(
+            v.notes
+                .iter()
+                .any(|n| n.contains("search on its FLIP") && n.contains("evaluation budget")),
+            "{:?}",
+            v.notes
+        );
+        assert!(v.reasons.iter().all(|r| !r.contains("did not converge")));
+        let v = verdict(&principled("image"), None, budget);
+        assert!(v.reasons.iter().any(|r| r.contains("did not converge")));
+        let v = verdict(&principled("image"), Some(&image), done);
+        assert!(v.notes.iter().all(|n| !n.contains("convergence test")));
+        assert!(v.reasons.iter().all(|r| !r.contains("did not converge")));
     }
 }
