@@ -127,15 +127,21 @@ pub(crate) fn data_set(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<(Sam
         let name = set.name.clone();
         return Ok((set, name));
     }
+    let spec = data_spec(data)?;
+    let set = py.detach(|| brdf_io::load(&spec)).map_err(to_py)?;
+    Ok((set, brdf_fit::data_name(&spec)))
+}
+
+/// The data spec of `data` given as a path (str or os.PathLike), as the
+/// `brdf` command takes it (relative paths also under `BRDF_DATA`).
+pub(crate) fn data_spec(data: &Bound<'_, PyAny>) -> PyResult<String> {
     let path: PathBuf = data.extract().map_err(|_| {
         usage(
             "data: expected a path (str or os.PathLike) or a dict of arrays as load() returns"
                 .into(),
         )
     })?;
-    let spec = path.display().to_string();
-    let set = py.detach(|| brdf_io::load(&spec)).map_err(to_py)?;
-    Ok((set, brdf_fit::data_name(&spec)))
+    Ok(path.display().to_string())
 }
 
 /// The data sets fitted for a channel option, as `brdf fit --channels`.

@@ -164,13 +164,7 @@ fn select_by_image<'py>(
             "by_image=True: data given as arrays holds scattered samples that cannot be rendered; pass the path of RGL `.bsdf` or MERL `.binary` data, or select without by_image=True".into(),
         ));
     }
-    let path: PathBuf = data.extract().map_err(|_| {
-        usage(
-            "data: expected a path (str or os.PathLike) or a dict of arrays as load() returns"
-                .into(),
-        )
-    })?;
-    let spec = path.display().to_string();
+    let spec = crate::fit::data_spec(data)?;
     let names: Vec<String> = match models {
         Some(m) if m.is_empty() => {
             return Err(usage(
