@@ -112,6 +112,7 @@ impl ShadingPoints {
             .map(|r| ShadingPoints::from_hits(&hits[row_start[r]..row_start[r + 1]], lights, size))
             .collect();
         let mut sp = ShadingPoints::from_hits(&[], lights, size);
+        sp.reserve_for(rows.iter());
         for row in rows {
             let offset = sp.l_local.len();
             sp.pixels.extend(row.pixels.iter().map(|p| ShadedPixel {
@@ -123,6 +124,19 @@ impl ShadingPoints {
             sp.weight.extend(row.weight);
         }
         sp
+    }
+
+    /// Room for the pixels and terms of `rows`, reserved once before they
+    /// are joined: grown by doubling instead, the join of the 128-px
+    /// judge (about 3.9 million terms per light set) copied its arrays
+    /// again at every growth and faulted in fresh pages each time, a
+    /// quarter of the set-up's time.
+    fn reserve_for<'a>(&mut self, rows: impl Iterator<Item = &'a ShadingPoints> + Clone) {
+        let terms: usize = rows.clone().map(|r| r.l_local.len()).sum();
+        let pixels: usize = rows.map(|r| r.pixels.len()).sum();
+        self.l_local.reserve_exact(terms);
+        self.weight.reserve_exact(terms);
+        self.pixels.reserve_exact(pixels);
     }
 
     /// The terms of `hits` (term ranges counted from 0).
@@ -233,6 +247,7 @@ impl ShadingPoints {
             })
             .collect();
         let mut sp = ShadingPoints::from_hits(&[], lights, size);
+        sp.reserve_for(rows.iter().map(|(row, _, _)| row));
         let mut background = Vec::with_capacity(size * size * 3);
         let mut mask = Vec::with_capacity(size * size);
         for (row, bg, centre) in rows {

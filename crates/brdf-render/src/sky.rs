@@ -89,8 +89,11 @@ impl SunSky {
         }
         let y = dphi / PI * (table::COLS - 1) as f64;
         // Cell indices (a non-finite `x` or `y` saturates to 0).
-        let i = (x.floor().max(0.0) as usize).min(table::ROWS - 2);
-        let j = (y.floor().max(0.0) as usize).min(table::COLS - 2);
+        // `as usize` saturates below at 0 and truncates: the floor of
+        // `x, y >= 0` (0 for NaN or below 0, as before) without a call to
+        // `floor`.
+        let i = (x as usize).min(table::ROWS - 2);
+        let j = (y as usize).min(table::COLS - 2);
         let (fx, fy) = (x - i as f64, y - j as f64);
         let at = |r: usize, c: usize| table::SKY[r * table::COLS + c];
         let (a, b, c, e) = (at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1));
