@@ -101,6 +101,11 @@ pub fn select<'py>(
             "polish=True refines fits for appearance: use it with by_image=True (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
         ));
     }
+    if models.as_ref().is_some_and(Vec::is_empty) {
+        return Err(usage(
+            "models=[]: name at least one model, or leave models out for all".into(),
+        ));
+    }
     if by_image {
         return select_by_image(py, data, models, polish);
     }
@@ -109,11 +114,6 @@ pub fn select<'py>(
         .extract::<PathBuf>()
         .ok()
         .map(|p| p.display().to_string());
-    if models.as_ref().is_some_and(Vec::is_empty) {
-        return Err(usage(
-            "models=[]: name at least one model, or leave models out for all".into(),
-        ));
-    }
     let among = Among {
         models: models.unwrap_or_default(),
         max_parameters,
@@ -165,15 +165,8 @@ fn select_by_image<'py>(
         ));
     }
     let spec = crate::fit::data_spec(data)?;
-    let names: Vec<String> = match models {
-        Some(m) if m.is_empty() => {
-            return Err(usage(
-                "models=[]: name at least one model, or leave models out for all".into(),
-            ));
-        }
-        Some(m) => m,
-        None => RENDERER_MODELS.iter().map(|m| m.to_string()).collect(),
-    };
+    let names: Vec<String> =
+        models.unwrap_or_else(|| RENDERER_MODELS.iter().map(|m| m.to_string()).collect());
     let report = py.detach(|| -> PyResult<serde_json::Value> {
         let samples = brdf_io::load(&spec).map_err(to_py)?;
         let Some(dense) = brdf_io::load_dense(&spec).map_err(to_py)? else {

@@ -37,7 +37,8 @@ def test_select_of_arrays_equals_cli_and_has_no_image_error(brdf_cli):
 
 @pytest.mark.parametrize(
     "options, words",
-    [(dict(models=[]), "models=[]"), (dict(tolerance=-1.0), "tolerance"),
+    [(dict(models=[]), "models=[]"), (dict(models=[], by_image=True), "models=[]"),
+     (dict(tolerance=-1.0), "tolerance"),
      (dict(limit_deg=120.0), "limit"), (dict(models=["no-such-model"]), "no-such-model")],
 )
 def test_bad_arguments_raise_brdf_error(options, words):
