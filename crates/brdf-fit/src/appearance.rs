@@ -24,6 +24,11 @@
 //! the render itself. Lobes that pay only together (paper_white's sheen
 //! and clear coat) are tried together, in BRDF space under each objective.
 //!
+//! Each of these stages (the base candidates, the single lobes, the lobes
+//! together, the refinements, the lobes in the image objective) fits its
+//! candidates in parallel, then decides in their fixed order: the choice
+//! and every candidate are the same for any thread count.
+//!
 //! Thresholds of the plain-words warnings ([`ImageError::warnings`]):
 //! mean-colour CIEDE2000 above [`DELTA_E_WARN`] (a colour difference an
 //! observer names at a glance; 2.3 is a just-noticeable difference) and
@@ -507,8 +512,12 @@ pub fn fit_for_appearance_with(
     let mut candidates: Vec<Candidate> = Vec::new();
     let mut best: Option<(FitReport, usize)> = None;
     let mut base_params: Vec<(Vec<f64>, usize)> = Vec::new();
-    for objective in CANDIDATE_OBJECTIVES {
-        let (r, c) = candidate(&base, objective, Vec::new(), samples, &judge)?;
+    // Every stage fits its candidates in parallel and then decides in
+    // their fixed order, so the choice is the same for any thread count.
+    let fits = in_parallel(&CANDIDATE_OBJECTIVES, |o| {
+        candidate(&base, *o, Vec::new(), samples, &judge)
+    })?;
+    for (r, c) in fits {
         base_params.push((r.model.params().to_vec(), candidates.len()));
         candidates.push(c);
         let k = candidates.len() - 1;
@@ -523,12 +532,21 @@ pub fn fit_for_appearance_with(
     let objective = Objective::parse(&candidates[k].objective)?;
     let isotropic = is_isotropic(data);
     let (winner, mut single_gain) = (k, false);
-    for on in optional_lobes(fit.model_name()) {
-        if isotropic && on.starts_with("anisotropic") {
-            continue;
-        }
-        let on = vec![on.to_string()];
-        let (r, c) = candidate(&with_lobes(fit, &on)?, objective, on, samples, &judge)?;
+    let singles: Vec<Vec<String>> = optional_lobes(fit.model_name())
+        .iter()
+        .filter(|on| !(isotropic && on.starts_with("anisotropic")))
+        .map(|on| vec![on.to_string()])
+        .collect();
+    let fits = in_parallel(&singles, |on| {
+        candidate(
+            &with_lobes(fit, on)?,
+            objective,
+            on.clone(),
+            samples,
+            &judge,
+        )
+    })?;
+    for (r, c) in fits {
         candidates.push(c);
         let j = candidates.len() - 1;
         single_gain |= flip(&candidates, j) < flip(&candidates, winner);
@@ -545,23 +563,25 @@ pub fn fit_for_appearance_with(
     // Under the winning objective they are tried only when a single lobe
     // lowered its FLIP at all: on the films no lobe did, and their
     // cube-root fit with both on (up to 3.7 s) came out no better.
-    let all: Vec<String> = optional_lobes(fit.model_name())
-        .iter()
-        .filter(|l| !(isotropic && l.starts_with("anisotropic")))
-        .map(|l| l.to_string())
-        .collect();
+    let all: Vec<String> = singles.concat();
     if all.len() > 1 {
         let best_base = base_params
             .iter()
             .map(|(_, j)| flip(&candidates, *j))
             .fold(f64::INFINITY, f64::min);
-        for (o, (_, b)) in CANDIDATE_OBJECTIVES.into_iter().zip(&base_params) {
-            let in_reach = flip(&candidates, *b) <= PAIR_REACH * best_base;
-            if !in_reach || (o == objective && !single_gain) {
-                continue;
-            }
-            let f = with_lobes(fit, &all)?;
-            let (r, c) = candidate(&f, o, all.clone(), samples, &judge)?;
+        let pairs: Vec<Objective> = CANDIDATE_OBJECTIVES
+            .into_iter()
+            .zip(&base_params)
+            .filter(|(o, (_, b))| {
+                flip(&candidates, *b) <= PAIR_REACH * best_base && (*o != objective || single_gain)
+            })
+            .map(|(o, _)| o)
+            .collect();
+        let with_all = with_lobes(fit, &all)?;
+        let fits = in_parallel(&pairs, |o| {
+            candidate(&with_all, *o, all.clone(), samples, &judge)
+        })?;
+        for (r, c) in fits {
             candidates.push(c);
             let j = candidates.len() - 1;
             if flip(&candidates, j) < flip(&candidates, k) * (1.0 - LOBE_MARGIN) {
@@ -601,8 +621,8 @@ pub fn fit_for_appearance_with(
         max_l2: refine_l2_growth * candidates[k].ngan_l2,
     };
     let mut choice = Choice { report, k };
-    for (start, lobes) in starts {
-        refiner.refine(start, lobes, 1.0, &mut candidates, &mut choice)?;
+    for (refined, c) in in_parallel(&starts, |(p, on)| refiner.refine(p, on))? {
+        refiner.offer(refined, c, 1.0, &mut candidates, &mut choice);
     }
     // The optional lobes, tried in the image objective (nested models): from
     // the best fit so far, each lobe switched on at the middle of its box and
@@ -614,24 +634,21 @@ pub fn fit_for_appearance_with(
     let base = choice.report.model.params().to_vec();
     let on_already = candidates[choice.k].lobes.clone();
     let specs = choice.report.model.param_specs().to_vec();
-    for on in optional_lobes(fit.model_name()) {
-        if (isotropic && on.starts_with("anisotropic")) || on_already.iter().any(|l| l == on) {
-            continue;
-        }
-        let mut start = base.clone();
-        for (p, s) in start.iter_mut().zip(specs.iter()) {
-            if s.name.starts_with(on) {
-                *p = 0.5 * (s.lower + s.upper);
+    let trials: Vec<(Vec<f64>, Vec<String>)> = singles
+        .iter()
+        .filter(|on| !on_already.contains(&on[0]))
+        .map(|on| {
+            let mut start = base.clone();
+            for (p, s) in start.iter_mut().zip(specs.iter()) {
+                if s.name.starts_with(on[0].as_str()) {
+                    *p = 0.5 * (s.lower + s.upper);
+                }
             }
-        }
-        let lobes = [on_already.clone(), vec![on.to_string()]].concat();
-        refiner.refine(
-            start,
-            lobes,
-            1.0 - LOBE_MARGIN,
-            &mut candidates,
-            &mut choice,
-        )?;
+            (start, [on_already.clone(), on.clone()].concat())
+        })
+        .collect();
+    for (refined, c) in in_parallel(&trials, |(p, on)| refiner.refine(p, on))? {
+        refiner.offer(refined, c, 1.0 - LOBE_MARGIN, &mut candidates, &mut choice);
     }
     if fit.polishes_on_flip() {
         refiner.polish(&mut candidates, &mut choice)?;
@@ -658,25 +675,21 @@ struct Refiner<'a> {
 }
 
 impl Refiner<'_> {
-    /// Refine `self.fit` with `lobes` on from `start`, add it to
-    /// `candidates`, and make it the choice when its Ngan's L2 is within
-    /// `max_l2` and its mean FLIP below `gain` times the choice's.
-    fn refine(
-        &self,
-        start: Vec<f64>,
-        lobes: Vec<String>,
-        gain: f64,
-        candidates: &mut Vec<Candidate>,
-        choice: &mut Choice,
-    ) -> Result<(), FitError> {
+    /// `self.fit` with `lobes` on, refined in the image objective from
+    /// `start`: the fit and its candidate row.
+    fn refine(&self, start: &[f64], lobes: &[String]) -> Result<(FitReport, Candidate), FitError> {
         let target = ImageTarget {
-            start,
+            start: start.to_vec(),
             ..self.target.clone()
         };
-        let refine = with_lobes(self.fit, &lobes)?.image_target(Arc::new(target));
-        let (refined, c) = candidate(&refine, Objective::Image, lobes, self.samples, self.judge)?;
-        self.offer(refined, c, gain, candidates, choice);
-        Ok(())
+        let refine = with_lobes(self.fit, lobes)?.image_target(Arc::new(target));
+        candidate(
+            &refine,
+            Objective::Image,
+            lobes.to_vec(),
+            self.samples,
+            self.judge,
+        )
     }
 
     /// The choice moved by [`crate::flip_polish`] to a lower mean FLIP,
@@ -729,6 +742,16 @@ impl Refiner<'_> {
             *choice = Choice { report, k: j };
         }
     }
+}
+
+/// `fit` of every item, in parallel, in the items' order (the first error
+/// wins, as in a loop).
+fn in_parallel<T: Sync, R: Send>(
+    items: &[T],
+    fit: impl Fn(&T) -> Result<R, FitError> + Sync + Send,
+) -> Result<Vec<R>, FitError> {
+    use rayon::prelude::*;
+    items.par_iter().map(fit).collect()
 }
 
 fn flip(candidates: &[Candidate], k: usize) -> f64 {
