@@ -37,7 +37,8 @@ fn every_fitting_case_ends_finite_or_in_a_one_line_error() {
                 match c.ngan_l2 {
                     Some(e) => assert!(e.is_finite() && e >= 0.0, "{}: {e}", c.case),
                     None => assert!(
-                        c.detail.starts_with("exact up to rounding: Ngan L2 below 1e-12"),
+                        c.detail
+                            .starts_with("exact up to rounding: Ngan L2 below 1e-12"),
                         "{}: {}",
                         c.case,
                         c.detail
