@@ -5,7 +5,9 @@
 //! relative tolerance of the best. AIC and BIC are reported beside it
 //! (Gaussian residuals on Ngan's scaled rows: `AIC = n ln(SSR/n) + 2k`,
 //! `BIC = n ln(SSR/n) + k ln n`, `n` = samples x channels, `k` = stored
-//! numbers).
+//! numbers; an error below the data's rounding level, `eps` times their
+//! largest value, counts as that level, so their differences do not
+//! depend on the data's unit).
 //!
 //! By default the candidates are fitted coarse to fine ([`coarse`]): all
 //! of them on one shared subsample, then only those near the best on all

@@ -87,10 +87,17 @@ impl SelectRow {
         let wsum: f64 = data.weights().iter().sum();
         let ssr = r.ngan_l2 * r.ngan_l2 * wsum * data.channels() as f64;
         // ln(SSR / n) from the error itself: SSR of data near 1e300
-        // overflows, its logarithm does not.
-        let ll = n
-            * (2.0 * r.ngan_l2.ln() + (wsum * data.channels() as f64 / n).ln())
-                .max(f64::MIN_POSITIVE.ln());
+        // overflows, its logarithm does not. The error is floored at the
+        // data's rounding level (an exact fit's error is 0): a floor at
+        // the smallest normal number instead cut every candidate's
+        // ln(SSR / n) alike on data of 1e-300, and AIC and BIC then ranked
+        // the candidates by their stored numbers alone.
+        let e = if r.ngan_l2.is_nan() {
+            f64::NAN
+        } else {
+            r.ngan_l2.max(rounding_level(data))
+        };
+        let ll = n * (2.0 * e.ln() + (wsum * data.channels() as f64 / n).ln());
         SelectRow {
             label,
             model: name.to_string(),
@@ -121,5 +128,20 @@ impl SelectRow {
             coarse_error: Some(self.error),
             ..self
         }
+    }
+}
+
+/// The error of an exact fit to `data` at rounding: `eps` times the
+/// largest finite magnitude of the data (the smallest normal number for
+/// data that are all 0).
+fn rounding_level(data: &SampleSet) -> f64 {
+    let largest = (0..data.channels())
+        .flat_map(|c| data.channel(c).iter())
+        .filter(|x| x.is_finite())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    if largest > 0.0 {
+        f64::EPSILON * largest
+    } else {
+        f64::MIN_POSITIVE
     }
 }
