@@ -1,7 +1,7 @@
 //! What a fit reports to a program: the JSON of `brdf fit --json`, of
 //! `brdf select --json` and of `brdf select --by-image --json` (also what
-//! the Python module's `fit` and `select` return), and data-set names for outputs, so every front end names fits
-//! and data the same way.
+//! the Python module's `fit` and `select` return), and data-set names for
+//! outputs, so every front end names fits and data the same way.
 
 use brdf_core::SampleSet;
 

@@ -191,6 +191,14 @@ impl<'a> ModelProblem<'a> {
             self.residuals(p, out);
             return self.jacobian(p, jac);
         }
+        self.gradient_pass(p, out, jac);
+    }
+
+    /// One pass of the model's batch gradient at `p`: the residual rows
+    /// (transformed or scaled, as [`LeastSquaresProblem::residuals`] forms
+    /// them without blocks or a shared basis) into `out`, the Jacobian's
+    /// rows scaled by each row's derivative into `jac`.
+    fn gradient_pass(&self, p: &[f64], out: &mut [f64], jac: &mut [f64]) {
         let (n, np) = (self.pairs.len(), p.len());
         self.model.eval_grad_batch_at(p, self.pairs, out, jac);
         for (i, o) in out.iter_mut().enumerate() {
@@ -301,20 +309,9 @@ impl LeastSquaresProblem for ModelProblem<'_> {
         if let Some(sb) = self.shared() {
             return self.shared_jacobian(sb, p, jac);
         }
-        let n = self.pairs.len();
-        let np = p.len();
-        self.pool.with(self.rows(), |val| {
-            self.model.eval_grad_batch_at(p, self.pairs, val, jac);
-            for i in 0..self.rows() {
-                let s = match self.transform {
-                    Some(t) => t.apply(i, val[i]).1,
-                    None => self.scale[i % n],
-                };
-                for v in &mut jac[i * np..(i + 1) * np] {
-                    *v *= s;
-                }
-            }
-        });
+        // The values the gradient pass yields are not needed here.
+        self.pool
+            .with(self.rows(), |val| self.gradient_pass(p, val, jac));
     }
 }
 
