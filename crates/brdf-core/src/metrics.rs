@@ -4,8 +4,64 @@
 //! [`crate::SampleSet::values_channel_major`] and of model batch output), the
 //! `cos theta_i` of each sample and per-sample weights, and return the total
 //! and the per-channel values.
+//!
+//! Every root-mean-square here is formed without spurious underflow or
+//! overflow (`root_mean_square`): data of 1e-300 have squared residuals
+//! below the smallest `f64`, data of 1e200 above the largest, and a
+//! textbook `sqrt(sum r^2 / n)` returns 0 or infinity for them.
 
 use crate::CoreError;
+
+/// Smallest mean square taken as formed: below it the squares may have
+/// lost digits to gradual underflow, so the scaled form is used.
+const SAFE_MEAN_SQUARE: f64 = f64::MIN_POSITIVE / f64::EPSILON;
+
+/// `sqrt( sum_j w(j) t(j)^2 / divisor )` over `j < n`.
+///
+/// The textbook sum, bit for bit, when it and its mean are finite and at
+/// least [`SAFE_MEAN_SQUARE`] (all ordinary data); otherwise, as LAPACK's
+/// `dnrm2` does, the terms divided by their largest magnitude and the
+/// weights by theirs, squared, summed and scaled back, so a residual of
+/// 1e-302 gives 1e-302, not 0, and one of 1e200 not infinity. A NaN term
+/// gives NaN, as in the textbook sum.
+fn root_mean_square(
+    n: usize,
+    weight: impl Fn(usize) -> f64,
+    term: impl Fn(usize) -> f64,
+    divisor: f64,
+) -> f64 {
+    let plain: f64 = (0..n)
+        .map(|j| {
+            let t = term(j);
+            weight(j) * t * t
+        })
+        .sum();
+    let mean = plain / divisor;
+    if plain.is_nan() || (plain.is_finite() && mean.is_finite() && mean >= SAFE_MEAN_SQUARE) {
+        return mean.sqrt();
+    }
+    let live = |j: &usize| weight(*j) != 0.0;
+    let tmax = (0..n)
+        .filter(live)
+        .map(|j| term(j).abs())
+        .fold(0.0, f64::max);
+    let wmax = (0..n)
+        .filter(live)
+        .map(|j| weight(j).abs())
+        .fold(0.0, f64::max);
+    if tmax == 0.0 || !tmax.is_finite() || !wmax.is_finite() {
+        return if tmax == 0.0 { 0.0 } else { f64::INFINITY };
+    }
+    let scaled: f64 = (0..n)
+        .filter(live)
+        .map(|j| {
+            let t = term(j) / tmax;
+            (weight(j) / wmax) * t * t
+        })
+        .sum();
+    // divisor / wmax, then the square root, so neither factor overflows.
+    tmax * (scaled / (divisor / wmax)).sqrt()
+}
 
 /// A metric's value over all channels and per channel.
 #[derive(Clone, Debug, PartialEq)]
@@ -64,18 +120,20 @@ fn weighted_rms(
         });
     }
     let per_channel: Vec<f64> = (0..nc)
-        .map(|c| {
-            let s: f64 = (0..n)
-                .map(|j| {
-                    let t = term(c, j);
-                    weights[j] * t * t
-                })
-                .sum();
-            (s / wsum).sqrt()
-        })
+        .map(|c| root_mean_square(n, |j| weights[j], |j| term(c, j), wsum))
         .collect();
-    let total = (per_channel.iter().map(|e| e * e).sum::<f64>() / nc as f64).sqrt();
+    let total = channel_total(&per_channel);
     Ok(MetricValue { total, per_channel })
+}
+
+/// `sqrt(mean_c E_c^2)`.
+fn channel_total(per_channel: &[f64]) -> f64 {
+    root_mean_square(
+        per_channel.len(),
+        |_| 1.0,
+        |c| per_channel[c],
+        per_channel.len() as f64,
+    )
 }
 
 /// Ngan et al. (2005) / Kurt (2007) L2 metric:
@@ -201,16 +259,13 @@ pub fn sopp_error(
     }
     let per_channel: Vec<f64> = (0..nc)
         .map(|c| {
-            (0..n)
-                .map(|j| {
-                    let r = w(j) * cos_i[j] * (measured[c * n + j] - model[c * n + j]) / wsum;
-                    r * r
-                })
-                .sum::<f64>()
-                .sqrt()
+            // w_j / sum w first: w_j (R - M) alone overflows for weights
+            // and data of 1e300.
+            let r = |j: usize| w(j) / wsum * (cos_i[j] * (measured[c * n + j] - model[c * n + j]));
+            root_mean_square(n, |_| 1.0, r, 1.0)
         })
         .collect();
-    let total = (per_channel.iter().map(|e| e * e).sum::<f64>() / nc as f64).sqrt();
+    let total = channel_total(&per_channel);
     Ok(MetricValue { total, per_channel })
 }
 
@@ -226,15 +281,24 @@ pub fn rms(a: &[f64], b: &[f64]) -> Result<f64, CoreError> {
             right: b.len(),
         });
     }
-    let s: f64 = a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum();
-    Ok((s / a.len() as f64).sqrt())
+    Ok(root_mean_square(
+        a.len(),
+        |_| 1.0,
+        |j| a[j] - b[j],
+        a.len() as f64,
+    ))
 }
 
 /// Relative RMS `sqrt( sum (a - b)^2 / sum b^2 )`, `b` the reference.
 /// `+inf` when the reference is all zero and `a` is not; `0` when both are.
 pub fn relative_rms(a: &[f64], reference: &[f64]) -> Result<f64, CoreError> {
     let num = rms(a, reference)?;
-    let den = (reference.iter().map(|x| x * x).sum::<f64>() / reference.len() as f64).sqrt();
+    let den = root_mean_square(
+        reference.len(),
+        |_| 1.0,
+        |j| reference[j],
+        reference.len() as f64,
+    );
     Ok(if den > 0.0 {
         num / den
     } else if num == 0.0 {

@@ -4,19 +4,15 @@
 
 use brdf_core::Parametric;
 use brdf_fit::appearance::{Candidate, fit_for_appearance};
-use brdf_fit::{Channels, Fit};
-use brdf_models::catalogue::{ModelConfig, build};
 
 mod common;
-use common::rgb_samples;
+use common::{principled_at, rgb_fit, rgb_samples};
 
 /// What a fit for appearance decides: the parameters and, per candidate,
 /// everything but its seconds.
 fn decided(threads: usize, data: &dyn Parametric) -> (Vec<f64>, Vec<Candidate>) {
     let s = rgb_samples(data, 1500);
-    let fit = Fit::model("principled")
-        .expect("model")
-        .channels(Channels::All);
+    let fit = rgb_fit("principled");
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -33,13 +29,7 @@ fn decided(threads: usize, data: &dyn Parametric) -> (Vec<f64>, Vec<Candidate>) 
 #[test]
 fn one_thread_and_three_decide_the_same() {
     // A glossy dielectric with a faint sheen: the lobe trials run too.
-    let cfg = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let mut data = build("principled", &cfg).expect("model");
-    let truth = [0.5, 0.2, 0.6, 0.0, 0.5, 0.0, 0.3, 0.0, 0.4, 0.5, 0.0, 0.0];
-    data.set_params(&truth).expect("truth in the box");
+    let data = principled_at(&[0.5, 0.2, 0.6, 0.0, 0.5, 0.0, 0.3, 0.0, 0.4, 0.5, 0.0, 0.0]);
     let (p1, c1) = decided(1, data.as_ref());
     let (p3, c3) = decided(3, data.as_ref());
     // Stages of several candidates: a thread count could reorder them.

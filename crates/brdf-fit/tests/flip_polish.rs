@@ -4,22 +4,16 @@
 //! listed as `flip` and its report names the search.
 
 use brdf_fit::appearance::{FIT_SIZE, Judge, fit_for_appearance};
-use brdf_fit::{Channels, Fit};
-use brdf_models::catalogue::{ModelConfig, build};
 
 mod common;
-use common::rgb_samples;
+use common::{rgb_fit, rgb_model, rgb_samples};
 
 #[test]
 fn the_polish_starts_at_the_choice_and_moves_only_free_parameters() {
     // Data the principled model cannot match exactly: a grey GGX lobe
     // (height-correlated Smith, Schlick Fresnel) over a dark blue diffuse
     // base.
-    let cfg = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let mut data = build("ggx", &cfg).expect("model");
+    let mut data = rgb_model("ggx");
     let specs = data.param_specs().to_vec();
     let mut p = data.params().to_vec();
     for (k, s) in specs.iter().enumerate() {
@@ -34,9 +28,7 @@ fn the_polish_starts_at_the_choice_and_moves_only_free_parameters() {
     }
     data.set_params(&p).expect("in the box");
     let s = rgb_samples(data.as_ref(), 2000);
-    let fit = Fit::model("principled")
-        .expect("model")
-        .channels(Channels::All);
+    let fit = rgb_fit("principled");
     let (plain, plain_candidates) = fit_for_appearance(&fit, &s, data.as_ref()).expect("fit");
     let (polished, candidates) =
         fit_for_appearance(&fit.clone().polish_on_flip(true), &s, data.as_ref()).expect("fit");

@@ -5,25 +5,11 @@
 //! a singular Jacobian" because `sheen_tint` or `clearcoat_gloss` stayed
 //! free with their lobe at 0 (or `specular` at `metallic = 1`).
 
-use brdf_core::Parametric;
 use brdf_fit::appearance::{fit_for_appearance, lobe_companions, optional_lobes};
 use brdf_fit::{Fit, Objective};
-use brdf_models::catalogue::{ModelConfig, build};
 
 mod common;
-use common::rgb_samples;
-
-/// RGB principled at `truth` (base r g b, metallic, specular, spec_tint,
-/// roughness, anisotropic, sheen, sheen_tint, clearcoat, clearcoat_gloss).
-fn principled(truth: &[f64]) -> Box<dyn Parametric> {
-    let cfg = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let mut model = build("principled", &cfg).expect("model");
-    model.set_params(truth).expect("truth in the box");
-    model
-}
+use common::{principled_at, rgb_fit, rgb_model, rgb_samples};
 
 /// A matte dielectric without sheen or clear coat: the appearance fit keeps
 /// the lobes off, holds their companions at the defaults (0), and its kept
@@ -31,11 +17,9 @@ fn principled(truth: &[f64]) -> Box<dyn Parametric> {
 #[test]
 fn lobes_off_hold_their_companions_and_the_fit_converges() {
     let truth = [0.6, 0.3, 0.1, 0.0, 0.5, 0.0, 0.6, 0.0, 0.0, 0.0, 0.0, 0.0];
-    let data = principled(&truth);
+    let data = principled_at(&truth);
     let s = rgb_samples(data.as_ref(), 2000);
-    let fit = Fit::model("principled")
-        .expect("model")
-        .channels(brdf_fit::Channels::All);
+    let fit = rgb_fit("principled");
     let (report, _) = fit_for_appearance(&fit, &s, data.as_ref()).expect("fit");
     let specs = report.model.param_specs();
     let p = report.model.params();
@@ -74,11 +58,7 @@ fn lobes_off_hold_their_companions_and_the_fit_converges() {
 /// box `(0.1, 0.1]`, and every `gltf-ext` appearance fit failed).
 #[test]
 fn an_open_boxed_companion_is_held_too() {
-    let cfg = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let data = build("gltf-ext", &cfg).expect("model");
+    let data = rgb_model("gltf-ext");
     let s = rgb_samples(data.as_ref(), 2000);
     let fit = Fit::model("gltf-ext").expect("model");
     let (report, _) = fit_for_appearance(&fit, &s, data.as_ref()).expect("fit");
@@ -101,7 +81,7 @@ fn an_open_boxed_companion_is_held_too() {
 #[test]
 fn a_term_switched_off_by_a_bound_is_named() {
     let truth = [0.5, 0.4, 0.3, 0.3, 0.5, 0.2, 0.4, 0.0, 0.0, 0.0, 0.0, 0.0];
-    let data = principled(&truth);
+    let data = principled_at(&truth);
     let s = rgb_samples(data.as_ref(), 2000);
     let report = Fit::model("principled")
         .expect("model")
