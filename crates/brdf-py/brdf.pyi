@@ -85,6 +85,7 @@ def fit(
     metric: str = "auto",
     limit_deg: float = 80.0,
     starts: int = 12,
+    irls_max_iterations: int = 500,
     solver: str = "auto",
     lobes: int = 1,
     order: int = 8,

@@ -160,6 +160,14 @@ impl Fit {
         self
     }
 
+    /// Reweighting cap of a robust (IRLS) fit (default
+    /// [`IRLS_MAX_ITERATIONS`](crate::pipeline::IRLS_MAX_ITERATIONS); 50 is
+    /// MATLAB's `robustfit`'s); 0 is refused by [`Fit::run`].
+    pub fn irls_max_iterations(mut self, cap: usize) -> Self {
+        self.options.irls_max_iterations = cap;
+        self
+    }
+
     /// Angle limit in degrees, in `(0, 90]` (default 80).
     pub fn limit_deg(mut self, limit: f64) -> Self {
         self.limit_deg = limit;
@@ -227,6 +235,11 @@ impl Fit {
         if self.options.starts == 0 {
             return Err(FitError::Usage(
                 "starts = 0: a fit needs at least one start".into(),
+            ));
+        }
+        if self.options.irls_max_iterations == 0 {
+            return Err(FitError::Usage(
+                "irls_max_iterations = 0: a robust fit needs at least one reweighting".into(),
             ));
         }
         let present = samples.len();

@@ -69,8 +69,18 @@ pub fn fit_linear(model: &mut dyn Parametric, samples: &SampleSet) -> Result<Fit
     }
     let pairs = samples.pairs();
     let scales = crate::pipeline::Objective::Ngan.row_scales(samples);
-    let (p, solver, rank) =
-        crate::pipeline::fit_all_linear(model, samples, &scales, crate::pipeline::Solver::Ols)?;
+    let crate::pipeline::LinearFit {
+        params: p,
+        how: solver,
+        rank,
+        ..
+    } = crate::pipeline::fit_all_linear(
+        model,
+        samples,
+        &scales,
+        crate::pipeline::Solver::Ols,
+        crate::pipeline::IRLS_MAX_ITERATIONS,
+    )?;
     model.set_params(&p)?;
     let seconds = start.elapsed().as_secs_f64();
     let mut fitted = vec![0.0; nc * n];

@@ -34,6 +34,9 @@ use crate::fitted::{PyFit, PyModel};
 ///     Drop samples with theta_i or theta_o above this angle.
 /// starts : int
 ///     Multi-start count.
+/// irls_max_iterations : int
+///     Reweighting cap of a robust (IRLS) fit; 50 is MATLAB's
+///     ``robustfit``'s (Kurt's procedure).
 /// solver : str
 ///     auto, sqp, lm, sopp, ols, irls or irls:WEIGHT.
 /// lobes, order, degree : int
@@ -57,7 +60,8 @@ use crate::fitted::{PyFit, PyModel};
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
 #[pyo3(signature = (data, model, *, channels="rgb", metric="auto", limit_deg=80.0,
-    starts=12, solver="auto", lobes=1, order=8, degree=7, save=None, polish=false))]
+    starts=12, irls_max_iterations=brdf_fit::pipeline::IRLS_MAX_ITERATIONS, solver="auto",
+    lobes=1, order=8, degree=7, save=None, polish=false))]
 pub fn fit<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
@@ -66,6 +70,7 @@ pub fn fit<'py>(
     metric: &str,
     limit_deg: f64,
     starts: usize,
+    irls_max_iterations: usize,
     solver: &str,
     lobes: usize,
     order: usize,
@@ -97,6 +102,7 @@ pub fn fit<'py>(
         .and_then(|f| Ok(f.solver(Solver::parse(solver)?)))
         .map_err(to_py)?
         .starts(starts)
+        .irls_max_iterations(irls_max_iterations)
         .limit_deg(limit_deg)
         .lobes(lobes)
         .order(order)

@@ -40,6 +40,10 @@ pub struct FitArgs {
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
+    /// Reweighting cap of a robust (IRLS) fit; 50 is MATLAB's `robustfit`'s
+    /// (Kurt's procedure).
+    #[arg(long, default_value_t = brdf_fit::pipeline::IRLS_MAX_ITERATIONS)]
+    pub irls_max_iterations: usize,
     /// End the fit for appearance with a search on the judge's own metric,
     /// the mean HDR-FLIP of the renders: a lower image error for a few
     /// seconds more.
@@ -115,6 +119,7 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
             .objective(Objective::parse(metric)?)
             .solver(Solver::parse(&args.solver)?)
             .starts(args.starts)
+            .irls_max_iterations(args.irls_max_iterations)
             .limit_deg(args.limit)
             .channels(*channels)
             .lobes(args.lobes)
