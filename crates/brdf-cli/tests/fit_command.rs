@@ -74,3 +74,28 @@ fn the_irls_cap_decides_whether_the_polynomial_converges() {
     assert!(counts.iter().all(|&k| k > 50), "{counts:?}");
     assert_eq!(default["iterations"], counts.iter().sum::<u64>());
 }
+
+/// A robust fit whose reweighting cycles (the degree-3 polynomial on
+/// CUReT's quarry tile, which never converges) stops when a weighted
+/// solution recurs, well before the cap, and says so; at MATLAB's cap of
+/// 50 it has not recurred yet and stops at the cap.
+#[test]
+fn a_cycling_robust_fit_stops_and_says_so() {
+    let Some(path) = common::data_file("curet/abrdf.dat") else {
+        return;
+    };
+    let spec = format!("{}#25", path.display());
+    let args = ["--data", &spec, "--model", "polynomial", "--degree", "3"];
+    let fit = fit_json(&args);
+    assert_eq!(
+        fit["termination"],
+        "IRLS NOT converged: the reweighting cycles (a weighted solution recurred)"
+    );
+    let k = fit["iterations"].as_u64().unwrap();
+    assert!(k > 50 && k < 500, "{k}");
+    let capped = fit_json(&[&args[..], &["--irls-max-iterations", "50"]].concat());
+    assert_eq!(
+        capped["termination"],
+        "IRLS NOT converged: iteration cap reached"
+    );
+}

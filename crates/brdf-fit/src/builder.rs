@@ -162,9 +162,19 @@ impl Fit {
 
     /// Reweighting cap of a robust (IRLS) fit (default
     /// [`IRLS_MAX_ITERATIONS`](crate::pipeline::IRLS_MAX_ITERATIONS); 50 is
-    /// MATLAB's `robustfit`'s); 0 is refused by [`Fit::run`].
+    /// MATLAB's `robustfit`'s, which with
+    /// [`Fit::irls_stop_on_cycle`]`(false)` is MATLAB's loop); 0 is
+    /// refused by [`Fit::run`].
     pub fn irls_max_iterations(mut self, cap: usize) -> Self {
         self.options.irls_max_iterations = cap;
+        self
+    }
+
+    /// Whether a robust (IRLS) fit whose reweighting cycles stops when a
+    /// weighted solution recurs (default true) or runs to its cap, as
+    /// MATLAB's `robustfit` does.
+    pub fn irls_stop_on_cycle(mut self, on: bool) -> Self {
+        self.options.irls_stop_on_cycle = on;
         self
     }
 

@@ -78,8 +78,10 @@ pub fn fit_linear(model: &mut dyn Parametric, samples: &SampleSet) -> Result<Fit
         model,
         samples,
         &scales,
-        crate::pipeline::Solver::Ols,
-        crate::pipeline::IRLS_MAX_ITERATIONS,
+        &crate::pipeline::FitOptions {
+            solver: crate::pipeline::Solver::Ols,
+            ..Default::default()
+        },
     )?;
     model.set_params(&p)?;
     let seconds = start.elapsed().as_secs_f64();

@@ -35,8 +35,9 @@ use crate::fitted::{PyFit, PyModel};
 /// starts : int
 ///     Multi-start count.
 /// irls_max_iterations : int
-///     Reweighting cap of a robust (IRLS) fit; 50 is MATLAB's
-///     ``robustfit``'s (Kurt's procedure).
+///     Reweighting cap of a robust (IRLS) fit (50 is MATLAB's
+///     ``robustfit``'s); a fit whose reweighting cycles stops earlier and
+///     says so.
 /// solver : str
 ///     auto, sqp, lm, sopp, ols, irls or irls:WEIGHT.
 /// lobes, order, degree : int

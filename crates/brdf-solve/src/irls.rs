@@ -122,6 +122,9 @@ pub enum IrlsTermination {
     ExactFit,
     /// The iteration cap was reached without the test holding.
     IterationCap,
+    /// A weighted solution recurred ([`IrlsOptions::stop_on_cycle`]): the
+    /// reweighting cycles among a few points and no cap would end it.
+    Cycle,
 }
 
 impl IrlsTermination {
@@ -136,7 +139,43 @@ impl IrlsTermination {
             }
             IrlsTermination::ExactFit => "converged: zero residual scale (exact fit)",
             IrlsTermination::IterationCap => "NOT converged: iteration cap reached",
+            IrlsTermination::Cycle => {
+                "NOT converged: the reweighting cycles (a weighted solution recurred)"
+            }
         }
+    }
+
+    /// Whether the stopping test held (or the fit is exact).
+    pub fn is_converged(self) -> bool {
+        !matches!(self, IrlsTermination::IterationCap | IrlsTermination::Cycle)
+    }
+}
+
+/// Weighted solutions remembered by the cycle test.
+const CYCLE_MEMORY: usize = 8;
+
+/// The last [`CYCLE_MEMORY`] weighted solutions `G(b)`, for
+/// [`IrlsOptions::stop_on_cycle`].
+struct Recent(std::collections::VecDeque<Vec<f64>>);
+
+impl Recent {
+    /// Whether `g` equals (by the coefficient test at `tol`) a solution
+    /// before the latest one, then remember it. The latest is skipped: two
+    /// equal solutions in a row are a stall the stopping test settles, not
+    /// a cycle.
+    fn recurs(&mut self, g: &[f64], tol: f64) -> bool {
+        let same = |o: &Vec<f64>| {
+            g.iter()
+                .zip(o)
+                .all(|(n, o)| (n - o).abs() <= tol * n.abs().max(o.abs()))
+        };
+        let older = self.0.len().saturating_sub(1);
+        let found = self.0.iter().take(older).any(same);
+        if self.0.len() == CYCLE_MEMORY {
+            self.0.pop_front();
+        }
+        self.0.push_back(g.to_vec());
+        found
     }
 }
 
@@ -160,6 +199,10 @@ pub struct IrlsOptions {
     pub acceleration: bool,
     /// Steps remembered by the acceleration (default 5).
     pub anderson_memory: usize,
+    /// Stop with [`IrlsTermination::Cycle`] when a weighted solution
+    /// recurs among the last few (default false: MATLAB's loop runs to its
+    /// cap).
+    pub stop_on_cycle: bool,
 }
 
 impl Default for IrlsOptions {
@@ -173,6 +216,7 @@ impl Default for IrlsOptions {
             tolerance: None,
             acceleration: true,
             anderson_memory: 5,
+            stop_on_cycle: false,
         }
     }
 }
@@ -654,19 +698,23 @@ fn iterate(
     let mut anderson = (opts.acceleration && opts.anderson_memory > 0)
         .then(|| Anderson::new(opts.anderson_memory));
     let (mut accelerated, mut same) = (0, 0);
-    let done = |coef, w, iterations, termination, scale, accelerated| IrlsSolution {
-        coef,
-        weights: w,
-        iterations,
-        converged: termination != IrlsTermination::IterationCap,
-        termination,
-        accelerated_steps: accelerated,
-        scale,
-        convention: opts.scale,
-    };
+    let done =
+        |coef, w, iterations, termination: IrlsTermination, scale, accelerated| IrlsSolution {
+            coef,
+            weights: w,
+            iterations,
+            converged: termination.is_converged(),
+            termination,
+            accelerated_steps: accelerated,
+            scale,
+            convention: opts.scale,
+        };
     let mut dev_old = prob.deviance(&cur.r, &w);
     let mut last_g = cur.b.clone();
     let mut s_w = cur.s;
+    let mut recent = opts
+        .stop_on_cycle
+        .then(|| Recent(std::collections::VecDeque::with_capacity(CYCLE_MEMORY)));
     for it in 1..=opts.max_iterations {
         if !(cur.s > prob.zero_scale) {
             // An exact fit of the weighted points (up to rounding): nothing
@@ -684,6 +732,12 @@ fn iterate(
             StoppingTest::Coefficients => 0.0,
         };
         if let Some(t) = stop_test(opts.stopping, tol, &next.b, &cur.b, dev, dev_old) {
+            return Ok(done(next.b, w, it, t, cur.s, accelerated));
+        }
+        if let Some(r) = recent.as_mut()
+            && r.recurs(&next.b, tol)
+        {
+            let t = IrlsTermination::Cycle;
             return Ok(done(next.b, w, it, t, cur.s, accelerated));
         }
         let step = distance(&next.r, &cur.r);

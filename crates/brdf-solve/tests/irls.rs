@@ -375,3 +375,45 @@ fn bad_input_is_an_error() {
     };
     assert!(irls(x.as_ref(), &[1.0, 2.0, 1.0, 1.0], &bad).is_err());
 }
+
+/// The cycle test on the real CUReT designs: where MATLAB's loop cycles
+/// (sample 4) the reweighting stops as soon as a weighted solution recurs,
+/// says so, and the plain loop run long confirms it never converges;
+/// everywhere else the test never fires, so the result is the one without
+/// it, bit for bit.
+#[test]
+fn a_cycling_reweighting_stops_when_a_solution_recurs() {
+    let f = fixture("curet_designs.json");
+    for d in f["designs"].as_array().unwrap() {
+        let name = d["name"].as_str().unwrap();
+        let (x, y) = (matrix(&d["X"]), vecf(&d["y"]));
+        let opts = IrlsOptions {
+            max_iterations: 500,
+            ..IrlsOptions::default()
+        };
+        let plain = irls(x.as_ref(), &y, &opts).unwrap();
+        let watched = irls(
+            x.as_ref(),
+            &y,
+            &IrlsOptions {
+                stop_on_cycle: true,
+                ..opts
+            },
+        )
+        .unwrap();
+        if name == "curet#4" {
+            assert_eq!(plain.termination, IrlsTermination::IterationCap, "{name}");
+            assert_eq!(watched.termination, IrlsTermination::Cycle, "{name}");
+            assert!(
+                !watched.converged && watched.iterations < plain.iterations,
+                "{name}: {} of {}",
+                watched.iterations,
+                plain.iterations
+            );
+            continue;
+        }
+        assert!(watched.converged, "{name}");
+        assert_eq!(watched.iterations, plain.iterations, "{name}");
+        assert_eq!(watched.coef, plain.coef, "{name}");
+    }
+}

@@ -40,8 +40,9 @@ pub struct FitArgs {
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
-    /// Reweighting cap of a robust (IRLS) fit; 50 is MATLAB's `robustfit`'s
-    /// (Kurt's procedure).
+    /// Reweighting cap of a robust (IRLS) fit (50 is MATLAB's
+    /// `robustfit`'s); a fit whose reweighting cycles stops earlier, when
+    /// a weighted solution recurs, and says so.
     #[arg(long, default_value_t = brdf_fit::pipeline::IRLS_MAX_ITERATIONS)]
     pub irls_max_iterations: usize,
     /// End the fit for appearance with a search on the judge's own metric,

@@ -121,9 +121,10 @@ impl Default for FitHow {
 /// MATLAB's `robustfit`, which stops at 50. It matters where the
 /// reweighting does not converge: on CUReT's quarry tile the degree-3
 /// fit cycles, and where it stops sets its error (0.0201 at 50, 0.0237 at
-/// 1000; Kurt's 0.015). `brdf fit` allows more
+/// 1000; Kurt's 0.015), so the study runs MATLAB's loop to the cap, no
+/// cycle test. `brdf fit` allows more
 /// ([`brdf_fit::pipeline::IRLS_MAX_ITERATIONS`]), so that the RGL fits,
-/// which need up to 282, converge.
+/// which need up to 409, converge, and stops a cycling fit early.
 pub const KURT_IRLS_MAX_ITERATIONS: usize = 50;
 
 /// Build and fit; the fitted model and its summary.
@@ -138,6 +139,7 @@ pub fn fit_model(
         objective: how.objective,
         solver: if how.ols { Solver::Ols } else { Solver::Auto },
         irls_max_iterations: KURT_IRLS_MAX_ITERATIONS,
+        irls_stop_on_cycle: false,
         ..FitOptions::default()
     };
     let summary = brdf_fit::pipeline::fit(model.as_mut(), set, &opts)?;
