@@ -164,17 +164,17 @@ impl Recent {
     /// equal solutions in a row are a stall the stopping test settles, not
     /// a cycle.
     fn recurs(&mut self, g: &[f64], tol: f64) -> bool {
-        let same = |o: &Vec<f64>| {
-            g.iter()
-                .zip(o)
-                .all(|(n, o)| (n - o).abs() <= tol * n.abs().max(o.abs()))
-        };
         let older = self.0.len().saturating_sub(1);
-        let found = self.0.iter().take(older).any(same);
-        if self.0.len() == CYCLE_MEMORY {
-            self.0.pop_front();
-        }
-        self.0.push_back(g.to_vec());
+        let found = self.0.iter().take(older).any(|o| agree(g, o, tol));
+        // The oldest solution's buffer holds the newest once full.
+        let mut slot = if self.0.len() == CYCLE_MEMORY {
+            self.0.pop_front().unwrap_or_default()
+        } else {
+            Vec::with_capacity(g.len())
+        };
+        slot.clear();
+        slot.extend_from_slice(g);
+        self.0.push_back(slot);
         found
     }
 }
@@ -653,15 +653,18 @@ fn stop_test(
     dev_old: f64,
 ) -> Option<IrlsTermination> {
     match stopping {
-        StoppingTest::Coefficients => g
-            .iter()
-            .zip(b)
-            .all(|(n, o)| (n - o).abs() <= tol * n.abs().max(o.abs()))
-            .then_some(IrlsTermination::CoefficientTest),
+        StoppingTest::Coefficients => agree(g, b, tol).then_some(IrlsTermination::CoefficientTest),
         StoppingTest::Deviance => {
             ((dev - dev_old).abs() <= tol).then_some(IrlsTermination::DevianceTest)
         }
     }
+}
+
+/// MATLAB's coefficient test: every `|g - b| <= tol max(|g|, |b|)`.
+fn agree(g: &[f64], b: &[f64], tol: f64) -> bool {
+    g.iter()
+        .zip(b)
+        .all(|(n, o)| (n - o).abs() <= tol * n.abs().max(o.abs()))
 }
 
 /// `||a - b||`: for residuals at `b` and at `G(b)`, the size of the
