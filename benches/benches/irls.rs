@@ -80,14 +80,14 @@ fn iteration_table(designs: &[Design]) {
     for d in designs {
         let a = irls(d.x.as_ref(), &d.y, &plain).expect("plain IRLS");
         let b = irls(d.x.as_ref(), &d.y, &IrlsOptions::default()).expect("IRLS");
-        capped += usize::from(!a.converged);
+        capped += usize::from(!a.converged());
         println!(
             "{:9} {:>3}{:13} {:>3}{}",
             d.name,
             a.iterations,
-            if a.converged { "" } else { " (cap)" },
+            if a.converged() { "" } else { " (cap)" },
             b.iterations,
-            if b.converged { "" } else { " (cap)" }
+            if b.converged() { "" } else { " (cap)" }
         );
     }
     println!("plain loop at the cap on {capped} of {}", designs.len());

@@ -142,7 +142,7 @@ fn time_one(
         "stopping": stopping,
         "iterations": sol.iterations,
         "accelerated_steps": sol.accelerated_steps,
-        "converged": sol.converged,
+        "converged": sol.converged(),
         "termination": sol.termination.describe(),
         "seconds": times[times.len() / 2],
         "runs": times.len(),

@@ -231,8 +231,6 @@ pub struct IrlsSolution {
     /// Reweighting iterations done (weighted least-squares solves after the
     /// ordinary one).
     pub iterations: usize,
-    /// Whether the stopping test held (false: the cap was reached).
-    pub converged: bool,
     /// Why the iteration stopped.
     pub termination: IrlsTermination,
     /// Iterations whose next point came from the acceleration.
@@ -241,6 +239,14 @@ pub struct IrlsSolution {
     pub scale: f64,
     /// The convention used.
     pub convention: ScaleConvention,
+}
+
+impl IrlsSolution {
+    /// Whether a stopping test held ([`IrlsTermination::is_converged`]);
+    /// false where the cap was reached or the reweighting cycled.
+    pub fn converged(&self) -> bool {
+        self.termination.is_converged()
+    }
 }
 
 fn std_dev(y: &[f64]) -> f64 {
@@ -706,7 +712,6 @@ fn iterate(
             coef,
             weights: w,
             iterations,
-            converged: termination.is_converged(),
             termination,
             accelerated_steps: accelerated,
             scale,
