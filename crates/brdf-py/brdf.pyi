@@ -69,7 +69,8 @@ class Fit:
         """The report ``brdf fit --json`` prints."""
     @property
     def image_error(self) -> Optional[dict[str, Any]]:
-        """Image errors against dense data (RGL, MERL), else None."""
+        """Image errors against dense data (RGL, MERL), else None: per light set
+        (``lights``) HDR-FLIP, PSNR and CIEDE2000, and ``colour_plane``."""
 
 def load(path: StrPath) -> Samples:
     """Read a data set into NumPy arrays (``wi``, ``wo``, ``values``, ...)."""

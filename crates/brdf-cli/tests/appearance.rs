@@ -3,6 +3,8 @@
 //! data say why there are none, and `brdf select --by-image` ranks renderer
 //! models by their image error.
 
+use brdf_fit::appearance::COLOUR_PLANE_NOTE;
+
 mod common;
 use common::{brdf, data_file};
 
@@ -46,6 +48,17 @@ fn a_film_keeps_its_colour_and_a_lobe_only_when_the_render_pays() {
     for l in v["image_errors"][0]["lights"].as_array().expect("lights") {
         assert!(l["delta_e"].as_f64().expect("dE") < 3.0, "{l}");
     }
+    // Its colours keep close to one plane of white and a yellow: no note.
+    let plane = &v["image_errors"][0]["colour_plane"];
+    assert!(
+        plane["outside"].as_f64().expect("outside") < COLOUR_PLANE_NOTE,
+        "{plane}"
+    );
+    assert!(
+        !v["notes"].to_string().contains("plane of white"),
+        "{}",
+        v["notes"]
+    );
     let (all, chosen) = candidates(&v);
     assert_eq!(chosen["objective"], "image", "{chosen}");
     assert_eq!(
@@ -318,6 +331,22 @@ fn polish_lowers_the_image_error_and_keeps_the_colour() {
         serde_json::from_str::<serde_json::Value>(&out).expect("json")
     };
     let (plain, polished) = (run(&[]), run(&["--polish"]));
+    // The film's highlight and rim are other hues than its blue body: its
+    // colours lie off every plane of white and one colour, and the report
+    // says no principled fit can match them.
+    let plane = &plain["image_errors"][0]["colour_plane"];
+    assert_eq!(plane["light"], "studio", "{plane}");
+    assert!(
+        plane["outside"].as_f64().expect("outside") > COLOUR_PLANE_NOTE,
+        "{plane}"
+    );
+    let notes = plain["notes"][0].as_array().expect("notes");
+    assert!(
+        notes.iter().any(|n| n
+            .as_str()
+            .is_some_and(|n| n.contains("every plane of white and one colour"))),
+        "{notes:?}"
+    );
     let (all, chosen) = candidates(&polished);
     assert_eq!(chosen["objective"], "flip", "{chosen}");
     let (plain_all, plain_chosen) = candidates(&plain);

@@ -29,6 +29,16 @@
 //! candidates in parallel, then decides in their fixed order: the choice
 //! and every candidate are the same for any thread count.
 //!
+//! What no fit of a renderer model can do is said too: every lobe of
+//! `principled` and `gltf` is white or the base colour, so under the white
+//! studio light all their colours lie in one plane of white and one colour.
+//! [`ImageError::colour_plane`] gives how much of the data's render lies off
+//! the closest such plane ([`DataColourPlane`], a lower bound on any such
+//! fit's difference), and a fit of those models whose data lie further off
+//! than [`COLOUR_PLANE_NOTE`] carries a note saying so
+//! ([`colour_plane_note`]): the colour-shifting films, whose highlight and
+//! rim are other hues than their body.
+//!
 //! Thresholds of the plain-words warnings ([`ImageError::warnings`]):
 //! mean-colour CIEDE2000 above [`DELTA_E_WARN`] (a colour difference an
 //! observer names at a glance; 2.3 is a just-noticeable difference) and
@@ -100,6 +110,61 @@ pub struct ImageError {
     pub size: usize,
     /// One entry per light set.
     pub lights: Vec<LightError>,
+    /// The data's colours against the planes of white and one colour,
+    /// under the first white light set ([`DataColourPlane`]); `None` when
+    /// no light set is white or the data's render is black.
+    pub colour_plane: Option<DataColourPlane>,
+}
+
+/// How far the data's render under a white light set lies from every
+/// plane of white and one colour ([`brdf_render::colour_plane`]): no fit
+/// of a model that colours every lobe white or by its one base colour
+/// ([`is_single_colour_model`]) renders closer to it than `outside`.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct DataColourPlane {
+    /// The white light set it was measured under.
+    pub light: String,
+    /// The closest plane's colour (linear RGB, largest channel 1).
+    pub colour: [f64; 3],
+    /// RMS distance of the data's sphere colours from that plane over
+    /// their RMS (linear RGB): the least relative RMS difference any render
+    /// of a single-colour model can have.
+    pub outside: f64,
+}
+
+/// `outside` of [`DataColourPlane`] above which a fit of a single-colour
+/// model carries a note that its colours cannot match. Measured (128 px,
+/// studio): paper_white 0.0005, colodur_napoli 0.0017, vch_golden_yellow
+/// 0.010, cc_iris_purple_gem 0.020, cc_ibiza_sunset 0.036. Moving every
+/// pixel of the measurement's own Mitsuba render (studio) to the nearest
+/// colour of the best plane (in FLIP's linear opponent space) renders at
+/// HDR-FLIP 0.04 (golden yellow), 0.18 (iris) and 0.16 (ibiza) against
+/// the unmoved render before any error of shape: beyond 0.015 the colours
+/// alone cost a film most of what its fits show.
+pub const COLOUR_PLANE_NOTE: f64 = 0.015;
+
+/// Whether every lobe of catalogue model `name` is coloured white or by its
+/// one base colour (so its renders under white light keep to one plane of
+/// colours): `principled` (diffuse, sheen, tinted and metallic Fresnel,
+/// clear coat) and `gltf` (diffuse, dielectric and metal Fresnel). Not
+/// `gltf-ext` (its specular colour is a second colour) nor the GGX family
+/// (a diffuse and a specular colour per channel).
+pub fn is_single_colour_model(name: &str) -> bool {
+    matches!(name, "principled" | "gltf")
+}
+
+/// The note of a fit of single-colour model `model` whose data lie off
+/// every colour plane by more than [`COLOUR_PLANE_NOTE`].
+pub fn colour_plane_note(model: &str, e: &ImageError) -> Option<String> {
+    let c = e.colour_plane.as_ref()?;
+    if !is_single_colour_model(model) || c.outside <= COLOUR_PLANE_NOTE {
+        return None;
+    }
+    Some(format!(
+        "the data's hue changes across the sphere: under the {} light {:.1}% (RMS) of its rendered colour lies off every plane of white and one colour; each `{model}` lobe is white or the base colour, so every `{model}` render lies in such a plane and none comes closer; models with colours per lobe can (e.g. `brdf fit --model sgd`, for Mitsuba exported with `brdf export --tabulate-on`)",
+        c.light,
+        100.0 * c.outside
+    ))
 }
 
 impl ImageError {
@@ -285,9 +350,22 @@ impl Judge {
                 exposure: e.exposure,
             });
         }
+        let colour_plane = self
+            .points
+            .iter()
+            .zip(refs)
+            .find(|((light, _), _)| light.is_white())
+            .and_then(|((light, _), r)| {
+                r.colour_plane().map(|c| DataColourPlane {
+                    light: light.name().to_string(),
+                    colour: c.colour,
+                    outside: c.outside,
+                })
+            });
         let errors = ImageError {
             size: self.size,
             lights,
+            colour_plane,
         };
         Ok((errors, compared))
     }
@@ -830,6 +908,9 @@ fn fit_rendered(
 fn with_image_errors(mut report: FitReport, judge: &Judge) -> Result<FitReport, FitError> {
     let errors = judge.fit_errors(report.model.as_ref())?;
     report.notes.extend(errors.warnings());
+    report
+        .notes
+        .extend(colour_plane_note(report.model.name(), &errors));
     report.image_error = Some(errors);
     Ok(report)
 }

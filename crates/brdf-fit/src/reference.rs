@@ -8,6 +8,7 @@
 
 use brdf_core::Brdf;
 use brdf_render::colour::{delta_e_mean_colours, mean_colour};
+use brdf_render::colour_plane::{ColourPlane, colour_plane};
 use brdf_render::compare::ImageErrors;
 use brdf_render::flip::{FlipMap, hdr_flip_map};
 use brdf_render::psnr::psnr;
@@ -21,6 +22,7 @@ pub struct Reference {
     mask: Vec<bool>,
     exposure: f64,
     mean_colour: [f64; 3],
+    colour_plane: Option<ColourPlane>,
 }
 
 impl Reference {
@@ -30,12 +32,22 @@ impl Reference {
         let mask = sp.mask();
         let exposure = p99_exposure(&image, Some(&mask))?;
         let mean_colour = mean_colour(&image, &mask);
+        let colour_plane = colour_plane(&image, &mask);
         Ok(Reference {
             image,
             mask,
             exposure,
             mean_colour,
+            colour_plane,
         })
+    }
+
+    /// The plane of white and one colour closest to the data's sphere
+    /// colours, and how much of them lies off it
+    /// ([`brdf_render::colour_plane`]; a bound on models with one base
+    /// colour only under a white light set).
+    pub fn colour_plane(&self) -> Option<ColourPlane> {
+        self.colour_plane
     }
 
     /// The data's render.

@@ -168,6 +168,10 @@ def test_image_error_of_a_fit_to_dense_data():
     fit = brdf.fit(path, "lambert", starts=2)
     err = fit.image_error
     assert isinstance(err, dict) and err, err
+    assert [l["light"] for l in err["lights"]] == ["sky", "studio"]
+    # A white paper keeps close to one plane of white and one colour.
+    plane = err["colour_plane"]
+    assert plane["light"] == "studio" and 0.0 < plane["outside"] < 0.005, plane
 
 
 def test_model_load_refuses_a_data_file():

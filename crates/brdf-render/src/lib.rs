@@ -29,6 +29,9 @@
 //! - [`tonemap`], [`openexr`]: exposure `1 / p99`, gamma 2.2, PNG and EXR;
 //! - [`flip`], [`psnr`], [`colour`]: LDR- and HDR-FLIP (NVIDIA's FLIP through
 //!   `nv-flip`), PSNR, mean colour and CIEDE2000 (through `palette`);
+//! - [`colour_plane`](mod@colour_plane): how far an image's colours lie from
+//!   every plane of white and one colour, a bound on what a renderer model
+//!   with one base colour can match;
 //! - [`compare`](mod@compare): all metrics of a test BRDF against a reference.
 //!
 //! ## Layering
@@ -41,6 +44,7 @@ pub mod area_light;
 pub mod batch;
 pub mod camera;
 pub mod colour;
+pub mod colour_plane;
 pub mod compare;
 pub mod environment;
 pub mod error;

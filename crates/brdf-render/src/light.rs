@@ -22,7 +22,7 @@ use nalgebra::Vector3;
 
 use crate::RenderError;
 use crate::area_light::SquareLight;
-use crate::environment::{Environment, Incident};
+use crate::environment::{EnvRadiance, Environment, Incident};
 use crate::sky::sky_lights;
 
 /// The names [`LightSet::parse`] accepts.
@@ -109,6 +109,22 @@ impl LightSet {
         }
     }
 
+    /// Whether every light of the set has one colour, white (equal RGB
+    /// channels): renders under it keep each value's hue
+    /// ([`crate::colour_plane`]). The study's light and `studio` are; the
+    /// sky is not.
+    pub fn is_white(&self) -> bool {
+        let grey = |c: &[f64; 3]| c[0] == c[1] && c[1] == c[2];
+        match self {
+            LightSet::Directional(_) => true,
+            LightSet::Sky { .. } => false,
+            LightSet::Studio { surround, key } => {
+                matches!(&surround.radiance, EnvRadiance::Constant(c) if grey(c))
+                    && grey(&key.radiance)
+            }
+        }
+    }
+
     /// RGB radiance a camera ray that misses the sphere sees in world
     /// direction `dir` (the environment; the directional light, the sun and
     /// the key light are not seen: they are out of the judge camera's view).
@@ -168,6 +184,13 @@ mod tests {
             }
             other => panic!("expected UnknownLightSet, got {other:?}"),
         }
+    }
+
+    #[test]
+    fn the_study_light_and_studio_are_white_the_sky_is_not() {
+        assert!(LightSet::study_directional().is_white());
+        assert!(LightSet::studio().is_white());
+        assert!(!LightSet::sky().is_white());
     }
 
     /// Irradiance at the sphere point nearest the key light against the

@@ -157,6 +157,7 @@ mod tests {
         ImageError {
             size: 128,
             lights: vec![light("sky"), light("studio")],
+            colour_plane: None,
         }
     }
 
