@@ -3,7 +3,8 @@ default `brdf fit` (principled, fitted for appearance) exported to Mitsuba 3
 and rendered in the judge scene beside Mitsuba's own `measured` plugin on
 the same file, under both light sets (`shared/spec/appearance.md`); and
 brdf-render's render of each measurement (what the fits for appearance are
-fitted to) beside Mitsuba's.
+fitted to) beside Mitsuba's, and the colour-plane bound the reports carry
+beside NumPy's on that render (`colour_planes.py`).
 
 The bounds are regression guards (the measured figures of
 results/render_fidelity.md plus a stated noise margin); which goals of the
@@ -13,6 +14,7 @@ Run by `.ci/run` (`bash benches/judge/ci.sh`).
 """
 
 import functools
+import json
 import os
 import subprocess
 import sys
@@ -23,6 +25,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import colour_planes as CP  # noqa: E402
 import metrics as M  # noqa: E402
 import render_fidelity as RF  # noqa: E402
 import scene as S  # noqa: E402
@@ -129,6 +132,16 @@ def test_brdf_render_renders_the_measurement_as_mitsuba_does(stem):
             flip = M.flip(refs[light], ours)
             print(stem, light, "brdf-render's render of the measurement against Mitsuba's: FLIP", flip)
             assert flip <= bound, (stem, light, flip)
+            if light == "studio":
+                studio = ours
+    # The colour-plane bound every report carries (Rust, brdf_render::colour_plane)
+    # against NumPy's on the same render (colour_planes.py), to the EXR's float32.
+    out = subprocess.run([RF.brdf_bin(), "fit", "--data", str(data), "--model", "lambert",
+                          "--json", "--quiet"], check=True, capture_output=True, text=True).stdout
+    reported = json.loads(out)["image_errors"][0]["colour_plane"]["outside"]
+    numpy = CP.bound(studio.astype(np.float64)[M.sphere_mask(studio.shape[0])])
+    print(stem, "colour-plane bound: brdf", reported, "NumPy", numpy)
+    assert abs(reported - numpy) <= 1e-4 * numpy, (stem, reported, numpy)
 
 
 @pytest.mark.parametrize("stem", sorted(BOUNDS))

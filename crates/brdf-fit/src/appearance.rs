@@ -133,14 +133,15 @@ pub struct DataColourPlane {
 }
 
 /// `outside` of [`DataColourPlane`] above which a fit of a single-colour
-/// model carries a note that its colours cannot match. Measured (128 px,
-/// studio): paper_white 0.0005, colodur_napoli 0.0017, vch_golden_yellow
-/// 0.010, cc_iris_purple_gem 0.020, cc_ibiza_sunset 0.036. Moving every
-/// pixel of the measurement's own Mitsuba render (studio) to the nearest
-/// colour of the best plane (in FLIP's linear opponent space) renders at
-/// HDR-FLIP 0.04 (golden yellow), 0.18 (iris) and 0.16 (ibiza) against
-/// the unmoved render before any error of shape: beyond 0.015 the colours
-/// alone cost a film most of what its fits show.
+/// model carries a note that its colours cannot match. Measured
+/// (`results/colour_planes.md`, 128 px, studio): paper_white 0.0005,
+/// colodur_napoli 0.0016, vch_golden_yellow 0.0100, cc_iris_purple_gem
+/// 0.0205, cc_ibiza_sunset 0.0360. Moving every pixel of the measurement's
+/// own Mitsuba render (studio) to the nearest colour of the best plane (in
+/// FLIP's linear opponent space) renders at HDR-FLIP 0.036 (golden yellow),
+/// 0.180 (iris) and 0.156 (ibiza) against the unmoved render before any
+/// error of shape: beyond 0.015 the colours alone cost a film most of what
+/// its fits show (their default fits: 0.185, 0.230, 0.216).
 pub const COLOUR_PLANE_NOTE: f64 = 0.015;
 
 /// Whether every lobe of catalogue model `name` is coloured white or by its

@@ -132,6 +132,9 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
                 "render_fidelity.md" => {
                     "fits judged by their render in Mitsuba 3, written by `python benches/judge/render_fidelity.py` (its renders and `table.json` in `render_fidelity/`)"
                 }
+                "colour_planes.md" => {
+                    "what colour alone costs a renderer model with one base colour (principled, glTF) on each RGL measurement, written by `python benches/judge/colour_planes.py`"
+                }
                 _ => "not from this command (check where it came from)",
             };
             let _ = writeln!(s, "- `{f}`: {what}");
