@@ -32,7 +32,7 @@
 //! colours off every such plane; a paint of one hue (colodur_napoli) does
 //! not.
 
-use nalgebra::{Matrix2, Vector3};
+use nalgebra::{Matrix2, Vector2, Vector3};
 
 use crate::Image;
 use crate::tonemap::rgb_at;
@@ -57,33 +57,34 @@ pub fn colour_plane(image: &Image, mask: &[bool]) -> Option<ColourPlane> {
     // An orthonormal basis of the chroma plane (orthogonal to white).
     let e1 = Vector3::new(1.0, -1.0, 0.0).normalize();
     let e2 = white.cross(&e1);
+    // Each masked pixel's chroma coordinates and squared norm.
+    let pixels = || {
+        (0..image.width * image.height)
+            .filter(|&p| mask.get(p).copied().unwrap_or(false))
+            .map(|p| {
+                let c = Vector3::from(rgb_at(image, p));
+                (Vector2::new(c.dot(&e1), c.dot(&e2)), c.norm_squared())
+            })
+    };
     let mut scatter = Matrix2::zeros();
     let mut energy = 0.0;
-    for p in (0..image.width * image.height).filter(|&p| mask.get(p).copied().unwrap_or(false)) {
-        let c = Vector3::from(rgb_at(image, p));
-        let q = nalgebra::Vector2::new(c.dot(&e1), c.dot(&e2));
+    for (q, e) in pixels() {
         scatter += q * q.transpose();
-        energy += c.norm_squared();
+        energy += e;
     }
     if !(energy > 0.0) {
         return None;
     }
     let eig = scatter.symmetric_eigen();
-    let major = if eig.eigenvalues[0] >= eig.eigenvalues[1] {
-        0
-    } else {
-        1
-    };
+    let major = usize::from(eig.eigenvalues[1] > eig.eigenvalues[0]);
     let axis = eig.eigenvectors.column(major);
     // The distances summed directly, not read off the smallest eigenvalue:
     // that is a difference of squares, whose rounding (relative 1e-16 of
     // the largest) would show as 1e-8 in its square root.
     let (mut pos, mut neg, mut off) = (0.0, 0.0, 0.0);
-    for p in (0..image.width * image.height).filter(|&p| mask.get(p).copied().unwrap_or(false)) {
-        let c = Vector3::from(rgb_at(image, p));
-        let (x, y) = (c.dot(&e1), c.dot(&e2));
-        let along = x * axis[0] + y * axis[1];
-        let across = y * axis[0] - x * axis[1];
+    for (q, _) in pixels() {
+        let along = q.dot(&axis);
+        let across = q.y * axis[0] - q.x * axis[1];
         off += across * across;
         // The axis's direction holding more of the colours names the hue.
         if along > 0.0 {
@@ -92,12 +93,11 @@ pub fn colour_plane(image: &Image, mask: &[bool]) -> Option<ColourPlane> {
             neg += along * along;
         }
     }
-    let outside = (off / energy).sqrt();
     let sign = if pos >= neg { 1.0 } else { -1.0 };
     let chroma = (e1 * axis[0] + e2 * axis[1]) * sign;
     Some(ColourPlane {
         colour: hue_colour(&chroma),
-        outside,
+        outside: (off / energy).sqrt(),
     })
 }
 
