@@ -7,7 +7,7 @@
 //! renders closer to the data, and the verdict judges the render).
 
 use brdf_fit::Objective;
-use brdf_fit::appearance::{ImageError, optional_lobes};
+use brdf_fit::appearance::{ImageError, colour_plane_note, optional_lobes};
 use brdf_models::saved_model::SavedModel;
 use serde::Serialize;
 
@@ -42,6 +42,8 @@ pub fn verdict(
     termination: Option<&str>,
 ) -> Verdict {
     let mut reasons = image.map(ImageError::warnings).unwrap_or_default();
+    // What no fit of this model can mend: colours off its one colour plane.
+    reasons.extend(image.and_then(|e| colour_plane_note(&saved.model, e)));
     let mut notes = Vec::new();
     let off = lobes_off(saved);
     if !off.is_empty() {
@@ -171,6 +173,31 @@ mod tests {
             v.notes,
             ["optional lobes off (at 0; the data did not need them): sheen, clearcoat"]
         );
+    }
+
+    /// A principled fit of data whose colours lie off every plane of white
+    /// and one colour is told so, as a reason; the same figure below the
+    /// note's threshold, or no figure, adds none.
+    #[test]
+    fn colours_off_the_single_colour_plane_are_a_reason() {
+        use brdf_fit::appearance::{COLOUR_PLANE_NOTE, DataColourPlane};
+        let with = |outside: f64| ImageError {
+            colour_plane: Some(DataColourPlane {
+                light: "studio".into(),
+                colour: [1.0, 0.2, 0.0],
+                outside,
+            }),
+            ..looks_right()
+        };
+        let named = |image: &ImageError| {
+            verdict(&principled("image"), Some(image), None)
+                .reasons
+                .iter()
+                .any(|r| r.contains("every plane of white and one colour"))
+        };
+        assert!(named(&with(2.0 * COLOUR_PLANE_NOTE)));
+        assert!(!named(&with(0.5 * COLOUR_PLANE_NOTE)));
+        assert!(!named(&looks_right()));
     }
 
     #[test]
