@@ -205,6 +205,10 @@ def goals(rows):
             if "peer" in name:
                 goal = f"{name.split(' (')[0]} <= {bound:.3f} (the peer's)"
             out.append(f"| {stem} | {goal} | {value:.3f} | {verdict} |")
+    out += ["", "The highlights and rims of cc_ibiza_sunset and cc_iris_purple_gem are other hues",
+            "than their bodies, and every principled render under the white studio light keeps",
+            "its colours in one plane of white and its base colour: what that alone costs each",
+            "material is in `results/colour_planes.md` (`python benches/judge/colour_planes.py`)."]
     return out
 
 
