@@ -24,6 +24,7 @@ mod cli;
 mod commands;
 mod error;
 mod opts;
+mod progress;
 
 use cli::{Cli, Command};
 use error::CliError;

@@ -82,3 +82,67 @@ pub fn parse_direction(s: &str, degrees: bool, what: &str) -> Result<Direction, 
     }
     Ok(Direction::from_spherical(a[0], a[1])?)
 }
+
+/// `--metric`: what a fit minimises (the library's [`brdf_fit::Metric`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum MetricArg {
+    /// Appearance for renderer models on data that can be rendered, else ngan.
+    Auto,
+    /// Candidates chosen by image error, refined in the image objective.
+    Appearance,
+    /// Ngan's L2 (cosine-weighted).
+    Ngan,
+    /// Sopp's weighted objective.
+    Sopp,
+    /// Sopp's objective without solid-angle weights.
+    SoppUnweighted,
+    /// Lafortune's cos_i cos_o weighting.
+    Lafortune,
+    /// Matusik's log error.
+    Log,
+    /// Cube root of the cosine-weighted values.
+    CubeRoot,
+    /// Error relative to the data.
+    Relative,
+    /// Image objective alone (tone-mapped sphere pixels).
+    Image,
+}
+
+impl MetricArg {
+    /// The library's metric of the same name.
+    pub fn metric(self) -> Result<brdf_fit::Metric, CliError> {
+        Ok(brdf_fit::Metric::parse(&value_name(self))?)
+    }
+}
+
+/// `--channels` of a fit (the library's [`brdf_fit::ChannelMode`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ChannelsArg {
+    /// Every channel: shared non-linear, per-channel linear parameters.
+    Rgb,
+    /// The mean of the channels.
+    Grey,
+    /// Everything per channel (one grey model per channel).
+    PerChannel,
+}
+
+impl ChannelsArg {
+    /// The library's channel mode of the same name.
+    pub fn mode(self) -> Result<brdf_fit::ChannelMode, CliError> {
+        Ok(brdf_fit::ChannelMode::parse(&value_name(self))?)
+    }
+}
+
+/// The name clap shows for a value of a [`clap::ValueEnum`], which is the
+/// name the library parses.
+fn value_name<T: clap::ValueEnum>(v: T) -> String {
+    v.to_possible_value()
+        .map(|p| p.get_name().to_string())
+        .unwrap_or_default()
+}
+
+/// `--solver`: `auto`, `sqp`, `lm`, `sopp`, `ols`, `irls` or
+/// `irls:WEIGHT`, parsed by the library.
+pub fn solver(s: &str) -> Result<brdf_fit::Solver, String> {
+    brdf_fit::Solver::parse(s).map_err(|e| e.to_string())
+}

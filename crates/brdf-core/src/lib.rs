@@ -52,6 +52,7 @@ pub mod metrics;
 pub mod pair_geometry;
 pub mod params;
 pub mod plausibility;
+pub mod progress;
 pub mod quadrature;
 pub mod samples;
 pub mod shared_basis;

@@ -888,7 +888,7 @@ pub fn fit_judged_on(
 
 /// The fit of [`fit_judged`] on data that can be rendered, before its
 /// image errors.
-fn fit_rendered(
+pub(crate) fn fit_rendered(
     fit: &Fit,
     samples: &SampleSet,
     data: &dyn Brdf,
@@ -906,7 +906,10 @@ fn fit_rendered(
 }
 
 /// `report` with its image errors by `judge` and their warnings attached.
-fn with_image_errors(mut report: FitReport, judge: &Judge) -> Result<FitReport, FitError> {
+pub(crate) fn with_image_errors(
+    mut report: FitReport,
+    judge: &Judge,
+) -> Result<FitReport, FitError> {
     let errors = judge.fit_errors(report.model.as_ref())?;
     report.notes.extend(errors.warnings());
     report

@@ -14,7 +14,7 @@
 //! order.
 //!
 //! Each fit is what `brdf fit` runs on the same file with the same
-//! `--metric` ([`crate::appearance::fit_judged`]): renderer models are
+//! `--metric` (a [`FitRequest`]): renderer models are
 //! fitted for appearance on data that can be rendered (RGL, MERL), and
 //! every fit of such data carries its image errors (the sphere under the
 //! sky and studio light sets at [`REPORT_SIZE`] pixels: FLIP, PSNR, mean
@@ -28,12 +28,13 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, OnceLock};
 
+use brdf_core::progress::{Progress, Task};
 use rayon::prelude::*;
 use serde_json::Value;
 
-use crate::appearance::{self, Judge, REPORT_SIZE};
+use crate::appearance::{Judge, REPORT_SIZE};
 use crate::table::{Cell, Table};
-use crate::{Channels, Fit, FitError, Objective, data_name};
+use crate::{ChannelMode, FitError, FitRequest, Material, Metric, data_name};
 
 /// The file of fits in a batch folder.
 pub const FITS: &str = "fits.jsonl";
@@ -81,18 +82,16 @@ pub struct BatchOptions {
     pub out: PathBuf,
     /// The share of the list this run fits.
     pub shard: Shard,
-    /// Channels fitted.
-    pub channels: Channels,
+    /// Channels fitted (RGB or grey: a batch row is one model).
+    pub channels: ChannelMode,
     /// Angle limit (degrees).
     pub limit_deg: f64,
     /// Multi-start count.
     pub starts: usize,
-    /// Objective, as `brdf fit --metric`: `auto` (for appearance when the
-    /// model is a renderer's and the data can be rendered, else Ngan's
-    /// L2), `appearance`, or an objective's name.
-    pub metric: String,
+    /// What each fit minimises, as `brdf fit --metric`.
+    pub metric: Metric,
     /// End each fit for appearance with the search on its render's FLIP
-    /// ([`Fit::polish_on_flip`]); other fits ignore it.
+    /// ([`crate::Fit::polish_on_flip`]); other fits ignore it.
     pub polish: bool,
 }
 
@@ -229,11 +228,12 @@ fn resolve_models(names: &[String]) -> Result<Vec<&'static str>, FitError> {
 
 /// Run a batch: fit what this share still lacks, append each fit to
 /// `fits.jsonl`, write the summary. `started(todo, in_share)` is called
-/// once the work is known, `progress()` after every fit (a progress bar).
+/// once the work is known; `progress` hears of every fit, started and
+/// done.
 pub fn run(
     opts: &BatchOptions,
     started: impl FnOnce(usize, usize),
-    progress: &(dyn Fn() + Sync),
+    progress: &dyn Progress,
 ) -> Result<BatchOutcome, FitError> {
     let models = resolve_models(&opts.models)?;
     let path = opts.out.join(FITS);
@@ -242,7 +242,9 @@ pub fn run(
     let created = !opts.out.exists();
     std::fs::create_dir_all(&opts.out).map_err(io_err(&opts.out))?;
     started(todo.len(), in_share);
-    let result = fit_all(opts, &todo, &path, progress);
+    let task = progress.task("batch", todo.len());
+    let result = fit_all(opts, &todo, &path, task.as_ref());
+    task.finish();
     let fitted = read_fits(&path).map(|f| !f.is_empty()).unwrap_or(false);
     if created && !fitted {
         // Nothing to keep: leave no empty output folder behind.
@@ -266,7 +268,7 @@ fn fit_all(
     opts: &BatchOptions,
     todo: &[Item],
     path: &Path,
-    progress: &(dyn Fn() + Sync),
+    task: &dyn Task,
 ) -> Result<Vec<String>, FitError> {
     let out = Mutex::new(open_fits(path)?);
     // Each material loaded once for all its models.
@@ -286,11 +288,12 @@ fn fit_all(
             let lines: Vec<Result<Value, String>> = models
                 .par_iter()
                 .map(|model| {
+                    task.item(&format!("{} x {model}", data_name(material)));
                     let r = match &loaded {
                         Ok(m) => fit_one(m, material, model, opts),
                         Err(e) => Err(e.to_string()),
                     };
-                    progress();
+                    task.advance(1);
                     r
                 })
                 .collect();
@@ -304,26 +307,9 @@ fn fit_all(
     Ok(failures)
 }
 
-/// A material as its fits need it: the samples, and for data that can be
-/// rendered the data itself with the judge holding its renders.
-struct Material {
-    samples: brdf_core::SampleSet,
-    rendered: Option<(Box<dyn brdf_core::Brdf>, Judge)>,
-}
-
 /// Load `material`; render it on the judge's `terms` when it can be.
 fn load(material: &str, terms: &OnceLock<Judge>) -> Result<Material, FitError> {
-    let samples = brdf_io::load(material)?;
-    let rendered = match brdf_io::load_dense(material)? {
-        Some(data) => {
-            let judge = terms
-                .get_or_init(|| Judge::new(REPORT_SIZE))
-                .rendering(data.as_ref())?;
-            Some((data, judge))
-        }
-        None => None,
-    };
-    Ok(Material { samples, rendered })
+    Material::load_on(material, || terms.get_or_init(|| Judge::new(REPORT_SIZE)))
 }
 
 /// One fit as a JSON line.
@@ -334,28 +320,21 @@ fn fit_one(
     opts: &BatchOptions,
 ) -> Result<Value, String> {
     let name = data_name(spec);
-    let renderable = material.rendered.is_some();
-    let (for_appearance, metric) = appearance::metric_choice(&opts.metric, model, renderable);
-    let t0 = std::time::Instant::now();
-    let rep = Objective::parse(metric)
-        .and_then(|objective| {
-            let fit = Fit::model(model)?
-                .objective(objective)
-                .channels(opts.channels)
-                .limit_deg(opts.limit_deg)
-                .starts(opts.starts)
-                .polish_on_flip(opts.polish);
-            match &material.rendered {
-                Some((data, judge)) => appearance::fit_judged_on(
-                    &fit,
-                    &material.samples,
-                    data.as_ref(),
-                    for_appearance,
-                    judge,
-                ),
-                None => appearance::fit_judged(&fit, &material.samples, None, false),
-            }
-        })
+    let run = || {
+        FitRequest {
+            metric: opts.metric,
+            channels: opts.channels,
+            limit_deg: opts.limit_deg,
+            starts: opts.starts,
+            polish: opts.polish,
+            ..FitRequest::new(material, crate::names::resolve(model)?)
+        }
+        .run()
+    };
+    let outcome = run().map_err(|e| format!("{name} x {model}: {e}"))?;
+    let seconds = outcome.seconds;
+    let rep = outcome
+        .into_report()
         .map_err(|e| format!("{name} x {model}: {e}"))?;
     let chosen = rep.candidates.iter().find(|c| c.chosen);
     Ok(serde_json::json!({
@@ -367,7 +346,7 @@ fn fit_one(
         "fit": rep.summary,
         // The whole fit: for appearance every candidate and the image
         // errors (the summary's `seconds` is the kept solve's alone).
-        "seconds": t0.elapsed().as_secs_f64(),
+        "seconds": seconds,
         "for_appearance": chosen.map(|c| serde_json::json!({
             "objective": c.objective,
             "lobes": c.lobes,

@@ -1,12 +1,12 @@
 //! `fit`: the fit `brdf fit` runs, from Python, returning the dict of
 //! `brdf fit --json` (built by [`brdf_fit::fit_json`], as the command does).
-//! The GIL is released while the data load and the fits run.
+//! The GIL is released while the data load and the fits run; the fit is
+//! the same [`FitRequest`] the command runs.
 
 use std::path::PathBuf;
 
-use brdf_core::SampleSet;
-use brdf_fit::{Channels, Fit, FitReport, Objective, Solver};
-use brdf_models::saved_model::SavedModel;
+use brdf_fit::{ChannelMode, FitRequest, Material, Metric, Solver};
+use brdf_models::ModelConfig;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -79,64 +79,76 @@ pub fn fit<'py>(
     save: Option<PathBuf>,
     polish: bool,
 ) -> PyResult<PyFit> {
-    let (set, name) = data_set(py, data)?;
-    let spec = data
-        .extract::<PathBuf>()
-        .ok()
-        .map(|p| p.display().to_string());
-    let entry = brdf_fit::resolve(model).map_err(to_py)?;
-    // As `brdf fit`: data named by a path that can be rendered get image
-    // errors, and renderer models are fitted for appearance under `auto`.
-    let dense = match (&spec, channels) {
-        (Some(s), "rgb" | "grey") => py.detach(|| brdf_io::load_dense(s)).map_err(to_py)?,
-        _ => None,
+    let channels = ChannelMode::parse(channels).map_err(|_| {
+        usage(format!(
+            "channels=\"{channels}\": expected grey, rgb or per-channel"
+        ))
+    })?;
+    let material = material(py, data)?;
+    let request = FitRequest {
+        metric: Metric::parse(metric).map_err(to_py)?,
+        channels,
+        solver: Solver::parse(solver).map_err(to_py)?,
+        starts,
+        irls_max_iterations,
+        limit_deg,
+        config: ModelConfig {
+            lobes,
+            order,
+            degree,
+            ..ModelConfig::default()
+        },
+        polish,
+        ..FitRequest::new(&material, brdf_fit::resolve(model).map_err(to_py)?)
     };
-    let (appearance, metric) =
-        brdf_fit::appearance::metric_choice(metric, entry.name, dense.is_some());
-    if polish && !appearance {
+    if polish && !request.resolved_metric().0 {
         return Err(usage(format!(
             "polish=True refines a fit for appearance, which `{model}` with metric=\"{metric}\" on these data is not: use a renderer model (principled, gltf, gltf-ext, ggx) or metric=\"appearance\" on an RGL `.bsdf` or MERL `.binary` path"
         )));
     }
-    let fit = Ok::<_, brdf_fit::FitError>(Fit::entry(entry))
-        .and_then(|f| Ok(f.objective(Objective::parse(metric)?)))
-        .and_then(|f| Ok(f.solver(Solver::parse(solver)?)))
-        .map_err(to_py)?
-        .starts(starts)
-        .irls_max_iterations(irls_max_iterations)
-        .limit_deg(limit_deg)
-        .lobes(lobes)
-        .order(order)
-        .degree(degree)
-        .polish_on_flip(polish);
-    let sets = channel_sets(&set, channels)?;
-    if save.is_some() && sets.len() > 1 {
+    if save.is_some() && channels.models(material.samples()) > 1 {
         return Err(usage(
             "save= needs one model: use channels=\"rgb\" or \"grey\"".into(),
         ));
     }
-    let judged = (dense.as_deref(), appearance);
-    let (reports, saved) = py.detach(|| run_all(&fit, &sets, judged, save.as_ref(), &name))?;
-    let report = brdf_fit::fit_json(&reports, &set).map_err(to_py)?;
+    let outcome = py.detach(|| request.run()).map_err(to_py)?;
+    let saved = outcome
+        .reports
+        .iter()
+        .map(|r| r.saved_model(material.name()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(to_py)?;
+    if let (Some(path), [one]) = (&save, saved.as_slice()) {
+        one.save(path).map_err(to_py)?;
+    }
+    let report = brdf_fit::fit_json(&outcome.reports, material.samples()).map_err(to_py)?;
     Ok(PyFit {
         models: saved.into_iter().map(|saved| PyModel { saved }).collect(),
         report: crate::json::to_py_object(py, &report)?.unbind(),
-        data: name,
-        spec,
-        errors: reports.iter().map(|r| r.summary.ngan_l2).collect(),
+        data: material.name().to_string(),
+        spec: path_spec(data),
+        errors: outcome.reports.iter().map(|r| r.summary.ngan_l2).collect(),
     })
 }
 
-/// The data set and its name for outputs (relative to `BRDF_DATA`).
-pub(crate) fn data_set(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<(SampleSet, String)> {
+/// The material `data` names: a path (str or os.PathLike, relative paths
+/// also under `BRDF_DATA`), loaded with the GIL released, or a dict of
+/// arrays as `load` returns (scattered samples, nothing to render).
+pub(crate) fn material(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Material> {
     if let Ok(d) = data.cast::<PyDict>() {
         let set = crate::samples::from_dict(d)?;
         let name = set.name.clone();
-        return Ok((set, name));
+        return Ok(Material::new(&name, set, None));
     }
     let spec = data_spec(data)?;
-    let set = py.detach(|| brdf_io::load(&spec)).map_err(to_py)?;
-    Ok((set, brdf_fit::data_name(&spec)))
+    py.detach(|| Material::load(&spec)).map_err(to_py)
+}
+
+/// The data spec of `data` when given as a path.
+fn path_spec(data: &Bound<'_, PyAny>) -> Option<String> {
+    data.extract::<PathBuf>()
+        .ok()
+        .map(|p| p.display().to_string())
 }
 
 /// The data spec of `data` given as a path (str or os.PathLike), as the
@@ -149,43 +161,4 @@ pub(crate) fn data_spec(data: &Bound<'_, PyAny>) -> PyResult<String> {
         )
     })?;
     Ok(path.display().to_string())
-}
-
-/// The data sets fitted for a channel option, as `brdf fit --channels`.
-fn channel_sets(data: &SampleSet, channels: &str) -> PyResult<Vec<(SampleSet, Channels)>> {
-    Ok(match channels {
-        "rgb" => vec![(data.clone(), Channels::All)],
-        "grey" => vec![(data.clone(), Channels::Grey)],
-        "per-channel" => (0..data.channels())
-            .map(|c| (data.single_channel(c), Channels::All))
-            .collect(),
-        other => {
-            return Err(usage(format!(
-                "channels=\"{other}\": expected grey, rgb or per-channel"
-            )));
-        }
-    })
-}
-
-/// Run the fit on every set; save the (one) model when asked.
-fn run_all(
-    fit: &Fit,
-    sets: &[(SampleSet, Channels)],
-    (dense, appearance): (Option<&dyn brdf_core::Brdf>, bool),
-    save: Option<&PathBuf>,
-    name: &str,
-) -> PyResult<(Vec<FitReport>, Vec<SavedModel>)> {
-    let mut reports = Vec::new();
-    let mut models = Vec::new();
-    for (set, channels) in sets {
-        let f = fit.clone().channels(*channels);
-        let report = brdf_fit::appearance::fit_judged(&f, set, dense, appearance).map_err(to_py)?;
-        let saved = report.saved_model(name).map_err(to_py)?;
-        if let Some(path) = save {
-            saved.save(path).map_err(to_py)?;
-        }
-        reports.push(report);
-        models.push(saved);
-    }
-    Ok((reports, models))
 }

@@ -4,16 +4,13 @@
 //! --by-image --json` (built by [`brdf_fit::select_by_image_json`]). The GIL
 //! is released while the data load and the fits run.
 
-use std::path::PathBuf;
-
-use brdf_fit::FitOptions;
-use brdf_fit::appearance::RENDERER_MODELS;
 use brdf_fit::select::{Among, Search};
+use brdf_fit::{SelectBy, SelectRequest};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::error::{to_py, usage};
-use crate::fit::data_set;
+use crate::fit::material;
 
 /// Fit the candidate models and choose the smallest adequate one, as
 /// ``brdf select``.
@@ -106,79 +103,40 @@ pub fn select<'py>(
             "models=[]: name at least one model, or leave models out for all".into(),
         ));
     }
-    if by_image {
-        return select_by_image(py, data, models, polish);
-    }
-    let (set, _) = data_set(py, data)?;
-    let spec = data
-        .extract::<PathBuf>()
-        .ok()
-        .map(|p| p.display().to_string());
-    let among = Among {
-        models: models.unwrap_or_default(),
-        max_parameters,
-    };
-    let search = if exhaustive {
-        Search::Exhaustive
-    } else {
-        Search::CoarseToFine
-    };
-    let report = py.detach(|| {
-        let set = brdf_fit::select::prepare(&set, limit_deg, grey)?;
-        let dense = match &spec {
-            Some(s) => brdf_io::load_dense(s)?,
-            None => None,
-        };
-        let (selection, image) = brdf_fit::appearance::select_judged(
-            &set,
-            dense.as_deref(),
-            tolerance,
-            &FitOptions::default(),
-            &among,
-            search,
-        )?;
-        brdf_fit::select_json(
-            &set,
-            tolerance,
-            search,
-            &selection.rows,
-            selection.choice,
-            image.as_ref(),
-        )
-    });
-    crate::json::to_py_object(py, &report.map_err(to_py)?)
-}
-
-/// `select(..., by_image=True)`: what `brdf select --by-image` does, on the
-/// data path resolved as [`data_set`] resolves it (relative paths also
-/// under `BRDF_DATA`, by [`brdf_io::load`] and [`brdf_io::load_dense`]).
-fn select_by_image<'py>(
-    py: Python<'py>,
-    data: &Bound<'py, PyAny>,
-    models: Option<Vec<String>>,
-    polish: bool,
-) -> PyResult<Bound<'py, PyAny>> {
     // Arrays hold samples only: there is nothing to render them from.
-    if data.cast::<PyDict>().is_ok() {
+    if by_image && data.cast::<PyDict>().is_ok() {
         return Err(usage(
             "by_image=True: data given as arrays holds scattered samples that cannot be rendered; pass the path of RGL `.bsdf` or MERL `.binary` data, or select without by_image=True".into(),
         ));
     }
-    let spec = crate::fit::data_spec(data)?;
-    let names: Vec<String> =
-        models.unwrap_or_else(|| RENDERER_MODELS.iter().map(|m| m.to_string()).collect());
-    let report = py.detach(|| -> PyResult<serde_json::Value> {
-        let samples = brdf_io::load(&spec).map_err(to_py)?;
-        let Some(dense) = brdf_io::load_dense(&spec).map_err(to_py)? else {
-            return Err(usage(format!(
-                "by_image=True: `{spec}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select without by_image=True"
-            )));
-        };
-        let names: Vec<&str> = names.iter().map(String::as_str).collect();
-        let (rows, choice) =
-            brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref(), polish)
-                .map_err(to_py)?;
-        brdf_fit::select_by_image_json(&samples.name, &rows, choice).map_err(to_py)
-    });
-    crate::json::to_py_object(py, &report?)
+    let material = material(py, data)?;
+    if by_image && !material.is_renderable() {
+        return Err(usage(format!(
+            "by_image=True: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select without by_image=True",
+            material.spec()
+        )));
+    }
+    let request = SelectRequest {
+        by: if by_image {
+            SelectBy::Image
+        } else {
+            SelectBy::L2
+        },
+        tolerance,
+        limit_deg,
+        grey,
+        among: Among {
+            models: models.unwrap_or_default(),
+            max_parameters,
+        },
+        search: if exhaustive {
+            Search::Exhaustive
+        } else {
+            Search::CoarseToFine
+        },
+        polish,
+        ..SelectRequest::new(&material)
+    };
+    let report = py.detach(|| request.run().and_then(|outcome| outcome.json()));
+    crate::json::to_py_object(py, &report.map_err(to_py)?)
 }

@@ -4,8 +4,11 @@
 
 use std::path::Path;
 
-use brdf_core::{Brdf, SampleSet};
-use brdf_fit::appearance::{ImageError, Judge};
+use std::sync::Arc;
+
+use brdf_core::Brdf;
+use brdf_fit::Material;
+use brdf_fit::appearance::{ImageError, Judge, REPORT_SIZE};
 use brdf_models::saved_model::SavedModel;
 use serde::Serialize;
 use serde_json::Value;
@@ -73,17 +76,8 @@ pub struct Analyser {
     size: usize,
     /// the judge's terms, made at the first dense data set
     terms: Option<Judge>,
-    /// the last data set read
-    data: Option<Loaded>,
-}
-
-/// A data set as read for its pages.
-struct Loaded {
-    spec: String,
-    samples: SampleSet,
-    dense: Option<Box<dyn Brdf>>,
-    /// the judge with the dense data's renders
-    judge: Option<Judge>,
+    /// the last data set read, with its renders when dense
+    data: Option<Arc<Material>>,
 }
 
 impl Analyser {
@@ -96,70 +90,44 @@ impl Analyser {
         }
     }
 
-    /// An analyser of the pages of `spec`, a dense data set that `judge`
-    /// has rendered ([`Judge::with_data`]): `brdf fit --report` hands over
-    /// the judge of its fit's image errors, so the page renders only the
-    /// fit. Its spheres are `judge.size()` pixels wide.
-    pub fn with_judge(spec: &str, judge: Judge) -> Result<Self, ReportError> {
-        let samples = brdf_io::load(spec)?;
-        let dense = brdf_io::load_dense(spec)?;
-        if dense.is_none() {
-            return Err(ReportError::Input {
-                path: spec.to_string(),
-                reason: "a judge was given for data that cannot be rendered".into(),
-            });
-        }
-        Ok(Analyser {
-            size: judge.size(),
+    /// An analyser of the pages of `material`, already loaded (and, for a
+    /// fit's image errors, rendered): `brdf fit --report` hands over the
+    /// material of its fit, so the page renders only the fit. Its spheres
+    /// are the judge's [`REPORT_SIZE`] pixels wide.
+    pub fn with_material(material: Arc<Material>) -> Self {
+        Analyser {
+            size: REPORT_SIZE,
             terms: None,
-            data: Some(Loaded {
-                spec: spec.to_string(),
-                samples,
-                dense,
-                judge: Some(judge),
-            }),
-        })
+            data: Some(material),
+        }
     }
 
     /// The data set `spec`, read (and rendered) unless it was the last one.
-    fn load(&mut self, spec: &str) -> Result<&Loaded, ReportError> {
-        let loaded = match self.data.take() {
-            Some(d) if d.spec == spec => d,
-            _ => self.read(spec)?,
-        };
-        Ok(self.data.insert(loaded))
-    }
-
-    /// Read `spec` and render it on the judge's terms when it is dense.
-    fn read(&mut self, spec: &str) -> Result<Loaded, ReportError> {
-        let samples = brdf_io::load(spec)?;
-        let dense = brdf_io::load_dense(spec)?;
-        let judge = match dense.as_deref() {
-            Some(d) => {
-                let terms = self.terms.get_or_insert_with(|| Judge::new(self.size));
-                Some(terms.rendering(d)?)
-            }
-            None => None,
-        };
-        Ok(Loaded {
-            spec: spec.to_string(),
-            samples,
-            dense,
-            judge,
-        })
+    fn load(&mut self, spec: &str) -> Result<Arc<Material>, ReportError> {
+        if let Some(d) = self.data.as_ref().filter(|d| d.spec() == spec) {
+            return Ok(Arc::clone(d));
+        }
+        let (size, terms) = (self.size, &mut self.terms);
+        let material = Arc::new(Material::load_on(spec, || {
+            terms.get_or_insert_with(|| Judge::new(size))
+        })?);
+        self.data = Some(Arc::clone(&material));
+        Ok(material)
     }
 
     /// The analysis of one page.
     pub fn analyse(&mut self, input: &FitInput) -> Result<Analysis, ReportError> {
         let size = self.size;
         let data = self.load(input.data)?;
+        // Loaded on this analyser's terms, or handed over with its own.
+        let judge = data.judge()?;
         let model = input.saved.build().map_err(|e| ReportError::Model {
             what: input.fit_source.into(),
             reason: e.to_string(),
         })?;
         let model: &dyn Brdf = model.as_ref();
-        let dense_ref = data.dense.as_deref();
-        let (image, spheres) = match &data.judge {
+        let dense_ref = data.dense();
+        let (image, spheres) = match judge {
             Some(judge) => {
                 let (errors, renders) = judge.fit_renders(model)?;
                 (Some(errors), spheres::rows_of(&renders)?)
@@ -168,10 +136,10 @@ impl Analyser {
         };
         let termination = input.run.as_ref().map(|r| r.termination.as_str());
         Ok(Analysis {
-            samples: data.samples.len(),
+            samples: data.samples().len(),
             dense: dense_ref.is_some(),
-            slices: polar::slices(&data.samples, dense_ref, model),
-            coverage_svg: coverage::svg(&data.samples)?,
+            slices: polar::slices(data.samples(), dense_ref, model),
+            coverage_svg: coverage::svg(data.samples())?,
             spheres,
             verdict: verdict(input.saved, image.as_ref(), termination),
             image,

@@ -15,7 +15,7 @@ use crate::context::{Study, create_dir};
 use crate::{parts, readme};
 
 /// What to reproduce, where.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Default)]
 pub struct Reproduce {
     /// Folder with the measured data (`None`: `$BRDF_DATA`, else synthetic).
     pub data: Option<PathBuf>,
@@ -30,6 +30,8 @@ pub struct Reproduce {
     /// Worker threads for the fits (`None`: all cores); results are the
     /// same for any count.
     pub threads: Option<usize>,
+    /// Who watches the parts' progress (`None`: nobody).
+    pub progress: Option<std::sync::Arc<dyn brdf_core::progress::Progress>>,
 }
 
 /// What a run wrote.
@@ -65,6 +67,9 @@ fn spec_of(r: &Reproduce) -> Result<StudySpec, StudyError> {
 
 /// Run the selection and write its results and `README.md`.
 pub fn run(r: &Reproduce) -> Result<Reproduced, StudyError> {
+    if let Some(observer) = &r.progress {
+        crate::context::progress::set_observer(observer.clone());
+    }
     let spec = spec_of(r)?;
     let data = r
         .data

@@ -14,8 +14,9 @@
 use std::path::Path;
 
 use brdf_core::{Direction, SampleSet};
-use brdf_fit::{Fit, Objective};
+use brdf_fit::{FitRequest, Material, Metric, Objective};
 use brdf_models::ModelConfig;
+use brdf_models::ModelEntry;
 
 use crate::StudyError;
 use crate::report::{Cell, Table, fmt_sig};
@@ -115,9 +116,55 @@ pub struct CaseOutcome {
     pub detail: String,
 }
 
-/// Fit `data` with `fit` and describe the outcome.
-pub fn fit_case(group: &'static str, case: &str, fit: Fit, data: &SampleSet) -> CaseOutcome {
-    match fit.run(data) {
+/// A fit of a stability case: the model and what the case changes from
+/// `brdf fit`'s defaults.
+#[derive(Clone, Copy)]
+pub struct CaseFit {
+    model: ModelEntry,
+    metric: Metric,
+    starts: Option<usize>,
+    degree: Option<usize>,
+}
+
+impl CaseFit {
+    /// Fit with this objective.
+    pub fn objective(self, objective: Objective) -> Self {
+        CaseFit {
+            metric: Metric::Objective(objective),
+            ..self
+        }
+    }
+
+    /// Fit from this many starts.
+    pub fn starts(self, starts: usize) -> Self {
+        CaseFit {
+            starts: Some(starts),
+            ..self
+        }
+    }
+
+    /// Fit the polynomial of this degree.
+    pub fn degree(self, degree: usize) -> Self {
+        CaseFit {
+            degree: Some(degree),
+            ..self
+        }
+    }
+
+    /// Run it on `data` as `brdf fit` runs a request.
+    fn run(self, case: &str, data: &SampleSet) -> Result<brdf_fit::FitReport, brdf_fit::FitError> {
+        let material = Material::new(case, data.clone(), None);
+        let mut request = FitRequest::new(&material, self.model);
+        request.metric = self.metric;
+        request.starts = self.starts.unwrap_or(request.starts);
+        request.config.degree = self.degree.unwrap_or(request.config.degree);
+        request.run()?.into_report()
+    }
+}
+
+/// Fit `data` as `fit` says and describe the outcome.
+pub fn fit_case(group: &'static str, case: &str, fit: CaseFit, data: &SampleSet) -> CaseOutcome {
+    match fit.run(case, data) {
         Ok(r) => {
             let params: Vec<String> = r
                 .summary
@@ -189,8 +236,13 @@ fn error_case(group: &'static str, case: &str, message: &str) -> CaseOutcome {
     }
 }
 
-fn model(name: &str) -> Result<Fit, StudyError> {
-    Ok(Fit::model(name)?)
+fn model(name: &str) -> Result<CaseFit, StudyError> {
+    Ok(CaseFit {
+        model: brdf_fit::resolve(name)?,
+        metric: Metric::Objective(Objective::Ngan),
+        starts: None,
+        degree: None,
+    })
 }
 
 /// The fitting cases: degenerate data, extreme magnitudes, stiff lobes.
@@ -507,7 +559,7 @@ pub fn input_cases(dir: &Path) -> Result<Vec<CaseOutcome>, StudyError> {
         Err(e) => error_case("input", "NIST Rat43.dat", &relative(&e.to_string(), dir)),
     });
     // A truncated saved model and one without provenance.
-    let fit = Fit::model("blinn-phong")?.run(&bp)?;
+    let fit = model("blinn-phong")?.run("synthetic", &bp)?;
     let saved = dir.join("model.json");
     fit.saved_model("synthetic")?.save(&saved)?;
     let text = std::fs::read_to_string(&saved).map_err(io(&saved))?;

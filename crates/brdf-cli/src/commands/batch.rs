@@ -4,10 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
-use brdf_fit::Channels;
 use brdf_fit::batch::{BatchOptions, Shard};
 
 use crate::error::CliError;
+use crate::opts::{ChannelsArg, MetricArg};
+use crate::progress::Bars;
 
 /// Arguments of `brdf batch`.
 #[derive(Debug, clap::Args)]
@@ -28,19 +29,19 @@ pub struct BatchArgs {
     #[arg(long, num_args = 1..)]
     pub merge: Vec<PathBuf>,
     /// grey (mean of the channels) or rgb.
-    #[arg(long, default_value = "rgb")]
-    pub channels: String,
+    #[arg(long, value_enum, default_value = "rgb")]
+    pub channels: ChannelsArg,
     /// Angle limit (degrees).
-    #[arg(long, default_value_t = 80.0)]
+    #[arg(long, default_value_t = 80.0, allow_negative_numbers = true)]
     pub limit: f64,
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
     /// Objective and metric, as `brdf fit --metric`: auto (for appearance
     /// when the model is a renderer's and the data can be rendered, else
-    /// ngan), appearance, ngan, log, cube-root, relative, image, ...
-    #[arg(long, default_value = "auto")]
-    pub metric: String,
+    /// ngan), appearance, or one objective.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub metric: MetricArg,
     /// End each fit for appearance with a search on the mean HDR-FLIP of
     /// its renders, as `brdf fit --polish` (other fits are unchanged).
     #[arg(long)]
@@ -65,39 +66,31 @@ pub fn run(args: &BatchArgs) -> Result<(), CliError> {
             "brdf batch needs --data PATH... and --models A,B,... (or --merge DIR...)".into(),
         ));
     }
-    let channels = match args.channels.as_str() {
-        "rgb" => Channels::All,
-        "grey" => Channels::Grey,
-        other => {
-            return Err(CliError::Usage(format!(
-                "--channels {other}: expected grey or rgb"
-            )));
-        }
-    };
+    if args.channels == ChannelsArg::PerChannel {
+        return Err(CliError::Usage(
+            "--channels per-channel: a batch row is one model; expected grey or rgb".into(),
+        ));
+    }
     let opts = BatchOptions {
         data: args.data.clone(),
         models: args.models.clone(),
         out: args.out.clone(),
         shard: args.shard.as_deref().map_or(Ok(Shard::ALL), Shard::parse)?,
-        channels,
+        channels: args.channels.mode()?,
         limit_deg: args.limit,
         starts: args.starts,
-        metric: args.metric.clone(),
+        metric: args.metric.metric()?,
         polish: args.polish,
     };
     let fits = opts.out.join(brdf_fit::batch::FITS);
-    brdf_study::context::progress::set_quiet(args.quiet);
-    let bar = brdf_study::context::progress::bar(0, "batch");
     let started = |todo: usize, in_share: usize| {
         eprintln!(
             "brdf batch: {in_share} fits in this share, {} already in {}, {todo} to run",
             in_share - todo,
             fits.display()
         );
-        bar.set_length(todo as u64);
     };
-    let done = brdf_fit::batch::run(&opts, started, &|| bar.inc(1))?;
-    bar.finish_and_clear();
+    let done = brdf_fit::batch::run(&opts, started, &Bars::new(args.quiet))?;
     if let Some(line) = &done.dropped_torn_line {
         eprintln!(
             "brdf batch: dropped the torn last line of {} (a killed run; {} bytes); its fit was redone",

@@ -3,11 +3,14 @@
 //! the time, iterations and termination; optionally save the model.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use brdf_fit::appearance::{Judge, REPORT_SIZE};
-use brdf_fit::{Channels, Fit, Objective, Solver, appearance};
+use brdf_fit::{FitRequest, Material, Solver};
+use brdf_models::ModelConfig;
 
 use crate::error::CliError;
+use crate::opts::{ChannelsArg, MetricArg};
+use crate::progress::Bars;
 
 /// Arguments of `brdf fit`.
 #[derive(Debug, clap::Args)]
@@ -20,23 +23,22 @@ pub struct FitArgs {
     pub model: String,
     /// Objective and metric: auto (appearance for renderer models on data
     /// that can be rendered, else ngan), appearance (candidates chosen by
-    /// image error, refined in the image objective), ngan, sopp,
-    /// sopp-unweighted, lafortune, log, cube-root, relative, image.
-    #[arg(long, default_value = "auto")]
-    pub metric: String,
+    /// image error, refined in the image objective), or one objective.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub metric: MetricArg,
     /// Drop samples with theta_i or theta_o above this angle (degrees).
-    #[arg(long, default_value_t = 80.0)]
+    #[arg(long, default_value_t = 80.0, allow_negative_numbers = true)]
     pub limit: f64,
     /// grey (mean of the channels), rgb (shared non-linear, per-channel
     /// linear parameters) or per-channel (everything per channel).
-    #[arg(long, default_value = "rgb")]
-    pub channels: String,
+    #[arg(long, value_enum, default_value = "rgb")]
+    pub channels: ChannelsArg,
     /// Solver: auto (default: IRLS bisquare for the polynomial, direct least
     /// squares for other linear models, sqp otherwise), sqp (linear
     /// parameters projected out), lm, sopp (Sopp's two stages), ols or
     /// irls or irls:WEIGHT (all-linear models).
-    #[arg(long, default_value = "auto")]
-    pub solver: String,
+    #[arg(long, default_value = "auto", value_parser = crate::opts::solver)]
+    pub solver: Solver,
     /// Multi-start count.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
@@ -73,106 +75,78 @@ pub struct FitArgs {
     pub quiet: bool,
 }
 
-/// Run `brdf fit`: a thin layer over [`brdf_fit::Fit`].
+/// Run `brdf fit`: a [`FitRequest`] built from the arguments, its
+/// outcome printed, saved and reported.
 pub fn run(args: &FitArgs) -> Result<(), CliError> {
-    let (path, _) = brdf_io::load::resolve_spec(&args.data)?;
-    if path.is_dir() {
+    let material = Arc::new(Material::load(&args.data)?);
+    let bars = Bars::new(args.quiet);
+    let request = FitRequest {
+        metric: args.metric.metric()?,
+        channels: args.channels.mode()?,
+        solver: args.solver,
+        starts: args.starts,
+        irls_max_iterations: args.irls_max_iterations,
+        limit_deg: args.limit,
+        config: ModelConfig {
+            lobes: args.lobes,
+            order: args.order,
+            degree: args.degree,
+            ..ModelConfig::default()
+        },
+        polish: args.polish,
+        progress: &bars,
+        ..FitRequest::new(&material, brdf_fit::resolve(&args.model)?)
+    };
+    if args.polish && !request.resolved_metric().0 {
         return Err(CliError::Usage(format!(
-            "`{0}` is a folder: fit one file, or `brdf batch --data {0}`",
+            "--polish refines a fit for appearance, which `{}` with --metric {} on {} is not: use a renderer model (principled, gltf, gltf-ext, ggx) or --metric appearance on RGL `.bsdf` or MERL `.binary` data",
+            args.model,
+            request.metric.name(),
             args.data
         )));
     }
-    let data = brdf_io::load(&args.data)?;
-    let sets = match args.channels.as_str() {
-        "rgb" => vec![(data.clone(), Channels::All)],
-        "grey" => vec![(data.clone(), Channels::Grey)],
-        "per-channel" => (0..data.channels())
-            .map(|c| (data.single_channel(c), Channels::All))
-            .collect(),
-        other => {
-            return Err(CliError::Usage(format!(
-                "--channels {other}: expected grey, rgb or per-channel"
-            )));
-        }
-    };
-    if (args.save.is_some() || args.report.is_some()) && sets.len() > 1 {
+    let wants_one = args.save.is_some() || args.report.is_some();
+    if wants_one && request.channels.models(material.samples()) > 1 {
         return Err(CliError::Usage(
             "--save and --report need one model: use --channels rgb or grey".into(),
         ));
     }
-    let dense = brdf_io::load_dense(&args.data)?;
-    let entry = brdf_fit::resolve(&args.model)?;
-    // Per-channel fits are grey models of one channel: not rendered.
-    let dense = dense.as_deref().filter(|_| args.channels != "per-channel");
-    let (appearance, metric) = appearance::metric_choice(&args.metric, entry.name, dense.is_some());
-    if args.polish && !appearance {
-        return Err(CliError::Usage(format!(
-            "--polish refines a fit for appearance, which `{}` with --metric {} on {} is not: use a renderer model (principled, gltf, gltf-ext, ggx) or --metric appearance on RGL `.bsdf` or MERL `.binary` data",
-            args.model, args.metric, args.data
-        )));
-    }
-    let mut reports = Vec::new();
-    brdf_study::context::progress::set_quiet(args.quiet);
-    let bar = brdf_study::context::progress::bar(sets.len(), "fit");
-    for (set, channels) in &sets {
-        bar.set_message(format!("{} on {}", args.model, set.name));
-        let fit = Fit::entry(entry)
-            .objective(Objective::parse(metric)?)
-            .solver(Solver::parse(&args.solver)?)
-            .starts(args.starts)
-            .irls_max_iterations(args.irls_max_iterations)
-            .limit_deg(args.limit)
-            .channels(*channels)
-            .lobes(args.lobes)
-            .order(args.order)
-            .degree(args.degree)
-            .polish_on_flip(args.polish);
-        let t0 = std::time::Instant::now();
-        // With --report on data that can be rendered, the judge of the
-        // fit's image errors also makes the page (the data rendered once).
-        let (report, judge) = match dense.filter(|_| args.report.is_some()) {
-            Some(d) => {
-                let judge = Judge::with_data(REPORT_SIZE, d)?;
-                let report = appearance::fit_judged_on(&fit, set, d, appearance, &judge)?;
-                (report, Some(judge))
-            }
-            None => (appearance::fit_judged(&fit, set, dense, appearance)?, None),
-        };
-        let seconds = t0.elapsed().as_secs_f64();
+    let outcome = request.run()?;
+    if wants_one {
+        let report = outcome.report()?;
+        let saved = report.saved_model(material.name())?;
         if let Some(path) = &args.save {
-            report
-                .saved_model(&brdf_fit::data_name(&args.data))?
-                .save(path)?;
+            saved.save(path)?;
         }
         if let Some(path) = &args.report {
-            write_report(args, &report, seconds, judge, path)?;
+            write_report(args, &material, &saved, report, outcome.seconds, path)?;
         }
-        reports.push(report);
-        bar.inc(1);
     }
-    bar.finish_and_clear();
     if args.json {
-        let v = brdf_fit::fit_json(&reports, &data)?;
+        let v = brdf_fit::fit_json(&outcome.reports, material.samples())?;
         say!("{}", serde_json::to_string_pretty(&v)?)?;
         return Ok(());
     }
-    for rep in &reports {
+    for rep in &outcome.reports {
         say_raw!("{}", brdf_fit::report_text::text(rep))?;
     }
-    Ok(())
+    say!(
+        "wall time: {:.2} s (the whole command's fit, image errors included)",
+        outcome.seconds
+    )
 }
 
 /// The HTML report of a fit (`--report`), with the whole fit's `seconds`
 /// (candidates and image errors included, as `brdf batch` gives them) and
-/// how its kept solve ended.
+/// how its kept solve ended; the page reuses the material's renders.
 fn write_report(
     args: &FitArgs,
+    material: &Arc<Material>,
+    saved: &brdf_models::saved_model::SavedModel,
     report: &brdf_fit::FitReport,
     seconds: f64,
-    judge: Option<Judge>,
     path: &std::path::Path,
 ) -> Result<(), CliError> {
-    let saved = report.saved_model(&brdf_fit::data_name(&args.data))?;
     let run = brdf_report::RunInfo {
         seconds,
         termination: report.summary.termination.clone(),
@@ -180,14 +154,11 @@ fn write_report(
     };
     let input = brdf_report::FitInput {
         data: &args.data,
-        saved: &saved,
+        saved,
         fit_source: "brdf fit",
         run: Some(run),
         selection: None,
     };
-    let mut analyser = match judge {
-        Some(judge) => brdf_report::Analyser::with_judge(&args.data, judge)?,
-        None => brdf_report::Analyser::new(brdf_report::spheres::SIZE),
-    };
+    let mut analyser = brdf_report::Analyser::with_material(Arc::clone(material));
     crate::commands::report::fit_report(&input, path, args.quiet, &mut analyser)
 }

@@ -6,8 +6,10 @@ use std::path::{Path, PathBuf};
 
 use brdf_models::saved_model::SavedModel;
 
+use brdf_core::progress::Progress;
+
 use crate::error::CliError;
-use brdf_study::context::progress;
+use crate::progress::Bars;
 
 /// Arguments of `brdf report`.
 #[derive(Debug, clap::Args)]
@@ -91,13 +93,10 @@ pub fn fit_report(
     quiet: bool,
     analyser: &mut brdf_report::Analyser,
 ) -> Result<(), CliError> {
-    let bar = {
-        progress::set_quiet(quiet);
-        progress::bar(1, "report")
-    };
-    bar.set_message(format!("{} on {}", input.saved.model, input.data));
+    let task = Bars::new(quiet).task("report", 1);
+    task.item(&format!("{} on {}", input.saved.model, input.data));
     brdf_report::write_fit_page_with(input, out, analyser)?;
-    bar.finish_and_clear();
+    task.finish();
     eprintln!("brdf report: wrote {}", out.display());
     Ok(())
 }
@@ -110,17 +109,16 @@ pub fn batch_report(
     data_dirs: &[PathBuf],
     quiet: bool,
 ) -> Result<(), CliError> {
-    let bar = {
-        progress::set_quiet(quiet);
-        progress::bar(0, "report")
-    };
+    let task = Bars::new(quiet).task("report", 0);
+    let mut seen = 0;
     let mut tick = |done: usize, total: usize, current: &str| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-        bar.set_message(current.to_string());
+        task.set_total(total);
+        task.item(current);
+        task.advance(done.saturating_sub(seen));
+        seen = seen.max(done);
     };
     let done = brdf_report::write_batch_report(dir, out, data_dirs, &mut tick)?;
-    bar.finish_and_clear();
+    task.finish();
     for s in &done.skipped {
         eprintln!("brdf report: no page for {s}");
     }

@@ -80,7 +80,6 @@ fn data_folder(
 
 /// Run `brdf reproduce`.
 pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
-    brdf_study::context::progress::set_quiet(args.quiet);
     if args.list {
         for (name, about) in brdf_study::reproduce::list() {
             say!("{name:16} {about}")?;
@@ -96,6 +95,7 @@ pub fn run(args: &ReproduceArgs) -> Result<(), CliError> {
         spec: args.spec.clone(),
         lafortune_wide: args.lafortune_wide,
         threads: args.threads,
+        progress: Some(std::sync::Arc::new(crate::progress::Bars::new(args.quiet))),
     })
     .map_err(|e| match &folder {
         // Say which folder was read: an empty or wrong one explains most failures.

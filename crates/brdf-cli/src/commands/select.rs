@@ -3,10 +3,13 @@
 //! with `--exhaustive`) and choose the smallest one within the tolerance
 //! of the best.
 
-use crate::error::CliError;
-use brdf_fit::FitOptions;
 use brdf_fit::appearance::SCATTERED_NOTE;
 use brdf_fit::report_text::image_error_lines;
+use brdf_fit::select::{Among, Search};
+use brdf_fit::{Material, SelectBy, SelectOutcome, SelectRequest};
+
+use crate::error::CliError;
+use crate::progress::Bars;
 
 /// Arguments of `brdf select`.
 #[derive(Debug, clap::Args)]
@@ -15,10 +18,10 @@ pub struct SelectArgs {
     #[arg(long)]
     pub data: String,
     /// Accept errors up to (1 + REL) times the best.
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, allow_negative_numbers = true)]
     pub tolerance: f64,
     /// Drop samples with theta_i or theta_o above this angle (degrees).
-    #[arg(long, default_value_t = 80.0)]
+    #[arg(long, default_value_t = 80.0, allow_negative_numbers = true)]
     pub limit: f64,
     /// Fit the mean of the channels (grey) instead of every channel.
     #[arg(long)]
@@ -52,50 +55,72 @@ pub struct SelectArgs {
     pub quiet: bool,
 }
 
-/// Run `brdf select`.
+/// Run `brdf select`: a [`SelectRequest`] built from the arguments, its
+/// outcome printed.
 pub fn run(args: &SelectArgs) -> Result<(), CliError> {
-    if args.by_image {
-        return by_image(args);
-    }
-    if args.polish {
+    if args.polish && !args.by_image {
         return Err(CliError::Usage(
             "--polish refines fits for appearance: use it with --by-image (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
         ));
     }
-    let data = brdf_io::load(&args.data)?;
-    let data = brdf_fit::select::prepare(&data, args.limit, args.grey)?;
-    brdf_study::context::progress::set_quiet(args.quiet);
-    let bar = brdf_study::context::progress::bar(1, "select");
-    let n = brdf_fit::select::candidates(data.channels()).len();
-    bar.set_message(format!("fitting up to {n} candidates to {}", data.name));
-    let among = brdf_fit::select::Among {
-        models: args.models.clone(),
-        max_parameters: args.max_parameters,
-    };
-    let search = if args.exhaustive {
-        brdf_fit::select::Search::Exhaustive
-    } else {
-        brdf_fit::select::Search::CoarseToFine
-    };
-    let dense = brdf_io::load_dense(&args.data)?;
-    let (selection, image) = brdf_fit::appearance::select_judged(
-        &data,
-        dense.as_deref(),
-        args.tolerance,
-        &FitOptions::default(),
-        &among,
-        search,
-    )?;
-    let (rows, choice) = (selection.rows, selection.choice);
-    bar.finish_and_clear();
-    if args.json {
-        let v =
-            brdf_fit::select_json(&data, args.tolerance, search, &rows, choice, image.as_ref())?;
-        return say!("{}", serde_json::to_string_pretty(&v)?);
+    let material = Material::load(&args.data)?;
+    if args.by_image && !material.is_renderable() {
+        return Err(CliError::Usage(format!(
+            "--by-image: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select without --by-image",
+            args.data
+        )));
     }
-    let table = brdf_fit::select::table(&data.name, &rows, choice, args.tolerance);
+    let bars = Bars::new(args.quiet);
+    let request = SelectRequest {
+        by: if args.by_image {
+            SelectBy::Image
+        } else {
+            SelectBy::L2
+        },
+        tolerance: args.tolerance,
+        limit_deg: args.limit,
+        grey: args.grey,
+        among: Among {
+            models: args.models.clone(),
+            max_parameters: args.max_parameters,
+        },
+        search: if args.exhaustive {
+            Search::Exhaustive
+        } else {
+            Search::CoarseToFine
+        },
+        polish: args.polish,
+        progress: &bars,
+        ..SelectRequest::new(&material)
+    };
+    let outcome = request.run()?;
+    if args.json {
+        return say!("{}", serde_json::to_string_pretty(&outcome.json()?)?);
+    }
+    match &outcome {
+        SelectOutcome::L2 {
+            data,
+            tolerance,
+            rows,
+            choice,
+            image,
+            ..
+        } => print_by_l2(&data.name, rows, *choice, *tolerance, image.as_ref()),
+        SelectOutcome::Image { rows, choice, .. } => print_by_image(rows, *choice),
+    }
+}
+
+/// The table of candidates and the choice's image errors.
+fn print_by_l2(
+    name: &str,
+    rows: &[brdf_fit::select::SelectRow],
+    choice: usize,
+    tolerance: f64,
+    image: Option<&brdf_fit::appearance::ImageError>,
+) -> Result<(), CliError> {
+    let table = brdf_fit::select::table(name, rows, choice, tolerance);
     say_raw!("{}", table.markdown())?;
-    match &image {
+    match image {
         Some(e) => {
             say_raw!(
                 "\nThe choice, {}:\n{}",
@@ -111,27 +136,11 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     }
 }
 
-/// `brdf select --by-image`: a thin layer over
-/// [`brdf_fit::appearance::select_by_image`].
-fn by_image(args: &SelectArgs) -> Result<(), CliError> {
-    let samples = brdf_io::load(&args.data)?;
-    let Some(dense) = brdf_io::load_dense(&args.data)? else {
-        return Err(CliError::Usage(format!(
-            "--by-image: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select without --by-image",
-            args.data
-        )));
-    };
-    let names: Vec<&str> = if args.models.is_empty() {
-        brdf_fit::appearance::RENDERER_MODELS.to_vec()
-    } else {
-        args.models.iter().map(String::as_str).collect()
-    };
-    let (rows, choice) =
-        brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref(), args.polish)?;
-    if args.json {
-        let v = brdf_fit::select_by_image_json(&samples.name, &rows, choice)?;
-        return say!("{}", serde_json::to_string_pretty(&v)?);
-    }
+/// One line per renderer model, the choice starred.
+fn print_by_image(
+    rows: &[brdf_fit::appearance::ImageChoice],
+    choice: usize,
+) -> Result<(), CliError> {
     for (i, r) in rows.iter().enumerate() {
         let flips: Vec<String> = r
             .image

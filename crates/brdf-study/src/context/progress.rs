@@ -1,38 +1,47 @@
-//! Progress bars for every long loop, the study's and the `brdf`
-//! command's (`fit`, `select`, `batch`, `report`, `reproduce`): indicatif
-//! on stderr with items done, the current item (the bar's message) and an
-//! estimate; drawn only when stderr is a terminal and `--quiet` was not
-//! given ([`set_quiet`]), so logs and captured output stay clean.
+//! Progress of the study's long loops, reported to the observer the caller
+//! of [`crate::reproduce::run`] hands over ([`crate::reproduce::Reproduce`]'s
+//! `progress`); silent until one is installed. The study's parts run deep
+//! below the call that names the observer, so it is kept here for the run
+//! rather than threaded through every table's function.
 
-use std::io::IsTerminal;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
+use std::sync::{Arc, RwLock};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use brdf_core::progress::{Progress, Silent, Task};
 
-static QUIET: AtomicBool = AtomicBool::new(false);
+static OBSERVER: RwLock<Option<Arc<dyn Progress>>> = RwLock::new(None);
 
-/// Hide every bar made after this call (`--quiet`).
-pub fn set_quiet(quiet: bool) {
-    QUIET.store(quiet, Ordering::Relaxed);
+/// Report the study's progress to `observer` from now on.
+pub fn set_observer(observer: Arc<dyn Progress>) {
+    if let Ok(mut slot) = OBSERVER.write() {
+        *slot = Some(observer);
+    }
 }
 
-/// A bar of `len` steps titled `what`; hidden when quiet or when stderr is
-/// not a terminal. Set the current item with `set_message`.
-pub fn bar(len: usize, what: &str) -> ProgressBar {
-    let target = if !QUIET.load(Ordering::Relaxed) && std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len as u64), target);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{prefix:>12} [{bar:30}] {pos}/{len} {elapsed} (eta {eta}) {wide_msg}",
-    ) {
-        bar.set_style(style.progress_chars("=> "));
+/// A task of `len` items titled `what`, on the installed observer.
+pub fn bar(len: usize, what: &str) -> Bar {
+    let observer = OBSERVER.read().ok().and_then(|slot| slot.clone());
+    Bar(match observer {
+        Some(o) => o.task(what, len),
+        None => Silent.task(what, len),
+    })
+}
+
+/// One task of the study: items done and the item running.
+pub struct Bar(Box<dyn Task>);
+
+impl Bar {
+    /// `n` more items done.
+    pub fn inc(&self, n: u64) {
+        self.0.advance(n as usize);
     }
-    bar.set_prefix(what.to_string());
-    // The elapsed time moves even while one long item runs.
-    bar.enable_steady_tick(Duration::from_millis(250));
-    bar
+
+    /// The item now running.
+    pub fn set_message(&self, current: impl AsRef<str>) {
+        self.0.item(current.as_ref());
+    }
+
+    /// The task is over.
+    pub fn finish_and_clear(&self) {
+        self.0.finish();
+    }
 }

@@ -1,0 +1,187 @@
+//! The one typed way to ask for a model selection, shared by `brdf
+//! select` and Python: a [`SelectRequest`] names the [`Material`], the
+//! candidates, the tolerance and how the choice is made ([`SelectBy`]), and
+//! [`SelectRequest::run`] returns one [`SelectOutcome`], which also gives
+//! the JSON both front ends print.
+
+use brdf_core::SampleSet;
+use brdf_core::progress::{Progress, Silent};
+
+use crate::appearance::{self, ImageChoice, ImageError, RENDERER_MODELS};
+use crate::select::{Among, Search, SelectRow};
+use crate::{FitError, FitOptions, Material};
+
+/// How the choice among candidates is made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SelectBy {
+    /// The fewest stored numbers within the tolerance of the best Ngan L2.
+    #[default]
+    L2,
+    /// The least image error among renderer models fitted for appearance
+    /// (data that can be rendered only).
+    Image,
+}
+
+/// A selection to run.
+pub struct SelectRequest<'a> {
+    /// The data, loaded once.
+    pub material: &'a Material,
+    /// How the choice is made.
+    pub by: SelectBy,
+    /// Accept errors up to `(1 + tolerance)` times the best (by L2).
+    pub tolerance: f64,
+    /// Samples with theta_i or theta_o above this angle (degrees) dropped.
+    pub limit_deg: f64,
+    /// Fit the mean of the channels.
+    pub grey: bool,
+    /// The candidates admitted (by name and size); by image, the models
+    /// (empty: [`RENDERER_MODELS`]).
+    pub among: Among,
+    /// Coarse to fine, or every candidate on all samples (by L2).
+    pub search: Search,
+    /// End each fit for appearance with the search on its mean FLIP (by
+    /// image).
+    pub polish: bool,
+    /// Who watches the selection's progress.
+    pub progress: &'a dyn Progress,
+}
+
+/// What [`SelectRequest::run`] gives.
+pub enum SelectOutcome {
+    /// A choice by Ngan L2.
+    L2 {
+        /// The samples the candidates were fitted to (filtered, grey).
+        data: Box<SampleSet>,
+        /// The tolerance used.
+        tolerance: f64,
+        /// How the candidates were fitted.
+        search: Search,
+        /// Every candidate's row, in candidate order.
+        rows: Vec<SelectRow>,
+        /// Index of the choice in `rows`.
+        choice: usize,
+        /// The choice's image errors, for data that can be rendered.
+        image: Option<ImageError>,
+    },
+    /// A choice by image error.
+    Image {
+        /// The data's name in outputs.
+        data: String,
+        /// Every model's fit for appearance and image errors.
+        rows: Vec<ImageChoice>,
+        /// Index of the choice in `rows`.
+        choice: usize,
+    },
+}
+
+impl SelectOutcome {
+    /// The JSON of `brdf select --json`.
+    pub fn json(&self) -> Result<serde_json::Value, FitError> {
+        match self {
+            SelectOutcome::L2 {
+                data,
+                tolerance,
+                search,
+                rows,
+                choice,
+                image,
+            } => crate::select_json(data, *tolerance, *search, rows, *choice, image.as_ref()),
+            SelectOutcome::Image { data, rows, choice } => {
+                crate::select_by_image_json(data, rows, *choice)
+            }
+        }
+    }
+}
+
+impl<'a> SelectRequest<'a> {
+    /// A request with the defaults of `brdf select`: by L2, tolerance 0.1,
+    /// an 80 degree limit, every candidate, coarse to fine.
+    pub fn new(material: &'a Material) -> Self {
+        SelectRequest {
+            material,
+            by: SelectBy::L2,
+            tolerance: 0.1,
+            limit_deg: 80.0,
+            grey: false,
+            among: Among::default(),
+            search: Search::CoarseToFine,
+            polish: false,
+            progress: &Silent,
+        }
+    }
+
+    /// Run the selection.
+    pub fn run(&self) -> Result<SelectOutcome, FitError> {
+        match self.by {
+            SelectBy::L2 => self.by_l2(),
+            SelectBy::Image => self.by_image(),
+        }
+    }
+
+    fn by_l2(&self) -> Result<SelectOutcome, FitError> {
+        if self.polish {
+            return Err(FitError::Usage(
+                "polish refines fits for appearance: use it with a selection by image (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
+            ));
+        }
+        let data = crate::select::prepare(self.material.samples(), self.limit_deg, self.grey)?;
+        let n = crate::select::candidates(data.channels()).len();
+        let task = self.progress.task("select", 1);
+        task.item(&format!("fitting up to {n} candidates to {}", data.name));
+        // The judge's renders do not depend on the choice: made beside it.
+        let (selected, judge) = rayon::join(
+            || {
+                crate::select::select_fitted(
+                    &data,
+                    self.tolerance,
+                    &FitOptions::default(),
+                    &self.among,
+                    self.search,
+                )
+            },
+            || self.material.judge(),
+        );
+        let selection = selected?;
+        let image = match judge? {
+            Some(j) => Some(j.fit_errors(selection.model.as_ref())?),
+            None => None,
+        };
+        task.finish();
+        Ok(SelectOutcome::L2 {
+            data: Box::new(data),
+            tolerance: self.tolerance,
+            search: self.search,
+            rows: selection.rows,
+            choice: selection.choice,
+            image,
+        })
+    }
+
+    fn by_image(&self) -> Result<SelectOutcome, FitError> {
+        let Some(dense) = self.material.dense() else {
+            return Err(FitError::Usage(format!(
+                "select by image: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select by L2",
+                self.material.spec()
+            )));
+        };
+        let names: Vec<&str> = if self.among.models.is_empty() {
+            RENDERER_MODELS.to_vec()
+        } else {
+            self.among.models.iter().map(String::as_str).collect()
+        };
+        let task = self.progress.task("select", names.len());
+        task.item(&format!(
+            "{} renderer models on {}",
+            names.len(),
+            self.material.name()
+        ));
+        let (rows, choice) =
+            appearance::select_by_image(&names, self.material.samples(), dense, self.polish)?;
+        task.finish();
+        Ok(SelectOutcome::Image {
+            data: self.material.samples().name.clone(),
+            rows,
+            choice,
+        })
+    }
+}
