@@ -105,12 +105,13 @@ def select(
     models: Optional[list[str]] = None,
     max_parameters: Optional[int] = None,
     exhaustive: bool = False,
-    by_image: bool = False,
+    by_image: Optional[bool] = None,
     polish: bool = False,
 ) -> dict[str, Any]:
-    """Choose the smallest adequate model, as ``brdf select --json``; with
-    ``by_image=True`` the renderer model of least image error, as
-    ``brdf select --by-image --json``."""
+    """Choose a model, as ``brdf select --json``: on data that can be
+    rendered (or with ``by_image=True``) the renderer model of least image
+    error; on scattered data (or with ``by_image=False``) the smallest
+    adequate model by Ngan L2."""
 
 def eval(
     model: Union[str, "os.PathLike[str]", dict[str, Any]],

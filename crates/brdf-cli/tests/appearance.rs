@@ -227,7 +227,7 @@ fn lobes_that_pay_only_together_are_tried_together() {
 
 #[test]
 fn select_reports_the_image_errors_of_its_choice() {
-    // `brdf select` (by Ngan's L2) on data that can be rendered carries
+    // `brdf select --by-l2` on data that can be rendered carries
     // the chosen fit's image errors, the same as `brdf fit` of that model
     // (koenderink order 6 on paper_white: a direct solve, so the same
     // fit); on scattered data the note why there are none.
@@ -238,7 +238,7 @@ fn select_reports_the_image_errors_of_its_choice() {
         return;
     };
     let p = p.display().to_string();
-    let (ok, out, err) = brdf(&["select", "--data", &p, "--json", "--quiet"]);
+    let (ok, out, err) = brdf(&["select", "--data", &p, "--by-l2", "--json", "--quiet"]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).expect("json");
     assert_eq!(
@@ -261,7 +261,7 @@ fn select_reports_the_image_errors_of_its_choice() {
     let fit: serde_json::Value = serde_json::from_str(&out).expect("json");
     assert_eq!(v["choice"]["error"], fit["fits"][0]["ngan_l2"]);
     assert_eq!(v["choice_image_error"], fit["image_errors"][0]);
-    let (ok, out, err) = brdf(&["select", "--data", &p, "--quiet"]);
+    let (ok, out, err) = brdf(&["select", "--data", &p, "--by-l2", "--quiet"]);
     assert!(ok, "{err}");
     assert!(
         out.contains("The choice, koenderink order 6:\nimage error (sky, 128 px): FLIP"),
@@ -413,7 +413,7 @@ fn select_by_image_polishes_as_fit_does() {
     assert!(ok, "{err}");
     let fit: serde_json::Value = serde_json::from_str(&fit).expect("json");
     assert_eq!(v["choice"]["image"], fit["image_errors"][0]);
-    let (ok, _, err) = brdf(&["select", "--data", &p, "--polish"]);
+    let (ok, _, err) = brdf(&["select", "--data", &p, "--by-l2", "--polish"]);
     assert!(!ok);
     assert!(err.contains("--by-image"), "{err}");
 }

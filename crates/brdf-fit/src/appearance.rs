@@ -162,7 +162,7 @@ pub fn colour_plane_note(model: &str, e: &ImageError) -> Option<String> {
         return None;
     }
     Some(format!(
-        "the data's hue changes across the sphere: under the {} light {:.1}% (RMS) of its rendered colour lies off every plane of white and one colour; each `{model}` lobe is white or the base colour, so every `{model}` render lies in such a plane and none comes closer; models with colours per lobe can (e.g. `brdf fit --model sgd`, for Mitsuba exported with `brdf export --tabulate-on`)",
+        "the data's hue changes across the sphere: under the {} light {:.1}% (RMS) of its rendered colour lies off every plane of white and one colour; each `{model}` lobe is white or the base colour, so every `{model}` render lies in such a plane and none comes closer; models with a second colour can",
         c.light,
         100.0 * c.outside
     ))
@@ -199,7 +199,7 @@ impl ImageError {
             }
             if l.flip > FLIP_WARN {
                 out.push(format!(
-                    "under the {} light the fit renders unlike the data (FLIP {:.3} > {FLIP_WARN}); try `brdf select` or another --metric",
+                    "under the {} light the fit renders unlike the data (FLIP {:.3} > {FLIP_WARN})",
                     l.light, l.flip
                 ));
             }

@@ -67,6 +67,7 @@ pub mod builder;
 pub mod error;
 pub mod fit_linear;
 pub mod flip_polish;
+pub mod hints;
 pub mod image_objective;
 pub mod linear_box;
 pub mod material;

@@ -24,6 +24,7 @@ use brdf_core::progress::{Progress, Silent};
 use brdf_models::{ModelConfig, ModelEntry};
 
 use crate::appearance::{self, SCATTERED_NOTE};
+use crate::hints::hints;
 use crate::{Channels, Fit, FitError, FitOptions, FitReport, Material, Objective, Solver};
 
 /// What a fit minimises, as a front end's `--metric` names it.

@@ -14,8 +14,11 @@ use crate::{FitError, FitOptions, Material};
 /// How the choice among candidates is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SelectBy {
-    /// The fewest stored numbers within the tolerance of the best Ngan L2.
+    /// By image on data that can be rendered, else by L2: what a user
+    /// looks at decides where it can be measured.
     #[default]
+    Auto,
+    /// The fewest stored numbers within the tolerance of the best Ngan L2.
     L2,
     /// The least image error among renderer models fitted for appearance
     /// (data that can be rendered only).
@@ -94,12 +97,13 @@ impl SelectOutcome {
 }
 
 impl<'a> SelectRequest<'a> {
-    /// A request with the defaults of `brdf select`: by L2, tolerance 0.1,
+    /// A request with the defaults of `brdf select`: by image where the
+    /// data can be rendered, else by L2 with tolerance 0.1,
     /// an 80 degree limit, every candidate, coarse to fine.
     pub fn new(material: &'a Material) -> Self {
         SelectRequest {
             material,
-            by: SelectBy::L2,
+            by: SelectBy::Auto,
             tolerance: 0.1,
             limit_deg: 80.0,
             grey: false,
@@ -113,13 +117,14 @@ impl<'a> SelectRequest<'a> {
     /// Run the selection.
     pub fn run(&self) -> Result<SelectOutcome, FitError> {
         match self.by {
-            SelectBy::L2 => self.by_l2(),
+            SelectBy::Auto if self.material.is_renderable() => self.by_image(),
+            SelectBy::Auto | SelectBy::L2 => self.by_l2(),
             SelectBy::Image => self.by_image(),
         }
     }
 
     fn by_l2(&self) -> Result<SelectOutcome, FitError> {
-        if self.polish {
+        if self.polish && self.by == SelectBy::L2 {
             return Err(FitError::Usage(
                 "polish refines fits for appearance: use it with a selection by image (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
             ));

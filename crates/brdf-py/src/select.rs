@@ -23,7 +23,7 @@ use crate::fit::material;
 /// MERL ``.binary``) the choice's image errors under the standard light
 /// sets are reported too.
 ///
-/// With ``by_image=True``, as ``brdf select --by-image``, the renderer
+/// By image (the default on data that can be rendered), the renderer
 /// models (principled, glTF, glTF + KHR, GGX; or those of ``models``) are
 /// each fitted for appearance and the one of least mean HDR-FLIP against
 /// the data's renders is chosen (Bieron and Peers 2020). This needs data
@@ -49,10 +49,11 @@ use crate::fit::material;
 ///     Only candidates with at most this many stored numbers.
 /// exhaustive : bool
 ///     Fit every candidate to all samples.
-/// by_image : bool
-///     Choose among the renderer models by their image error instead
-///     (``brdf select --by-image``); data must be a path to RGL ``.bsdf``
-///     or MERL ``.binary`` data.
+/// by_image : bool, optional
+///     ``None`` (default): by image error on data that can be rendered
+///     (a path to RGL ``.bsdf`` or MERL ``.binary`` data), else by L2, as
+///     ``brdf select``; ``True``: by image error (``--by-image``);
+///     ``False``: by L2 (``--by-l2``).
 /// polish : bool
 ///     With ``by_image=True``: end each model's fit with a search on the
 ///     mean HDR-FLIP of its renders, as ``fit(..., polish=True)``
@@ -80,7 +81,7 @@ use crate::fit::material;
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
 #[pyo3(signature = (data, *, tolerance=0.1, limit_deg=80.0, grey=false, models=None,
-    max_parameters=None, exhaustive=false, by_image=false, polish=false))]
+    max_parameters=None, exhaustive=false, by_image=None, polish=false))]
 pub fn select<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
@@ -90,10 +91,16 @@ pub fn select<'py>(
     models: Option<Vec<String>>,
     max_parameters: Option<usize>,
     exhaustive: bool,
-    by_image: bool,
+    by_image: Option<bool>,
     polish: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if polish && !by_image {
+    let by = match by_image {
+        None => SelectBy::Auto,
+        Some(true) => SelectBy::Image,
+        Some(false) => SelectBy::L2,
+    };
+    let arrays = data.cast::<PyDict>().is_ok();
+    if polish && (by == SelectBy::L2 || arrays) {
         return Err(usage(
             "polish=True refines fits for appearance: use it with by_image=True (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
         ));
@@ -104,24 +111,25 @@ pub fn select<'py>(
         ));
     }
     // Arrays hold samples only: there is nothing to render them from.
-    if by_image && data.cast::<PyDict>().is_ok() {
+    if by == SelectBy::Image && arrays {
         return Err(usage(
             "by_image=True: data given as arrays holds scattered samples that cannot be rendered; pass the path of RGL `.bsdf` or MERL `.binary` data, or select without by_image=True".into(),
         ));
     }
     let material = material(py, data)?;
-    if by_image && !material.is_renderable() {
+    if polish && !material.is_renderable() {
+        return Err(usage(
+            "polish=True refines fits for appearance: use it with by_image=True (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
+        ));
+    }
+    if by == SelectBy::Image && !material.is_renderable() {
         return Err(usage(format!(
             "by_image=True: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select without by_image=True",
             material.spec()
         )));
     }
     let request = SelectRequest {
-        by: if by_image {
-            SelectBy::Image
-        } else {
-            SelectBy::L2
-        },
+        by,
         tolerance,
         limit_deg,
         grey,

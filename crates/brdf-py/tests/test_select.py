@@ -1,7 +1,8 @@
 """Python selections equal the `brdf select` command's, number for number
 (only the wall-clock times differ): on a measured RGB file, with the
 choice's image errors, and on numpy arrays of scattered data, which say why
-they have none; selections by image error (`by_image=True`, with or without
+they have none; selections by image error (the default on files that can be
+rendered, `by_image=True`, with or without
 `polish=True`) equal `brdf select --by-image`'s; bad arguments raise
 BrdfError naming the fix."""
 
@@ -14,8 +15,8 @@ from conftest import cli_json, data_file, without_seconds
 def test_select_of_rgb_file_equals_cli(brdf_cli):
     path = data_file("rgl/paper_white_rgb.bsdf")
     models = "lambert,ward,ggx"
-    cli = cli_json(brdf_cli, "select", "--data", path, "--models", models, "--quiet")
-    py = brdf.select(path, models=models.split(","))
+    cli = cli_json(brdf_cli, "select", "--data", path, "--by-l2", "--models", models, "--quiet")
+    py = brdf.select(path, by_image=False, models=models.split(","))
     assert without_seconds(py) == without_seconds(cli)
     assert py["choice"]["model"] in models.split(",")
     lights = [l["light"] for l in py["choice_image_error"]["lights"]]
@@ -58,6 +59,16 @@ def test_select_by_image_equals_cli(brdf_cli, polish):
     assert without_seconds(py) == without_seconds(cli)
     assert py["choice"]["model"] == "ggx"
     assert [l["light"] for l in py["choice"]["image"]["lights"]] == ["sky", "studio"]
+
+
+def test_select_of_renderable_file_is_by_image_by_default():
+    # What the user looks at decides where it can be measured: by default a
+    # file that can be rendered is selected by image error, as by_image=True.
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    default = brdf.select(path, models=["ggx"])
+    explicit = brdf.select(path, by_image=True, models=["ggx"])
+    assert without_seconds(default) == without_seconds(explicit)
+    assert default["choice"]["image"]["lights"][0]["light"] == "sky"
 
 
 def test_select_by_image_of_arrays_raises_brdf_error():

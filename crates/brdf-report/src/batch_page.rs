@@ -155,11 +155,9 @@ fn page(
     r.delta_e = a.image.as_ref().map(|i| i.max_delta_e());
     r.measured = a.spheres.first().and_then(|s| s.measured.clone());
     r.fitted = a.spheres.first().map(|s| s.fitted.clone());
-    r.note = if a.verdict.good {
-        "ok".into()
-    } else {
-        a.verdict.reasons.join("; ")
-    };
+    // The index holds a word and the worst figure; the reasons in full
+    // are on the fit's page.
+    r.note = short_verdict(a.verdict.good, a.image.as_ref());
     let html = render(&input, &a, Some(back))?;
     let name = page_name(&r.data, &r.model);
     let path = dir.join(&name);
@@ -231,4 +229,15 @@ pub fn write_batch_report(
         pages: fits.len() - skipped.len(),
         skipped,
     })
+}
+
+/// A verdict in a word and the worst image error: `ok` or `off`, and the
+/// largest FLIP over the light sets with its light.
+fn short_verdict(good: bool, image: Option<&brdf_fit::appearance::ImageError>) -> String {
+    let word = if good { "ok" } else { "off" };
+    let worst = image.and_then(|i| i.lights.iter().max_by(|a, b| a.flip.total_cmp(&b.flip)));
+    match worst {
+        Some(l) => format!("{word}: FLIP {:.3} ({})", l.flip, l.light),
+        None => word.to_string(),
+    }
 }

@@ -43,11 +43,16 @@ pub struct SelectArgs {
     pub json: bool,
     /// Choose among the renderer models (principled, glTF, glTF + KHR, GGX;
     /// or those of --models) by their image error against the data under
-    /// the standard light sets (data that can be rendered: RGL, MERL).
-    #[arg(long)]
+    /// the standard light sets. The default on data that can be rendered
+    /// (RGL, MERL); refused on scattered data.
+    #[arg(long, conflicts_with = "by_l2")]
     pub by_image: bool,
-    /// With --by-image: end each model's fit with a search on the mean
-    /// HDR-FLIP of its renders, as `brdf fit --polish`.
+    /// Choose the smallest model within the tolerance of the best Ngan L2
+    /// (the default on scattered data: CUReT, Cornell, CSV).
+    #[arg(long)]
+    pub by_l2: bool,
+    /// With a choice by image: end each model's fit with a search on the
+    /// mean HDR-FLIP of its renders, as `brdf fit --polish`.
     #[arg(long)]
     pub polish: bool,
     /// No progress bar.
@@ -58,12 +63,12 @@ pub struct SelectArgs {
 /// Run `brdf select`: a [`SelectRequest`] built from the arguments, its
 /// outcome printed.
 pub fn run(args: &SelectArgs) -> Result<(), CliError> {
-    if args.polish && !args.by_image {
+    let material = Material::load(&args.data)?;
+    if args.polish && (args.by_l2 || !material.is_renderable()) {
         return Err(CliError::Usage(
             "--polish refines fits for appearance: use it with --by-image (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
         ));
     }
-    let material = Material::load(&args.data)?;
     if args.by_image && !material.is_renderable() {
         return Err(CliError::Usage(format!(
             "--by-image: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select without --by-image",
@@ -72,10 +77,10 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     }
     let bars = Bars::new(args.quiet);
     let request = SelectRequest {
-        by: if args.by_image {
-            SelectBy::Image
-        } else {
-            SelectBy::L2
+        by: match (args.by_image, args.by_l2) {
+            (true, _) => SelectBy::Image,
+            (_, true) => SelectBy::L2,
+            _ => SelectBy::Auto,
         },
         tolerance: args.tolerance,
         limit_deg: args.limit,

@@ -98,6 +98,17 @@ async function checkLinks(browser, page) {
   }
 }
 
+// The part people look at comes first: the measured, fitted and FLIP
+// spheres and the verdict sit in the first screen, above the parameters.
+async function checkSpheresFirst(page) {
+  const top = (sel) => page.locator(sel).first().evaluate((e) => e.getBoundingClientRect().top + window.scrollY);
+  const spheres = await top("#spheres img.sphere");
+  const verdict = await top("#verdict");
+  const params = await top("#params");
+  check(spheres < 900 && spheres < params && verdict < params,
+    `fit: spheres (${spheres.toFixed(0)} px) and verdict (${verdict.toFixed(0)} px) above the parameters (${params.toFixed(0)} px), the spheres in the first screen`);
+}
+
 (async () => {
   const browser = await chromium.launch({
     executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
@@ -106,7 +117,9 @@ async function checkLinks(browser, page) {
   });
   try {
     const fitSections = ["summary", "verdict", "params", "slices", "coverage", "spheres", "errors"];
-    await (await checkPage(browser, fitPage, "fit", fitSections)).close();
+    const fit = await checkPage(browser, fitPage, "fit", fitSections);
+    await checkSpheresFirst(fit);
+    await fit.close();
     const index = await checkPage(browser, indexPage, "batch-index", ["fits"]);
     await checkSort(index);
     await checkLinks(browser, index);
