@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fit times and final costs of the renderer models (issue 28) on the RGL
+# Fit times and final costs of the renderer models on the RGL
 # files, one thread, default options, RGB:
 #
 #   BRDF_DATA=... benches/peers/renderer_models.sh [BRDF] > table.md
