@@ -127,7 +127,7 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
             let what = match f.as_str() {
                 "performance.md" => "the peer comparison, written by `benches/peers/run.sh`",
                 "performance_renderer_models.md" => {
-                    "the renderer models' fit times before and after issue 28's first changes (tables from `benches/peers/renderer_models.sh`)"
+                    "the renderer models' fit times before and after their fitting kernels were sped up (commit `9779d66` against `d3d78b3`; tables from `benches/peers/renderer_models.sh`)"
                 }
                 "render_fidelity.md" => {
                     "fits judged by their render in Mitsuba 3, written by `python benches/judge/render_fidelity.py` (its renders and `table.json` in `render_fidelity/`)"
