@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The CI judge (issue 23): a venv beside the clone with the pinned tools of
+# The CI judge: a venv beside the clone with the pinned tools of
 # requirements.txt, then test_judge.py against the release `brdf`.
 set -euo pipefail
 cd "$(dirname "$0")/../.."

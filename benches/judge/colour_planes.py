@@ -1,4 +1,4 @@
-"""What colour alone costs a model with one base colour (issue 23): every
+"""What colour alone costs a model with one base colour: every
 principled and glTF lobe is white or the base colour, so under the judge's
 white `studio` light every render of such a model has all its colours in
 one plane of white and one colour (brdf_render::colour_plane). For each RGL
@@ -121,7 +121,7 @@ def main():
         "to the nearest colour of the best such plane (in FLIP's linear opponent space),",
         "against the unmoved render: an estimate of what the colour restriction alone",
         "costs before any error of shape or noise (not a bound). `goal` and `default fit`:",
-        "the studio FLIP goal of issue 23 and the default principled fit's studio FLIP",
+        "the studio FLIP goal of the default fit and the default principled fit's studio FLIP",
         "(results/render_fidelity.md).",
         "",
         "| material | bound (NumPy) | bound (`brdf fit`) | FLIP, colour moved | goal | default fit |",

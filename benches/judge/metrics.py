@@ -1,4 +1,4 @@
-"""The judge's image metrics (`shared/spec/appearance.md`), all from
+"""The judge's image metrics (`docs/appearance.md`), all from
 maintained implementations: HDR-FLIP from NVIDIA's `flip_evaluator`,
 CIEDE2000 from `colour-science`; PSNR is the textbook formula on images
 exposed by `1 / p99(reference)`, clipped to [0, 1] and gamma 2.2 encoded.

@@ -1,4 +1,5 @@
-"""README pictures: for one material, the measurement (Mitsuba's `measured`
+"""The pictures of docs/ (docs/render_fidelity_iris.png,
+docs/new_models_ibiza.png): for one material, the measurement (Mitsuba's `measured`
 plugin) and some fits, rendered by Mitsuba 3 under both light sets (the
 tiles render_fidelity.py writes into results/render_fidelity/; a fit's tile
 is named `MODEL.OBJECTIVE[.tabulated]`), one row per light set.

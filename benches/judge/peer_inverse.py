@@ -1,10 +1,10 @@
-"""The peer of issue 23: what a Mitsuba user would do without this tool.
+"""The peer: what a Mitsuba user would do without this tool.
 Mitsuba's `principled` BSDF on the judge sphere, its parameters optimised
 with Adam (`mi.ad.Adam`, learning rate 0.02) on the differentiable
 `llvm_ad_rgb` variant with the `prb` integrator, so that its 64 x 64,
 8 spp renders under both light sets match the `measured` plugin's renders
 in mean squared difference of log(1 + radiance); parameters clipped to
-their ranges after each step (`shared/spec/appearance.md`). The result is
+their ranges after each step (`docs/appearance.md`). The result is
 then judged exactly like our fits (128 px, 256 spp, `scalar_rgb`).
 
 drjit's LLVM backend needs `DRJIT_LIBLLVM_PATH` (Debian's libllvm19:

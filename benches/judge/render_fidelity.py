@@ -1,4 +1,4 @@
-"""Judge fits by their render (issue 23): every RGL measurement in
+"""Judge fits by their render: every RGL measurement in
 `$BRDF_DATA/rgl` rendered by Mitsuba 3's `measured` plugin (seed 1) and,
 for every configuration (model x objective), the fit that `brdf fit`
 returns, exported by `brdf export --to mitsuba`, rendered in the same judge
@@ -17,13 +17,13 @@ A configuration is `model:objective` (exported by `brdf export --to
 mitsuba`: exactly, or converted to a model Mitsuba has) or
 `model:objective:tabulated` (the model itself, tabulated on the
 measurement's grid by `brdf export --to mitsuba --tabulate-on` and rendered
-by the `measured` plugin: how the models Mitsuba lacks are judged, issue 24).
+by the `measured` plugin: how the models Mitsuba lacks are judged).
 The objective `polish` is the default fit with `brdf fit --polish`.
 `--add` renders only the configurations given and merges their rows into
 the existing table.json (a row of the same material, model and objective is
 replaced), then rewrites the markdown.
 
-The markdown ends with the issue's goals for the default fit, each met or
+The markdown ends with the goals set for the default fit, each met or
 missed by the measured margin (`--from-table` rewrites it from table.json).
 
 The same functions serve the CI judge (`test_judge.py`).
@@ -164,11 +164,11 @@ def merged(old, new):
     return rows
 
 
-# The goals of issue 23 for the default fit (`principled`, `default`):
+# The goals set for the default fit (`principled`, `default`):
 # FLIP bounds (sky, studio), and for the films also "below the Mitsuba
 # inverse-rendering peer" and a mean-colour CIEDE2000 of at most 5. The
-# films' bounds are half of the default FLIP measured when the issue was
-# filed (ibiza 0.506/0.314, iris 0.638/0.450, golden yellow 0.540/0.391).
+# films' bounds are half of the FLIP of the Ngan-L2 fit that was the
+# default before fits for appearance (ibiza 0.506/0.314, iris 0.638/0.450, golden yellow 0.540/0.391).
 GOALS = {
     "paper_white_rgb": ((0.06, 0.04), False),
     "colodur_napoli_4f_rgb": ((0.06, 0.04), False),
@@ -182,7 +182,7 @@ MAX_DELTA_E = 5.0
 def goals(rows):
     """Lines of the goals section: each goal of GOALS against the default
     fit's row, met or missed and by how much."""
-    out = ["", "## Goals of issue 23 (default fit)", ""]
+    out = ["", "## Goals of the default fit", ""]
     out.append("| material | goal | measured | met |")
     out.append("| --- | --- | --- | --- |")
     for stem, ((sky, studio), film) in GOALS.items():
@@ -212,19 +212,19 @@ def goals(rows):
     return out
 
 
-# The models of issue 24, which Mitsuba has no plugin for (judged tabulated).
+# The fitted-data models, which Mitsuba has no plugin for (judged tabulated).
 NEW_MODELS = ("sgd", "abc", "abc-smooth", "std", "dupuy")
 
 
 def new_models(rows):
-    """Lines of the issue-24 section: per material and light, the best new
+    """Lines of the new-models section: per material and light, the best new
     model's FLIP (tabulated) against the best classic or renderer model's
     as a Mitsuba user gets it (exported exactly or converted), and the mean
     reduction per light."""
     new = [r for r in rows if r["model"] in NEW_MODELS]
     if not new:
         return []
-    out = ["", "## The new models in Mitsuba (issue 24)", "",
+    out = ["", "## The new models in Mitsuba", "",
            "Best new model (tabulated) against the best classic or renderer fit as exported "
            "(exactly or converted; the peer and the tabulated principled rows excluded). "
            "The tabulation alone moves the default principled fit by the difference of its "
@@ -261,8 +261,8 @@ def markdown(rows, spp):
     out = [
         "# Render fidelity: fits judged by their render in Mitsuba 3",
         "",
-        "Written by `python benches/judge/render_fidelity.py` (issue 23). Judge scene of",
-        "`shared/spec/appearance.md`: Mitsuba 3.9.1 `scalar_rgb`, unit sphere, camera at",
+        "Written by `python benches/judge/render_fidelity.py`. Judge scene of",
+        "`docs/appearance.md`: Mitsuba 3.9.1 `scalar_rgb`, unit sphere, camera at",
         f"(0, 0, 6), 22 deg, 128 x 128 px, {spp} samples per pixel; reference = the",
         "`measured` plugin on the RGL file (seed 1); test = the `brdf fit` result exported",
         "by `brdf export --to mitsuba` (seed 2). FLIP = mean HDR-FLIP (0 identical);",

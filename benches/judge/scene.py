@@ -1,4 +1,4 @@
-"""The judge scene of `shared/spec/appearance.md`, in Mitsuba 3 (variant
+"""The judge scene of `docs/appearance.md`, in Mitsuba 3 (variant
 `scalar_rgb` by default): a unit sphere carrying a BSDF, the perspective
 camera at (0, 0, 6) with a 22 deg field of view, `path` with max_depth 2,
 and the two light sets "sky" (`sunsky`, sun at (0.5, 0.64, 0.58)) and

@@ -1,14 +1,14 @@
-"""The CI judge of issue 23: for every RGL file in `$BRDF_DATA/rgl`, the
+"""The CI judge: for every RGL file in `$BRDF_DATA/rgl`, the
 default `brdf fit` (principled, fitted for appearance) exported to Mitsuba 3
 and rendered in the judge scene beside Mitsuba's own `measured` plugin on
-the same file, under both light sets (`shared/spec/appearance.md`); and
+the same file, under both light sets (`docs/appearance.md`); and
 brdf-render's render of each measurement (what the fits for appearance are
 fitted to) beside Mitsuba's, and the colour-plane bound the reports carry
 beside NumPy's on that render (`colour_planes.py`).
 
 The bounds are regression guards (the measured figures of
 results/render_fidelity.md plus a stated noise margin); which goals of the
-issue are met, and by how much the others are missed, is tabulated at the
+default fit are met, and by how much the others are missed, is tabulated at the
 end of results/render_fidelity.md.
 Run by `.ci/run` (`bash benches/judge/ci.sh`).
 """
@@ -38,12 +38,13 @@ import scene as S  # noqa: E402
 # differences only. All bounds lie below the Mitsuba inverse-rendering peer
 # (ibiza 0.372/0.244, iris 0.443/0.266, golden yellow 0.612/0.393, colodur
 # 0.111/0.096, paper 0.069/0.047), and every film's dE bound below the
-# issue's 5. Measured:
+# goal of 5. Measured:
 # - paper_white 0.053/0.038 (the Ngan fit with sheen and clear coat, tried
 #   together since ecc00fb; was cube-root + sheen, 0.057/0.041), colodur
-#   0.073/0.051 (issue goals 0.06/0.04: paper meets both, so its bounds are
+#   0.073/0.051 (goals 0.06/0.04: paper meets both, so its bounds are
 #   the goals where those are tighter; colodur misses by 0.013/0.011);
-# - films, before issue 23 (Ngan's L2): ibiza 0.506/0.314, iris 0.638/0.450,
+# - films fitted for Ngan's L2 (the default before fits for appearance):
+#   ibiza 0.506/0.314, iris 0.638/0.450,
 #   golden yellow 0.540/0.391; now 0.314/0.216 (dE 3.2), 0.330/0.230
 #   (dE 1.6), 0.235/0.185 (dE 1.7): golden yellow meets every goal, ibiza
 #   and iris none of the FLIP halvings (results/render_fidelity.md lists

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Fit times and final costs of the renderer models (issue 28) on the RGL
+# Fit times and final costs of the renderer models on the RGL
 # files, one thread, default options, RGB:
 #
 #   BRDF_DATA=... benches/peers/renderer_models.sh [BRDF] > table.md
 #
 # BRDF is the `brdf` command to time (default: target/release/brdf, built
-# with `cargo build --release -p brdf-study --bin brdf`); pass an older
+# with `cargo build --release -p brdf-cli`); pass an older
 # build to get the "before" column. Prints one Markdown row per file and
 # model: CPU seconds of the whole command (user + sys, loading included;
 # on a shared machine far steadier than the wall clock), the fit's own

@@ -140,7 +140,7 @@ def buckets(entries):
 
 
 def targets(d):
-    """The issue-16 targets this harness measures, checked on this run."""
+    """The peer comparison's targets this harness measures, checked on this run."""
     def load(name):
         f = d / name / "python_results.json"
         return json.loads(f.read_text()) if f.exists() else None
@@ -148,7 +148,7 @@ def targets(d):
     grey, rgb = load("paper_white_grey_as"), load("paper_white_rgb_as")
     if not grey:
         return []
-    out = ["### Targets of issue 16 measured here", "",
+    out = ["### Targets measured here", "",
            "| target | Rust path | measured | reached |", "| --- | --- | ---: | --- |"]
     trf = next(r for r in grey["scipy_fits"] if r["solver"].startswith("scipy trf (box, default"))
     for r in grey["rust"]:
@@ -260,7 +260,7 @@ def irls_section(d):
         slow = [n for x, n in rs if x < 5.0]
         why.append(f"below 5x on {len(slow)} of {len(rs)} designs")
     out += [
-        f"Target (issue 16) — IRLS converged on every design and at least 5x faster than statsmodels, same "
+        f"Target — IRLS converged on every design and at least 5x faster than statsmodels, same "
         f"coefficients within its scale convention: {verdict}. Speed-up over statsmodels: median {med:.3g}x, "
         f"worst {worst_ratio:.3g}x ({worst_name}), over {len(rs)} designs; converged (statsmodels convention) on "
         f"{len(same) - len(misses)} of {len(same)}"
@@ -291,7 +291,7 @@ def fit_loop_section(path):
            "`fit_loop` runs the library's `Fit` builder (automatic Halton starts, projection of the linear "
            "parameters, bounded polish) on the same data many times in one process: median wall time and mean "
            "processor time of the whole process per fit (the starts run in parallel on the rayon pool, one thread "
-           "here). Targets of issue 16: a CUReT fit per model in at most 4 ms; an automatic RGB fit of an RGL "
+           "here). Targets: a CUReT fit per model in at most 4 ms; an automatic RGB fit of an RGL "
            "material in under 1 s.", "",
            "| data | model | samples used / present | runs | wall per fit (ms) | CPU per fit (ms) | Ngan L2 | target | reached |",
            "| --- | --- | ---: | ---: | ---: | ---: | ---: | --- | --- |"]
@@ -315,7 +315,7 @@ def kernel_section(d):
            "`cargo bench --bench models -- kernels/ashikhmin-shirley/` (criterion, one thread): the model's "
            "channel-shared basis (Lambert and the lobe) over half-vector geometry precomputed once per sample set, "
            "as the solvers call it every pass. Samples per second per core = elements per iteration / median time "
-           "per iteration. Targets of issue 16: 150 M/s (value), 60 M/s (value + derivatives).", "",
+           "per iteration. Targets: 150 M/s (value), 60 M/s (value + derivatives).", "",
            "| path | median time per call (us) | samples per call | M samples/s/core | target | reached |",
            "| --- | ---: | ---: | ---: | ---: | --- |"]
     for f in files:
@@ -332,7 +332,7 @@ def kernel_section(d):
 
 
 def goals_at_a_glance(runs, floor, scipy, kernel_files, kd):
-    """One line per goal of issue 28: the measured figure and met or not."""
+    """One line per goal of the renderer-model timings: the measured figure and met or not."""
     def fit_cpu(model):
         v = [r["cpu"] - floor[r["tag"]["file"]] for r in runs if r["tag"]["kind"] == "rgl"
              and r["tag"]["model"] == model and r["tag"]["metric"] == "ngan" and r["tag"]["file"] in floor]
@@ -368,12 +368,17 @@ def goals_at_a_glance(runs, floor, scipy, kernel_files, kd):
     return out + [""]
 
 
-def issue28_section(d):
-    """Issue 28: where users wait (default fits, select, batch, kernels)."""
+# The heading of the section on the commands users wait for; a partial run
+# (PEERS_ONLY=where_users_wait) finds the old section by it.
+USERS_WAIT = "## Where users wait"
+
+
+def users_wait_section(d):
+    """Where users wait: default fits, select, batch, kernels."""
     runs = jsonl(d / "runs.jsonl") if (d / "runs.jsonl").exists() else []
     if not runs:
         return []
-    out = ["## Issue 28: fast where users wait", "",
+    out = [USERS_WAIT, "",
            "Processor time (user + system of the whole command, loading and the report-size image errors "
            "included; steadier than the wall clock on this shared machine) and wall clock, one thread unless "
            "said. `auto` is what `brdf fit` runs by default for a renderer model on renderable data: the "
@@ -400,7 +405,7 @@ def issue28_section(d):
                        f"{f.get('seconds', float('nan')):.2f} | {f.get('ngan_l2', float('nan')):.6e} | "
                        f"{f.get('error', float('nan')):.6e} | {goal} | {met} |")
         out += ["", "Goals: one `--metric ngan` fit <= 0.5 s (principled) and <= 0.3 s (glTF) on one core; "
-                "the whole default command (issue 23) < 2 s.", ""]
+                "the whole default command (fit for appearance and image errors) < 2 s.", ""]
         out += ["### The render-fidelity pipeline per material (seconds of each candidate, fit and 32-px image errors)", "",
                 "| file | model | candidates (objective [lobes]: s, * chosen) |", "| --- | --- | --- |"]
         for r in rgl:
@@ -517,7 +522,7 @@ def issue28_section(d):
             "sixth of its full one on cc_ibiza_sunset), so `sgd` and the 2-lobe models are refitted there: measured "
             "beside this run, the processor time of select fell by 23% (cc_ibiza_sunset), 36% (colodur_napoli) and "
             "51% (cc_iris_purple_gem), against 64% on vch_golden_yellow and 89% on paper_white. On data that can be "
-            "rendered select also reports its choice's image errors (issue 23): the judge's 128-px terms and the "
+            "rendered select also reports its choice's image errors: the judge's 128-px terms and the "
             "data's and the choice's renders, about the command floor of the first table (3 s of processor time), "
             "made beside the selection, so on two cores they add less to the wall clock.",
             "- Kernels: principled value + derivatives is scalar code (baseline x86-64, no FMA/AVX) with per sample "
@@ -565,7 +570,7 @@ def main(argv):
     lines = [
         "# Performance: the Rust fits side by side with their peers",
         "",
-        "Generated by `benches/peers/run.sh` (issue 16, item 7); do not edit by hand. "
+        "Generated by `benches/peers/run.sh`; do not edit by hand. "
         "Every number below comes from one run of that command.",
         "",
         "## Machine",
@@ -591,18 +596,18 @@ def main(argv):
         # PEERS_ONLY=irls: the fit peers and the profiles were not run.
         print("\n".join(lines + irls_section(d / "irls")))
         return
-    if only == "issue28":
-        # PEERS_ONLY=issue28: only the issue-28 section is new; it replaces
+    if only == "where_users_wait":
+        # PEERS_ONLY=where_users_wait: only that section is new; it replaces
         # the one of the report given as argv[2] (the rest kept as it was).
         old = Path(argv[2]).read_text() if len(argv) > 2 and Path(argv[2]).exists() else ""
-        head, _, rest = old.partition("## Issue 28: fast where users wait")
+        head, _, rest = old.partition(USERS_WAIT)
         tail = rest[rest.find("\n## ", 1):] if "\n## " in rest else ""
-        new = "\n".join(issue28_section(d / "issue28")).rstrip() + "\n"
-        note = (f"Issue 28 section regenerated alone (`PEERS_ONLY=issue28 benches/peers/run.sh`; its commands: "
+        new = "\n".join(users_wait_section(d / "where_users_wait")).rstrip() + "\n"
+        note = (f"This section regenerated alone (`PEERS_ONLY=where_users_wait benches/peers/run.sh`; its commands: "
                 f"`{(d / 'commands.txt').read_text().strip().splitlines()[0] if (d / 'commands.txt').exists() else ''}` ..., "
                 f"load before: `{(d / 'load_before.txt').read_text().strip() if (d / 'load_before.txt').exists() else '?'}`); "
                 "the sections above and below come from the last full run.\n\n")
-        print((head.rstrip() + "\n\n" if head else "") + "## Issue 28: fast where users wait\n\n" + note
+        print((head.rstrip() + "\n\n" if head else "") + USERS_WAIT + "\n\n" + note
               + new.split("\n", 2)[2] + tail, end="")
         return
     res0 = None
@@ -670,7 +675,7 @@ def main(argv):
     lines += fit_loop_section(d / "fit_loop.jsonl")
     lines += kernel_section(d / "kernels")
     lines += irls_section(d / "irls")
-    lines += issue28_section(d / "issue28")
+    lines += users_wait_section(d / "where_users_wait")
     lines += ["## Where the time goes", ""]
     prof = (d / "profiler.txt").read_text().strip() if (d / "profiler.txt").exists() else "none"
     if prof == "perf":

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Regenerate results/performance.md: the peer comparison of issue 16.
+# Regenerate results/performance.md: our fits timed beside peer libraries on
+# the same problems, and the commands users wait for.
 #
 #   BRDF_DATA=... benches/peers/run.sh
 #
 # 1. a Python venv OUTSIDE the repository ($PEERS_VENV, default
-#    /work/venvs/peers) with benches/peers/requirements.txt;
+#    venv-peers beside the clone) with benches/peers/requirements.txt;
 # 2. peer_fits (release): builds the problems, exports them to the scratch
 #    folder ($PEERS_OUT, default $CARGO_TARGET_DIR/peers or target/peers)
 #    and fits them with the Rust solvers;
@@ -18,18 +19,18 @@
 # 5. profiles of the full-grid grey fit (perf, else callgrind on CUReT);
 # 6. report.py writes results/performance.md.
 #
-# 7. issue28.sh: the measurements of issue 28 (default `brdf fit` of the
+# 7. where_users_wait.sh: the commands users wait for (default `brdf fit` of the
 #    renderer models on every RGL file, the full MERL grid against SciPy,
 #    select, batch on 1 and 2 threads, the renderer kernels).
 #
 # PEERS_ONLY=irls runs step 4 alone (no fit peers, no profiles) and the
-# report then holds the IRLS section only. PEERS_ONLY=issue28 runs step 7
-# alone and replaces only the issue-28 section of results/performance.md.
+# report then holds the IRLS section only. PEERS_ONLY=where_users_wait
+# runs step 7 alone and replaces only its section of results/performance.md.
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 : "${BRDF_DATA:?set BRDF_DATA to the measured data folder}"
-venv="${PEERS_VENV:-/work/venvs/peers}"
+venv="${PEERS_VENV:-$(dirname "$repo")/venv-peers}"
 case "$(realpath -m "$venv")/" in
 "$repo"/*)
 	echo "run.sh: PEERS_VENV ($venv) must lie outside the repository" >&2
@@ -39,7 +40,7 @@ esac
 target="${CARGO_TARGET_DIR:-$repo/target}"
 # Threads of both sides: rayon (faer inside our solvers) and the BLAS under
 # NumPy. One by default: the machine is shared, and on a busy machine faer's
-# thread pool stalls at its barriers (issue 16). PEERS_THREADS=default
+# thread pool stalls at its barriers. PEERS_THREADS=default
 # leaves every library its own default.
 threads="${PEERS_THREADS:-1}"
 if [ "$threads" != default ]; then
@@ -48,9 +49,9 @@ fi
 out="${PEERS_OUT:-$target/peers}"
 only="${PEERS_ONLY:-all}"
 case "$only" in
-all | irls | issue28) ;;
+all | irls | where_users_wait) ;;
 *)
-	echo "run.sh: PEERS_ONLY must be all, irls or issue28, not $only" >&2
+	echo "run.sh: PEERS_ONLY must be all, irls or where_users_wait, not $only" >&2
 	exit 1
 	;;
 esac
@@ -79,9 +80,9 @@ if [ "$only" = all ]; then
 	"$py" benches/peers/peers.py "$out" | tee "$out/python.log"
 fi
 
-# Issue 28 alone: its measurements, spliced into the existing report.
-if [ "$only" = issue28 ]; then
-	PY="$py" benches/peers/issue28.sh "$out"
+# The commands users wait for alone, spliced into the existing report.
+if [ "$only" = where_users_wait ]; then
+	PY="$py" benches/peers/where_users_wait.sh "$out"
 	uptime >"$out/load_after.txt"
 	"$py" benches/peers/report.py "$out" results/performance.md >"$out/performance.md"
 	cp "$out/performance.md" results/performance.md
@@ -177,8 +178,8 @@ if [ "$only" = all ]; then
 			echo "rayon threads $t: $line" >>"$out/thread_check.txt"
 		done
 	fi
-	# Issue 28: default fits, select, batch, renderer kernels.
-	PY="$py" benches/peers/issue28.sh "$out"
+	# Where users wait: default fits, select, batch, renderer kernels.
+	PY="$py" benches/peers/where_users_wait.sh "$out"
 fi
 uptime >"$out/load_after.txt"
 

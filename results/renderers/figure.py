@@ -1,5 +1,5 @@
-"""The README's renderer figure: a measured material rendered by Mitsuba 3's
-`measured` plugin (the reference of shared/spec/appearance.md), its
+"""The renderer figure of docs/export.md: a measured material rendered by Mitsuba 3's
+`measured` plugin (the judge's reference, docs/appearance.md), its
 principled fit exported to Mitsuba (`brdf export --to mitsuba`, exact)
 rendered by Mitsuba, and its glTF fit exported to Blender (`brdf export
 --to blender`: Principled BSDF, single-scatter GGX) rendered by Blender

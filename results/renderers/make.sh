@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The README's renderer figure (results/renderers/): a measured RGL material,
+# The renderer figure of docs/export.md (results/renderers/): a measured RGL material,
 # fitted in each renderer's own material and exported exactly: the
 # principled fit to Mitsuba 3 (`principled` BSDF), the glTF fit to Blender
 # (Principled BSDF, single-scatter GGX; converting the principled fit to it
-# is refused for this material, mean HDR-FLIP 0.058 > 0.05, and the refusal
-# says to fit `gltf` directly), rendered by Mitsuba and by Blender Cycles
+# is refused for this material, as it changes the render beyond the
+# conversion bound, and the refusal says to fit `gltf` directly), rendered by Mitsuba and by Blender Cycles
 # beside the measurement in the judge scene, studio light (figure.py).
 # Writes the fits MATERIAL.principled.json, MATERIAL.gltf.json, the exports
 # MATERIAL.xml, MATERIAL.py, three PNG tiles, renderers.md and

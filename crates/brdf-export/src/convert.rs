@@ -22,12 +22,12 @@
 //!
 //! [`crate::export_or_convert`] refuses a conversion whose FLIP under any
 //! light set exceeds [`FLIP_LIMIT`] (0.02) or whose largest mean-colour
-//! CIEDE2000 exceeds [`DELTA_E_LIMIT`] (3), unless `force`. 0.02 is issue
-//! 23's bound on what a conversion may change: both renders are
+//! CIEDE2000 exceeds [`DELTA_E_LIMIT`] (3), unless `force`. 0.02 bounds
+//! what a conversion may change: both renders are
 //! brdf-render's, deterministic quadratures without Monte Carlo noise, so
 //! 0.02 is a difference of the materials, not of the renders (two Mitsuba
-//! renders of one measurement differ by 0.016-0.05 from noise alone,
-//! `shared/spec/appearance.md`); 3 is just above the just-noticeable
+//! renders of one measurement differ by about as much from noise alone,
+//! `docs/appearance.md`); 3 is just above the just-noticeable
 //! colour difference (2.3), below the "visibly different" warning of fits
 //! (5). A conversion beyond either is a different-looking material;
 //! fitting the target's model to the measurement directly is then the

@@ -117,7 +117,7 @@ impl Target {
     }
 }
 
-/// A light set of the judge scene (`shared/spec/appearance.md`).
+/// A light set of the judge scene (`docs/appearance.md`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Light {
     /// A dim constant surround and a square key light.

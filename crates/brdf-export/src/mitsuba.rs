@@ -2,7 +2,7 @@
 //! (no `version` attribute: Mitsuba refuses one on a nested element, and a
 //! scene's root carries it), or with [`WriteOptions::scene`] a complete
 //! scene (the judge's sphere, camera and one light set of
-//! `shared/spec/appearance.md`) that `mitsuba scene.xml` renders. A
+//! `docs/appearance.md`) that `mitsuba scene.xml` renders. A
 //! snippet loads standalone once wrapped: `<scene version="3.0.0">`
 //! snippet `</scene>`.
 //!

@@ -105,7 +105,11 @@ pub fn markdown() -> String {
         s += &format!(" converted ({}) |", default_via(t));
     }
     s += "\nMaterialX `--surface standard_surface` or `openpbr`: the glTF rows are mapped, not exact.\n";
-    s += "Conversions are fitted for appearance and refused above mean HDR-FLIP 0.05 or CIEDE2000 3 (`--force`).\n";
+    s += &format!(
+        "Conversions are fitted for appearance and refused above HDR-FLIP {} under either light set or CIEDE2000 {} in mean colour (`--force`).\n",
+        crate::convert::FLIP_LIMIT,
+        crate::convert::DELTA_E_LIMIT
+    );
     s += "\n";
     s += &conversions_markdown();
     s += "\n";

@@ -102,8 +102,8 @@ pub(crate) fn as_lobe_batch(
     ds: Option<&mut [f64]>,
 ) {
     // `pulp` compiles the kernel for the widest instruction set of the
-    // machine (the profile of issue 16: the scalar loop with a library
-    // `exp` was the largest cost of a fit).
+    // machine (profiled, the scalar loop with a library `exp` was the
+    // largest cost of a fit).
     pulp::Arch::new().dispatch(AsKernel {
         q: (nu, nv, f0),
         aniso,

@@ -1,6 +1,6 @@
 """Tabulate Mitsuba 3's `sunsky` emitter for brdf-render's "sky" light set.
 
-The judge scene (`shared/spec/appearance.md`) lights the sphere with
+The judge scene (`docs/appearance.md`) lights the sphere with
 Mitsuba 3.9.1's `sunsky` emitter, `sun_direction = [0.5, 0.64, 0.58]`, every
 other parameter at its default (turbidity 3, ground albedo 0.3, sun aperture
 0.5358 deg, the simple uniform sun disc). Instead of reimplementing the

@@ -37,7 +37,7 @@ pub const PARTS: &[Part] = &[
     Part { name: "fig_9_1", about: "Figure 9.1: spheres of the polynomial at degrees 1..6 beside the measured material", per_variant: false, needs: &["rgl"], run: crate::figures::figure_9_1 },
     Part { name: "fig_9_2", about: "Figure 9.2: spheres of the models fitted to the Table 9.2 materials", per_variant: true, needs: CURET, run: crate::figures::figure_9_2 },
     Part { name: "kurt_9_3", about: "Table 9.3 stand-in: dense materials, L2 and PSNR, renderer models beside Kurt's; Figures 9.3 and 9.6, renderer spheres", per_variant: false, needs: &["rgl"], run: crate::dense_tables::write },
-    Part { name: "new_models", about: "New models (ABC, STD, SGD, Dupuy) against the classic and renderer models on the RGL materials: L2 and image FLIP of brdf fit's fits for L2 and for appearance, issue 24's goal", per_variant: false, needs: &["rgl"], run: crate::new_models::write },
+    Part { name: "new_models", about: "New models (ABC, STD, SGD, Dupuy) against the classic and renderer models on the RGL materials: L2 and image FLIP of brdf fit's fits for L2 and for appearance", per_variant: false, needs: &["rgl"], run: crate::new_models::write },
     Part { name: "sopp", about: "Sopp's Appendix A.8/A.9 on the RGL materials, preview strips", per_variant: false, needs: &["rgl"], run: crate::sopp_tables::write },
     Part { name: "nist", about: "NIST StRD certification of the solver", per_variant: false, needs: &["nist_strd"], run: crate::nist::part },
     Part { name: "stability", about: "Stability: extreme and bad inputs, NIST from both starts", per_variant: false, needs: &[], run: crate::stability::part },

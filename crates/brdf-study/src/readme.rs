@@ -73,7 +73,7 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
     let _ = writeln!(s, "# {name}/\n");
     let _ = writeln!(
         s,
-        "Written by `brdf reproduce` — this file too. Every number in this folder comes from a run of that command on the data named below; the thesis values printed beside ours are the targets from `spec/study.md`. Rerunning it rewrites the files; only measured fit times (`kurt_9_4_times`, `error_vs_time`) change between runs. A run of selected parts (`--only`, `--spec`) rewrites their rows and keeps the others.\n"
+        "Written by `brdf reproduce` — this file too. Every number in this folder comes from a run of that command on the data named below; the thesis values printed beside ours are the targets, from Kurt (2007) and Sopp (2017). Rerunning it rewrites the files; only measured fit times (`kurt_9_4_times`, `error_vs_time`) change between runs. A run of selected parts (`--only`, `--spec`) rewrites their rows and keeps the others.\n"
     );
     let _ = writeln!(s, "- last run: `{command}`");
     let _ = writeln!(s, "- software: brdf-study {version}");
@@ -111,33 +111,33 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
                 .any(|(e, _)| e.split('.').next() == Some(stem))
             || f == "README.md"
     };
+    // Files and folders of the output folder that this run did not write
+    // and no earlier run's row names; folders end in `/`.
     let mut others: Vec<String> = std::fs::read_dir(&study.out)
         .map(|d| {
             d.filter_map(|e| e.ok())
-                .filter(|e| e.path().is_file())
-                .map(|e| e.file_name().to_string_lossy().into_owned())
-                .filter(|f| !listed(f))
+                .filter_map(|e| {
+                    let name = e.file_name().to_string_lossy().into_owned();
+                    let path = e.path();
+                    if path.is_dir() {
+                        Some(format!("{name}/"))
+                    } else if path.is_file() && !listed(&name) {
+                        Some(name)
+                    } else {
+                        None
+                    }
+                })
                 .collect()
         })
         .unwrap_or_default();
     others.sort();
     if !others.is_empty() {
-        let _ = writeln!(s, "\nOther files here, not written by `brdf reproduce`:\n");
+        let _ = writeln!(
+            s,
+            "\nOther files and folders here, not written by `brdf reproduce`:\n"
+        );
         for f in others {
-            let what = match f.as_str() {
-                "performance.md" => "the peer comparison, written by `benches/peers/run.sh`",
-                "performance_renderer_models.md" => {
-                    "the renderer models' fit times before and after issue 28's first changes (tables from `benches/peers/renderer_models.sh`)"
-                }
-                "render_fidelity.md" => {
-                    "fits judged by their render in Mitsuba 3, written by `python benches/judge/render_fidelity.py` (its renders and `table.json` in `render_fidelity/`)"
-                }
-                "colour_planes.md" => {
-                    "what colour alone costs a renderer model with one base colour (principled, glTF) on each RGL measurement, written by `python benches/judge/colour_planes.py`"
-                }
-                _ => "not from this command (check where it came from)",
-            };
-            let _ = writeln!(s, "- `{f}`: {what}");
+            let _ = writeln!(s, "- `{f}`: {}", other_file(&f));
         }
     }
     if !study.skipped.is_empty() {
@@ -150,4 +150,31 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
         path: path.display().to_string(),
         source: e,
     })
+}
+
+/// What a file or folder of `results/` that `brdf reproduce` does not
+/// write holds, and the command that writes it.
+fn other_file(name: &str) -> &'static str {
+    match name {
+        "performance.md" => "the peer comparison, written by `benches/peers/run.sh`",
+        "performance_renderer_models.md" => {
+            "the renderer models' fit times before and after their fitting kernels were sped up (commit `9779d66` against `d3d78b3`; tables from `benches/peers/renderer_models.sh`)"
+        }
+        "render_fidelity.md" => {
+            "fits judged by their render in Mitsuba 3, written by `python benches/judge/render_fidelity.py` (its renders and `table.json` in `render_fidelity/`)"
+        }
+        "render_fidelity/" => {
+            "the Mitsuba 3 renders behind `render_fidelity.md` (one PNG per material, fit and light set), its `table.json`, and the peer's rows `peer.json` (`python benches/judge/peer_inverse.py`)"
+        }
+        "colour_planes.md" => {
+            "what colour alone costs a renderer model with one base colour (principled, glTF) on each RGL measurement, written by `python benches/judge/colour_planes.py`"
+        }
+        "renderers/" => {
+            "one RGL material measured, in Mitsuba 3 and in Blender Cycles: its fits, exports, renders and `renderers.md`, written by `bash results/renderers/make.sh` (with `figure.py`)"
+        }
+        "synthetic/" => {
+            "the study on the built-in synthetic materials (`brdf reproduce` without measured data), with its own README.md"
+        }
+        _ => "not from this command (check where it came from)",
+    }
 }

@@ -1,4 +1,4 @@
-//! The stability suite (issue 14): extreme and bad input, each case run
+//! The stability suite: extreme and bad input, each case run
 //! in-process through the public API, with what happened — a fitted
 //! result (parameters, bound status, termination, iterations, notes) or
 //! the error message. [`write_stability_report`] writes

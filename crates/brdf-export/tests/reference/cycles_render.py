@@ -1,5 +1,5 @@
 """Render exported materials in Blender Cycles (pip bpy, CPU) in the judge
-scene of shared/spec/appearance.md, studio light set, and write linear
+scene of docs/appearance.md, studio light set, and write linear
 radiance EXRs for render_check.py to compare with brdf-render.
 
   python cycles_render.py OUT_DIR [--spp N] [--antialias] FILE...   (with bpy)
@@ -22,9 +22,9 @@ seeds, for the noise floor) are written per file
 (NAME = the file name with `.` for `/`), plus OUT_DIR/cycles.json: Blender's
 version, the settings, the Principled BSDF each file became (distribution,
 inputs) and a units check: the key light and the surround seen directly by
-the camera, whose pixel values must be the radiances of the spec (12, 0.05).
+the camera, whose pixel values must be the radiances of the scene (12, 0.05).
 
-The scene (shared/spec/appearance.md):
+The scene (docs/appearance.md):
   - sphere: radius 1 at the origin, a true sphere (a one-point point cloud
     of radius 1, which Cycles intersects analytically; no facets);
   - camera: at (0, 0, 6) looking down -z, up +y, 22 deg field of view,

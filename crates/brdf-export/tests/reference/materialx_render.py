@@ -1,7 +1,7 @@
 """Render MaterialX documents in MaterialX's own GLSL renderer (pip
 `materialx`: MaterialX.PyMaterialXRenderGlsl, an OpenGL 4 context; Mesa's
 llvmpipe under Xvfb serves without a GPU) in the judge scene of
-shared/spec/appearance.md, studio light set, and write linear radiance EXRs
+docs/appearance.md, studio light set, and write linear radiance EXRs
 for render_check.py to compare with brdf-render.
 
   xvfb-run -a python materialx_render.py OUT_DIR FILE.mtlx...

@@ -18,8 +18,7 @@
 //!   and both its width derivatives, two for the dielectric Fresnel and its
 //!   `eta` derivative), and the values-only path (`batch_value`, what the
 //!   solvers' trial points and the renders call) forms no derivative factor
-//!   at all: issue 28 measured the kernel at 1.5-1.9x the previous speed
-//!   (criterion `renderer_kernels/principled`).
+//!   at all (criterion `renderer_kernels/principled` measures both).
 //!
 //! The formulas are the ones of the dual formula, with the same clamps
 //! (`max(1e-12, specular)`, `max(0.001, width)`, the `F_dielectric > 0`

@@ -5,9 +5,8 @@
 //! Every parameter of an SGD channel is its own, so a fit of the RGB model
 //! is three one-channel problems ([`ChannelSlice`](crate::channel_slice::ChannelSlice)).
 //! Sliced out of the RGB model, each evaluation formed all three channels
-//! and their 30-column gradient per direction pair (issue 28: 365 s of the
-//! 394 s of `brdf select` on one RGL file, three quarters of it in the
-//! slice's per-pair gradient). This model evaluates one channel:
+//! and their 30-column gradient per direction pair, which made most of the
+//! time of `brdf select` on an RGL file. This model evaluates one channel:
 //!
 //! - with the channel-shared basis `[1/pi, S]` ([`SharedBasis`]), so the
 //!   solvers project `kd`, `ks` out analytically and evaluate the basis

@@ -1,11 +1,11 @@
 """Independent reference values for brdf-models: every model's formula from
-spec/models.md written out again in plain Python (angles and explicit
+its paper written out again in plain Python (angles and explicit
 vectors, no shared code with the Rust implementation), evaluated at fixed
 direction pairs including the pole and within 1e-6 rad of the horizon.
 
 Beyond the one-channel cases it covers: Koenderink's Zernike basis of
 orders 2, 4 and 8 at pairs with phi_i != 0 (enumerated from the formula of
-spec/models.md, radial polynomials by the factorial sum); Kurt's polynomial
+Koenderink et al. 1996, radial polynomials by the factorial sum); Kurt's polynomial
 (features W1 = ux vx + uy vy, W2 = uz vz and X1..X3, PCA over a fixed
 training set with numpy's eigh, scores, design rows and values at new pairs,
 degrees 1, 3 and 7); two-lobe Lafortune and Cook-Torrance; three-channel

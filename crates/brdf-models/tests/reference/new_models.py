@@ -1,4 +1,4 @@
-"""Independent reference values for the models of issue 24 (SGD, Löw's
+"""Independent reference values for the fitted-data models (SGD, Löw's
 smooth and ABC models, STD), written again from the papers and from BBM's
 headers in angle form with NumPy and mpmath; no code shared with the crate.
 

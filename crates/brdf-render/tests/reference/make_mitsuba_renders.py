@@ -1,6 +1,6 @@
 """Mitsuba's answers for brdf-render's judge scene (tests/mitsuba_sky.rs).
 
-Renders, in the judge scene of `shared/spec/appearance.md` (the functions of
+Renders, in the judge scene of `docs/appearance.md` (the functions of
 `benches/judge/scene.py`: Mitsuba 3.9.1 `scalar_rgb`, unit sphere, camera at
 (0, 0, 6), 22 deg, 128 x 128 px), BSDFs whose formulas the Rust test
 reproduces exactly:

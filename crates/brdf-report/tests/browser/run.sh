@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The browser test of the HTML reports (issue 26): make the page of a fit
+# The browser test of the HTML reports: make the page of a fit
 # (paper_white RGL with ggx) and of a small batch (2 RGL files x 2 models)
 # with the `brdf` binary, then open them in Debian's chromium through
 # playwright-core (check.js). Screenshots go to target/report-screenshots/.

@@ -1,8 +1,8 @@
 //! The blocked pass of a [`ModelProblem`] over many rows: the residuals
 //! and, when asked, the normal equations of `[J | r]` accumulated block by
-//! block, so the Jacobian is never stored (issue 16: on the full MERL grid,
-//! writing and re-reading a row-major `J` of 0.9M x 4 entries cost as much
-//! as the model itself).
+//! block, so the Jacobian is never stored (on the full MERL grid, writing
+//! and re-reading a row-major `J` of 0.9M x 4 entries cost as much as the
+//! model itself).
 //!
 //! The samples are cut once into blocks of [`BLOCK`] rows, each with its
 //! own copy of the pairs and of their half-vector geometry, small enough

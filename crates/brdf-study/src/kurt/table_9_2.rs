@@ -11,7 +11,7 @@ use crate::context::Study;
 use crate::context::models::undetermined;
 use crate::report::{Cell, Table};
 
-/// Kurt's fitted parameters (RGB; spec/study.md), per model label, in the
+/// Kurt's fitted parameters (RGB; Kurt 2007), per model label, in the
 /// material order of [`TABLE_9_2_MATERIALS`].
 const KURT_PARAMS: [(&str, [&str; 5]); 7] = [
     (

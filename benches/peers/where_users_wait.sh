@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# The measurements of issue 28 (fast where users wait), written as JSON
+# The commands users wait for, timed, written as JSON
 # lines into $1 (a scratch folder) for report.py, and the commands appended
 # to $1/commands.txt:
 #
-#   BRDF_DATA=... benches/peers/issue28.sh OUT
+#   BRDF_DATA=... benches/peers/where_users_wait.sh OUT
 #
 # 1. `brdf fit` as users run it (default options: the appearance pipeline
 #    for renderer models, with the report-size image errors) and with
@@ -21,7 +21,7 @@
 #    `brdf report --batch` of it, one thread;
 # 5. criterion: the principled and glTF batch kernels.
 #
-# Called by run.sh; PEERS_ONLY=issue28 runs it alone (about 15 minutes of
+# Called by run.sh; PEERS_ONLY=where_users_wait runs it alone (about 15 minutes of
 # processor time on the shared 2-core machine).
 set -euo pipefail
 
@@ -30,7 +30,7 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 : "${BRDF_DATA:?set BRDF_DATA to the measured data folder (with rgl/)}"
 target="${CARGO_TARGET_DIR:-$repo/target}"
 py="${PY:-python3}"
-d="$out/issue28"
+d="$out/where_users_wait"
 rm -rf "$d"
 mkdir -p "$d"
 cmds="$out/commands.txt"
@@ -78,17 +78,17 @@ done
 
 # 2. The full MERL grid.
 merl="$d/paper_white.binary"
-echo 'brdf resample --from $BRDF_DATA/rgl/paper_white_rgb.bsdf --to merl $PEERS_OUT/issue28/paper_white.binary' >>"$cmds"
+echo 'brdf resample --from $BRDF_DATA/rgl/paper_white_rgb.bsdf --to merl $PEERS_OUT/where_users_wait/paper_white.binary' >>"$cmds"
 "$brdf" resample --from "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --to merl "$merl" >/dev/null
 for t in 1 2; do
-	echo "RAYON_NUM_THREADS=$t fit_loop \$PEERS_OUT/issue28/paper_white.binary ashikhmin-shirley --grey --reps 2 --json" >>"$cmds"
+	echo "RAYON_NUM_THREADS=$t fit_loop \$PEERS_OUT/where_users_wait/paper_white.binary ashikhmin-shirley --grey --reps 2 --json" >>"$cmds"
 	RAYON_NUM_THREADS=$t "$target/release/fit_loop" "$merl" ashikhmin-shirley --grey --reps 2 --json |
 		"$py" -c "import json,sys; r=json.load(sys.stdin); print(json.dumps({'tag': {'kind': 'merl_as', 'threads': $t}, 'result': r}))" >>"$d/runs.jsonl"
 done
-echo 'RAYON_NUM_THREADS=1 peer_fits --out $PEERS_OUT/issue28/peers --only paper_white_grey_as --solvers bounded; python benches/peers/peers.py $PEERS_OUT/issue28/peers' >>"$cmds"
+echo 'RAYON_NUM_THREADS=1 peer_fits --out $PEERS_OUT/where_users_wait/peers --only paper_white_grey_as --solvers bounded; python benches/peers/peers.py $PEERS_OUT/where_users_wait/peers' >>"$cmds"
 RAYON_NUM_THREADS=1 "$target/release/peer_fits" --out "$d/peers" --only paper_white_grey_as --solvers bounded >"$d/peer_fits.log"
 RAYON_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 "$py" benches/peers/peers.py "$d/peers" >"$d/peers.log"
-echo 'RAYON_NUM_THREADS=1 fit_loop $PEERS_OUT/issue28/paper_white.binary principled --metric ngan --reps 1 --json' >>"$cmds"
+echo 'RAYON_NUM_THREADS=1 fit_loop $PEERS_OUT/where_users_wait/paper_white.binary principled --metric ngan --reps 1 --json' >>"$cmds"
 RAYON_NUM_THREADS=1 "$target/release/fit_loop" "$merl" principled --metric ngan --reps 1 --json |
 	"$py" -c "import json,sys; r=json.load(sys.stdin); print(json.dumps({'tag': {'kind': 'merl_principled', 'threads': 1}, 'result': r}))" >>"$d/runs.jsonl"
 rm -f "$merl"
@@ -104,7 +104,7 @@ done
 models="principled,gltf,ggx,ashikhmin-shirley,cook-torrance"
 for t in 1 2; do
 	rm -rf "$d/batch_$t"
-	echo "RAYON_NUM_THREADS=$t brdf batch --data \$BRDF_DATA/rgl --models $models --out \$PEERS_OUT/issue28/batch_$t --quiet" >>"$cmds"
+	echo "RAYON_NUM_THREADS=$t brdf batch --data \$BRDF_DATA/rgl --models $models --out \$PEERS_OUT/where_users_wait/batch_$t --quiet" >>"$cmds"
 	RAYON_NUM_THREADS=$t timed "{\"kind\": \"batch\", \"threads\": $t, \"fits\": 25}" \
 		"$brdf" batch --data "$BRDF_DATA/rgl" --models "$models" --out "$d/batch_$t" --quiet
 	cp "$d/batch_$t/summary.csv" "$d/batch_$t.csv"
@@ -113,12 +113,12 @@ done
 # 4b. The HTML report of the 1-thread batch (25 pages and the index), one
 # thread (the batch names its data under $BRDF_DATA, where the report finds
 # them).
-echo "RAYON_NUM_THREADS=1 brdf report --batch \$PEERS_OUT/issue28/batch_1 --quiet" >>"$cmds"
+echo "RAYON_NUM_THREADS=1 brdf report --batch \$PEERS_OUT/where_users_wait/batch_1 --quiet" >>"$cmds"
 RAYON_NUM_THREADS=1 timed "{\"kind\": \"report_batch\", \"threads\": 1, \"pages\": 25}" \
 	"$brdf" report --batch "$d/batch_1" --quiet
 pages=$(find "$d/batch_1/report" -name '*.html' ! -name index.html | wc -l)
 if [ "$pages" -ne 25 ]; then
-	echo "issue28.sh: brdf report --batch wrote $pages of 25 pages" >&2
+	echo "where_users_wait.sh: brdf report --batch wrote $pages of 25 pages" >&2
 	exit 1
 fi
 
