@@ -81,6 +81,11 @@ pub fn run_all(study: &mut Study) -> Result<(), StudyError> {
             (part.run)(study)?;
         }
     }
+    if ran == 0 && !selected.is_empty() && study.data.is_none() {
+        return Err(StudyError::Usage(
+            "nothing to reproduce: the selected parts need measured data; set BRDF_DATA or pass --data (see README, Measured data)".into(),
+        ));
+    }
     if ran == 0 && !selected.is_empty() {
         let root = study
             .data
@@ -93,10 +98,27 @@ pub fn run_all(study: &mut Study) -> Result<(), StudyError> {
     Ok(())
 }
 
-/// Why `part` cannot run on the study's data (`None` when it can, and
-/// always for the built-in demonstration, which brings its own data).
+/// The data the built-in demonstration stands in for: CUReT and Cornell.
+const SYNTHETIC_STANDS_IN_FOR: [&str; 2] = ["curet/", "cornell/"];
+
+/// Why `part` cannot run on the study's data (`None` when it can). The
+/// built-in demonstration stands in for CUReT and Cornell only, so a part
+/// that needs other data is skipped before it is announced.
 fn missing_data(study: &Study, part: &Part) -> Option<String> {
-    study.data.as_ref()?;
+    if study.data.is_none() {
+        let missing: Vec<String> = part
+            .needs
+            .iter()
+            .filter(|rel| !SYNTHETIC_STANDS_IN_FOR.iter().any(|p| rel.starts_with(p)))
+            .map(|rel| format!("$BRDF_DATA/{rel}"))
+            .collect();
+        return (!missing.is_empty()).then(|| {
+            format!(
+                "needs measured data ({}); the built-in synthetic data stand in for CUReT and Cornell only",
+                missing.join(" and ")
+            )
+        });
+    }
     let missing: Vec<String> = part
         .needs
         .iter()
