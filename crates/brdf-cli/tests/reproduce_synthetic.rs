@@ -25,7 +25,9 @@ fn parts_without_a_synthetic_stand_in_are_skipped_not_announced() {
     assert!(!ok, "{err}");
     for part in ["new_models", "sopp"] {
         assert!(
-            err.contains(&format!("{part} skipped: needs measured data ($BRDF_DATA/rgl)")),
+            err.contains(&format!(
+                "{part} skipped: needs measured data ($BRDF_DATA/rgl)"
+            )),
             "{err}"
         );
         assert!(!err.contains(&format!("brdf reproduce: {part} (")), "{err}");

@@ -286,7 +286,30 @@ impl<'a> FitRequest<'a> {
                 self.material.name()
             ))
         })?;
-        appearance::with_image_errors(report?, judge)
+        let mut report = appearance::with_image_errors(report?, judge)?;
+        if let Some(image) = &report.image_error {
+            let advice = hints(
+                self.material.spec(),
+                &self.model,
+                self.is_default_fit(),
+                image,
+            );
+            report.notes.extend(advice);
+        }
+        Ok(report)
+    }
+
+    /// Whether this is the fit `brdf select` makes of the model: for
+    /// appearance, with the default structure and options.
+    fn is_default_fit(&self) -> bool {
+        let defaults = FitRequest::new(self.material, self.model);
+        matches!(self.metric, Metric::Auto | Metric::Appearance)
+            && self.channels == ChannelMode::Rgb
+            && self.solver == defaults.solver
+            && self.starts == defaults.starts
+            && self.limit_deg == defaults.limit_deg
+            && self.config == defaults.config
+            && !self.polish
     }
 
     fn polish_refused(&self) -> FitError {
