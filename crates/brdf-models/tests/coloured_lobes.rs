@@ -149,7 +149,12 @@ fn pairs() -> Vec<(Vector3<f64>, Vector3<f64>)> {
         (1.0, 0.0, 1.0, PI),
     ]
     .iter()
-    .map(|&(ti, pi, to, po)| (spherical_to_cartesian(ti, pi), spherical_to_cartesian(to, po)))
+    .map(|&(ti, pi, to, po)| {
+        (
+            spherical_to_cartesian(ti, pi),
+            spherical_to_cartesian(to, po),
+        )
+    })
     .collect()
 }
 

@@ -75,7 +75,7 @@ mod tests {
             let mu = i as f64 / 200.0;
             for f0 in [0.0, 0.3, 1.0] {
                 let f = f82_tint(f0, F82_TINT_MIN, mu).0;
-                assert!(f >= -1e-15 && f <= 1.0 + 1e-15, "{f0} {mu}: {f}");
+                assert!((-1e-15..=1.0 + 1e-15).contains(&f), "{f0} {mu}: {f}");
             }
         }
     }

@@ -151,10 +151,7 @@ impl ColouredLobes {
 
 /// Build the configuration named `name` for `config` (its `channels` and
 /// `lobes`); `None` for a name that is not one of [`VARIANTS`].
-pub fn build(
-    name: &str,
-    config: &ModelConfig,
-) -> Option<Result<Box<dyn Parametric>, ParamError>> {
+pub fn build(name: &str, config: &ModelConfig) -> Option<Result<Box<dyn Parametric>, ParamError>> {
     let v = variant_named(name)?;
     Some(
         ColouredLobes::new(v, config.lobes, config.channels)
@@ -167,6 +164,9 @@ fn build_index(i: usize, config: &ModelConfig) -> Result<Box<dyn Parametric>, Pa
     Ok(Box::new(m))
 }
 
+/// A catalogue constructor.
+type Build = fn(&ModelConfig) -> Result<Box<dyn Parametric>, ParamError>;
+
 const PAPER: &str = "Walter, Marschner, Li & Torrance 2007 (GGX); Heitz 2014, JCGT 3(2) (masking); \
      Hoffman 2019 and Kutz, Hasan & Edmondson 2021 (F82 tint)";
 
@@ -174,7 +174,7 @@ const PAPER: &str = "Walter, Marschner, Li & Torrance 2007 (GGX); Heitz 2014, JC
 pub fn entries() -> Vec<ModelEntry> {
     // A catalogue constructor is a plain `fn`: one non-capturing closure per
     // configuration, each naming its index.
-    let builds: [fn(&ModelConfig) -> Result<Box<dyn Parametric>, ParamError>; 10] = [
+    let builds: [Build; 10] = [
         |c| build_index(0, c),
         |c| build_index(1, c),
         |c| build_index(2, c),
