@@ -218,29 +218,35 @@ impl ColouredLobes {
         self.coat.is_some()
     }
 
-    /// The per-pair kernel: values into `out[..nc]` and, with `grad`, the
-    /// gradient `grad[c * np + k]`. 0 (and zero gradient) below the horizon.
+    /// The per-pair kernel: channel `c`'s value into `out[c * os]` and,
+    /// with `grad = Some((g, gs))`, its gradient into `g[c * gs..c * gs + np]`
+    /// (strides let the batch write straight into its channel-major
+    /// layout). 0 (and a zero gradient) below the horizon.
     #[inline]
     fn kernel(
         &self,
         p: &[f64],
         l: &Vector3<f64>,
         v: &Vector3<f64>,
-        out: &mut [f64],
-        mut grad: Option<&mut [f64]>,
+        (out, os): (&mut [f64], usize),
+        mut grad: Option<(&mut [f64], usize)>,
     ) {
         let (nc, np) = (self.channels, self.specs.len());
-        if let Some(g) = grad.as_deref_mut() {
-            g[..nc * np].fill(0.0);
+        if let Some((g, gs)) = grad.as_mut() {
+            for c in 0..nc {
+                g[c * *gs..c * *gs + np].fill(0.0);
+            }
         }
         let Some(geo) = LobeGeometry::new(l, v) else {
-            out[..nc].fill(0.0);
+            for c in 0..nc {
+                out[c * os] = 0.0;
+            }
             return;
         };
         for c in 0..nc {
-            out[c] = p[c] * FRAC_1_PI;
-            if let Some(g) = grad.as_deref_mut() {
-                g[c * np + c] = FRAC_1_PI;
+            out[c * os] = p[c] * FRAC_1_PI;
+            if let Some((g, gs)) = grad.as_mut() {
+                g[c * *gs + c] = FRAC_1_PI;
             }
         }
         let mu = geo.cos_d;
@@ -255,9 +261,9 @@ impl ColouredLobes {
                     LobeFresnel::F82Tint => f82_tint(p[a + c], p[b + c], mu),
                     LobeFresnel::Conductor => fresnel_conductor_grad(mu, p[a + c], p[b + c]),
                 };
-                out[c] += f * s;
-                if let Some(g) = grad.as_deref_mut() {
-                    let row = &mut g[c * np..(c + 1) * np];
+                out[c * os] += f * s;
+                if let Some((g, gs)) = grad.as_mut() {
+                    let row = &mut g[c * *gs..c * *gs + np];
                     row[a + c] = d1 * s;
                     if lobe.fresnel != LobeFresnel::None {
                         row[b + c] = d2 * s;
@@ -270,10 +276,10 @@ impl ColouredLobes {
             let (s, ds) = geo.lobe(p[at + 1], self.masking);
             let (f, df) = fresnel_dielectric_d_eta(mu, p[at]);
             for c in 0..nc {
-                out[c] += f * s;
-                if let Some(g) = grad.as_deref_mut() {
-                    g[c * np + at] = df * s;
-                    g[c * np + at + 1] = f * ds;
+                out[c * os] += f * s;
+                if let Some((g, gs)) = grad.as_mut() {
+                    g[c * *gs + at] = df * s;
+                    g[c * *gs + at + 1] = f * ds;
                 }
             }
         }
@@ -290,7 +296,7 @@ impl Parametric for ColouredLobes {
     brdf_core::param_accessors!();
 
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
-        self.kernel(p, l, v, out, None);
+        self.kernel(p, l, v, (out, 1), None);
     }
 
     fn eval_grad_at(
@@ -301,27 +307,29 @@ impl Parametric for ColouredLobes {
         out: &mut [f64],
         grad: &mut [f64],
     ) {
-        self.kernel(p, l, v, out, Some(grad));
+        let np = self.specs.len();
+        self.kernel(p, l, v, (out, 1), Some((grad, np)));
     }
 
     fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
         let n = pairs.len();
-        let nc = self.channels;
-        // Channels are few (1 or 3): a stack buffer, no allocation; more
-        // channels than that take the heap once per batch.
-        let mut stack = [0.0; 8];
-        let mut heap = Vec::new();
-        let buf: &mut [f64] = if nc <= stack.len() {
-            &mut stack[..nc]
-        } else {
-            heap.resize(nc, 0.0);
-            &mut heap
-        };
         for j in 0..n {
-            self.kernel(p, &pairs.l(j), &pairs.v(j), buf, None);
-            for c in 0..nc {
-                out[c * n + j] = buf[c];
-            }
+            self.kernel(p, &pairs.l(j), &pairs.v(j), (&mut out[j..], n), None);
+        }
+    }
+
+    fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
+        // Layout: out[c * n + j], jac[(c * n + j) * np + k]: channel rows
+        // of pair j lie n values (n * np Jacobian entries) apart.
+        let (n, np) = (pairs.len(), self.specs.len());
+        for j in 0..n {
+            self.kernel(
+                p,
+                &pairs.l(j),
+                &pairs.v(j),
+                (&mut out[j..], n),
+                Some((&mut jac[j * np..], n * np)),
+            );
         }
     }
 }
