@@ -382,3 +382,28 @@ fn energy_is_conserved_for_colours_summing_to_at_most_one() {
     let (a, e, deg) = worst_albedo(m.as_ref());
     assert!(a - e > 1.0, "albedo {a} - {e} at {deg} deg should exceed 1");
 }
+
+#[test]
+fn fresnel_laws_agree_where_they_coincide() {
+    let pairs = pairs();
+    let eval = |name: &str, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>| {
+        let mut f = [0.0];
+        with(name, 1, 1, p).eval(l, v, &mut f);
+        f[0]
+    };
+    for (l, v) in &pairs {
+        // A conductor of index 1.6 + 0i reflects as the dielectric coat.
+        let a = eval("lobes-conductor-cycles", &[0.0, 1.6, 0.0, 0.3], l, v);
+        let b = eval("lobes-coat-cycles", &[0.0, 0.0, 0.5, 1.6, 0.3], l, v);
+        assert!((a - b).abs() <= 1e-14 * b, "{a} vs {b}");
+        // F82 with F0 = 1 and tint 1 reflects everything: the plain white
+        // lobe (a tint below 1 darkens the rim even at F0 = 1).
+        let a = eval("lobes-f82-cycles", &[0.1, 1.0, 1.0, 0.2], l, v);
+        let b = eval("lobes-cycles", &[0.1, 1.0, 0.2], l, v);
+        assert!((a - b).abs() <= 1e-14 * b, "{a} vs {b}");
+        // Tint 1 is Schlick's law: at F0 = 0.5 above the plain lobe's half.
+        let a = eval("lobes-f82-cycles", &[0.0, 0.5, 1.0, 0.2], l, v);
+        let b = eval("lobes-cycles", &[0.0, 0.5, 0.2], l, v);
+        assert!(a >= b, "{a} vs {b}");
+    }
+}

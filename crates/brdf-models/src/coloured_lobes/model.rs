@@ -25,8 +25,9 @@ pub const ALPHA_MIN: f64 = 0.002;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LobeFresnel {
     /// `F = 1`: the lobe's colour is three linear amplitudes `ks{k}`
-    /// (Cycles' Glossy BSDF, Mitsuba's `roughconductor` with a perfect
-    /// mirror's `eta`, `k` and `specular_reflectance` = the colour).
+    /// (Cycles' Glossy BSDF with the colour; Mitsuba's `roughconductor`
+    /// with `material = "none"`, a perfect mirror, and
+    /// `specular_reflectance` = the colour).
     None,
     /// F82 tint with colours `f0{k}` and `tint{k}` (see
     /// [`super::fresnel_laws`]).

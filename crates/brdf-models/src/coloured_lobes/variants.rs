@@ -48,6 +48,14 @@ const fn variant(
 /// `-cycles`: height-correlated (Cycles' Glossy and Metallic BSDFs with the
 /// plain `GGX` distribution). F82 tint has no Mitsuba counterpart, so it
 /// comes in the Cycles form only.
+///
+/// Export notes: Cycles sums the terms exactly with Add Shader nodes
+/// (Roughness is `sqrt(alpha)`; a coat is a Metallic BSDF, physical
+/// conductor, with IOR `coat_ior` and Extinction 0). Mitsuba has no sum
+/// but `blendbsdf`'s convex weights, so nesting reproduces the model
+/// exactly only when the weights can absorb the amplitudes:
+/// `max_c kd_c + sum_k max_c ks{k}_c (+ 1 per Fresnel-coloured lobe or
+/// coat) <= 1`, the terms then scaled back by their weights.
 pub const VARIANTS: [Variant; 10] = [
     variant(
         "lobes-mitsuba",
