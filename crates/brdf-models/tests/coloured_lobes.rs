@@ -407,3 +407,42 @@ fn fresnel_laws_agree_where_they_coincide() {
         assert!(a >= b, "{a} vs {b}");
     }
 }
+
+#[test]
+fn suggested_starts_lie_in_the_box_with_the_widths_apart() {
+    for e in coloured_lobes::entries() {
+        let starts_fn = e.starts.expect("the coloured-lobe entries suggest starts");
+        for lobes in 1..=3 {
+            let c = ModelConfig {
+                channels: 3,
+                lobes,
+                ..ModelConfig::default()
+            };
+            let mut m = (e.build)(&c).expect("builds");
+            let starts = starts_fn(m.as_ref());
+            assert_eq!(starts.len(), 4, "{}", e.name);
+            for p in starts {
+                m.set_params(&p).expect("a start lies in the box");
+                let alphas: Vec<f64> = m
+                    .param_specs()
+                    .iter()
+                    .zip(&p)
+                    .filter(|(s, _)| s.name.starts_with("alpha"))
+                    .map(|(_, &x)| x)
+                    .collect();
+                assert_eq!(alphas.len(), lobes);
+                // Ascending by a factor of 2 at least: lobes start apart.
+                assert!(alphas.windows(2).all(|w| w[1] >= 2.0 * w[0]), "{alphas:?}");
+                // Everything else at its default.
+                for (s, &x) in m.param_specs().iter().zip(&p) {
+                    if !s.name.contains("alpha") {
+                        assert_eq!(x, s.default, "{} {}", e.name, s.name);
+                    }
+                }
+            }
+        }
+    }
+    // Another model's layout gets none.
+    let lambert = brdf_models::Lambert::with_channels(1).expect("builds");
+    assert!(coloured_lobes::suggested_starts(&lambert).is_empty());
+}

@@ -71,6 +71,8 @@
 //! - Analytic derivatives in every parameter; values and derivatives share
 //!   one per-pair kernel that computes each lobe's `D` and `G` once and
 //!   allocates nothing.
+//! - Fit starts: [`suggested_starts`] spreads the lobes' widths apart (lobes
+//!   started at one width stay equal).
 //!
 //! ```
 //! use brdf_core::{Brdf, Parametric};
@@ -103,8 +105,10 @@
 pub mod fresnel_laws;
 pub mod geometry;
 pub mod model;
+pub mod starts;
 pub mod variants;
 
 pub use crate::ggx::Masking;
 pub use model::{ALPHA_MIN, ColouredLobes, LobeFresnel, MAX_LOBES};
+pub use starts::suggested_starts;
 pub use variants::{VARIANTS, Variant, build, entries, variant_named};

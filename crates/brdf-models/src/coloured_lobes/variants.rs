@@ -206,7 +206,7 @@ pub fn entries() -> Vec<ModelEntry> {
             build,
             build_for_data: None,
             from_samples: None,
-            starts: None,
+            starts: Some(super::starts::suggested_starts),
             polish_factor: 1,
             channel_model: None,
         })
