@@ -16,7 +16,8 @@ const WIDTHS: [([f64; 3], f64); 4] = [
 ];
 
 /// Full parameter vectors (defaults elsewhere) with the widths of
-/// [`WIDTHS`]; none for a model without `alpha1` (not a coloured-lobe
+/// four width sets (`alpha1..3` from 0.01, 0.06, 0.3 to 0.08, 0.3, 0.9 and
+/// 0.005, 0.03, 0.15); none for a model without `alpha1` (not a coloured-lobe
 /// layout).
 pub fn suggested_starts(model: &dyn Parametric) -> Vec<Vec<f64>> {
     let specs = model.param_specs();
