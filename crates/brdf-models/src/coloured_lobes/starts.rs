@@ -15,10 +15,10 @@ const WIDTHS: [([f64; 3], f64); 4] = [
     ([0.005, 0.03, 0.15], 0.005),
 ];
 
-/// Full parameter vectors (defaults elsewhere) with the widths of
-/// four width sets (`alpha1..3` from 0.01, 0.06, 0.3 to 0.08, 0.3, 0.9 and
-/// 0.005, 0.03, 0.15); none for a model without `alpha1` (not a coloured-lobe
-/// layout).
+/// Full parameter vectors (defaults elsewhere), one per width set:
+/// `alpha1..3` = (0.01, 0.06, 0.3), (0.03, 0.15, 0.6), (0.08, 0.3, 0.9),
+/// (0.005, 0.03, 0.15), coat 0.01, 0.03, 0.1, 0.005; none for a model
+/// without `alpha1` (not a coloured-lobe layout).
 pub fn suggested_starts(model: &dyn Parametric) -> Vec<Vec<f64>> {
     let specs = model.param_specs();
     if !specs.iter().any(|s| s.name == "alpha1") {
