@@ -19,7 +19,7 @@
 //! | `sopp` | [`PhongFresnel`], [`AsPaint`] / [`PaintShader`] (with the `Rs` conversion), [`ClearCoat`] over any base |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
-//! | `renderer` | [`Ggx`] (K lobes) and the [`ggx`] family (anisotropic; separable Smith; dielectric and conductor Fresnel), [`Principled`] (Disney, as Mitsuba 3), [`GltfPbr`], [`GltfPbrExt`] |
+//! | `renderer` | [`Ggx`] (K lobes) and the [`ggx`] family (anisotropic; separable Smith; dielectric and conductor Fresnel), [`Principled`] (Disney, as Mitsuba 3), [`GltfPbr`], [`GltfPbrExt`], [`ColouredLobes`] (a colour and width per GGX lobe, a dielectric coat) |
 //!
 //! [`catalogue()`] lists the models compiled into this build; [`build`]
 //! constructs one by name.
@@ -37,6 +37,8 @@ pub mod catalogue;
 pub mod channel_slice;
 #[cfg(feature = "sopp")]
 pub mod clear_coat;
+#[cfg(feature = "renderer")]
+pub mod coloured_lobes;
 pub mod combinators;
 #[cfg(feature = "microfacet")]
 pub mod cook_torrance;
@@ -96,6 +98,8 @@ pub use catalogue::{
 };
 #[cfg(feature = "sopp")]
 pub use clear_coat::ClearCoat;
+#[cfg(feature = "renderer")]
+pub use coloured_lobes::ColouredLobes;
 #[cfg(feature = "microfacet")]
 pub use cook_torrance::CookTorrance;
 #[cfg(feature = "microfacet")]

@@ -1,0 +1,336 @@
+//! The coloured-lobe model itself: its parameter layout and the per-pair
+//! kernel shared by values and derivatives.
+
+use std::f64::consts::FRAC_1_PI;
+
+use brdf_core::fresnel::fresnel_dielectric_d_eta;
+use brdf_core::fresnel_conductor::fresnel_conductor_grad;
+use brdf_core::params::per_channel_specs;
+use brdf_core::{DirPairs, ParamError, ParamSpec, Parametric};
+use nalgebra::Vector3;
+
+use super::fresnel_laws::{F82_TINT_MIN, f82_tint};
+use super::geometry::LobeGeometry;
+use crate::ggx::Masking;
+
+/// Most GGX lobes a model may have.
+pub const MAX_LOBES: usize = 3;
+
+/// Lower end of every GGX width box: narrower lobes than this are below
+/// what a measured BRDF resolves and make `D` at the pole `1/(pi alpha^2)`
+/// dwarf every other sample.
+pub const ALPHA_MIN: f64 = 0.002;
+
+/// The Fresnel law of one GGX lobe.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LobeFresnel {
+    /// `F = 1`: the lobe's colour is three linear amplitudes `ks{k}`
+    /// (Cycles' Glossy BSDF with the colour; Mitsuba's `roughconductor`
+    /// with `material = "none"`, a perfect mirror, and
+    /// `specular_reflectance` = the colour).
+    None,
+    /// F82 tint with colours `f0{k}` and `tint{k}` (see
+    /// [`super::fresnel_laws`]).
+    F82Tint,
+    /// Exact conductor Fresnel with `eta{k}`, `kappa{k}` per channel.
+    Conductor,
+}
+
+/// Where one lobe's parameters sit in the parameter vector.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct LobeLayout {
+    fresnel: LobeFresnel,
+    /// First of the lobe's per-channel blocks (one block for `None`, two
+    /// for the others: `f0` then `tint`, or `eta` then `kappa`).
+    start: usize,
+    /// Index of `alpha{k}`.
+    alpha: usize,
+}
+
+/// Lambert plus `K` coloured isotropic GGX lobes plus an optional white
+/// dielectric coat lobe (see the module documentation of
+/// [`crate::coloured_lobes`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ColouredLobes {
+    name: &'static str,
+    channels: usize,
+    masking: Masking,
+    lobes: Vec<LobeLayout>,
+    /// Index of `coat_ior` (`coat_alpha` follows), if there is a coat.
+    coat: Option<usize>,
+    specs: Vec<ParamSpec>,
+    params: Vec<f64>,
+}
+
+fn alpha_spec(k: usize, default: f64) -> ParamSpec {
+    ParamSpec::new(
+        format!("alpha{k}"),
+        format!("GGX width of lobe {k}"),
+        ALPHA_MIN,
+        1.0,
+        default,
+        false,
+    )
+}
+
+fn non_linear(mut s: Vec<ParamSpec>) -> Vec<ParamSpec> {
+    s.iter_mut().for_each(|p| p.linear = false);
+    s
+}
+
+impl ColouredLobes {
+    /// A model named `name` (the name it reports and is saved under) with
+    /// the given masking, one GGX lobe per entry of `fresnels` (1 to
+    /// [`MAX_LOBES`]), a coat lobe if `coat`, and `channels` colour channels,
+    /// at its default parameters.
+    pub fn custom(
+        name: &'static str,
+        masking: Masking,
+        fresnels: &[LobeFresnel],
+        coat: bool,
+        channels: usize,
+    ) -> Result<Self, ParamError> {
+        let config = |reason: String| ParamError::Config {
+            model: name.to_string(),
+            reason,
+        };
+        if channels == 0 {
+            return Err(config("needs at least one colour channel".into()));
+        }
+        if fresnels.is_empty() || fresnels.len() > MAX_LOBES {
+            return Err(config(format!(
+                "takes 1 to {MAX_LOBES} GGX lobes, not {}",
+                fresnels.len()
+            )));
+        }
+        let nc = channels;
+        let mut specs = per_channel_specs("kd", "diffuse albedo", nc, 0.0, 1.0, 0.3);
+        let mut lobes = Vec::with_capacity(fresnels.len());
+        // Distinct default widths, so lobes start apart rather than as
+        // copies of one another (a fit from copies cannot separate them).
+        let widths = [0.05, 0.2, 0.5];
+        for (i, &fresnel) in fresnels.iter().enumerate() {
+            let k = i + 1;
+            let start = specs.len();
+            match fresnel {
+                LobeFresnel::None => specs.extend(per_channel_specs(
+                    &format!("ks{k}"),
+                    &format!("colour of lobe {k}"),
+                    nc,
+                    0.0,
+                    1.0,
+                    0.1,
+                )),
+                LobeFresnel::F82Tint => {
+                    specs.extend(non_linear(per_channel_specs(
+                        &format!("f0{k}"),
+                        &format!("lobe {k} reflectance at normal incidence"),
+                        nc,
+                        0.0,
+                        1.0,
+                        0.9,
+                    )));
+                    specs.extend(non_linear(per_channel_specs(
+                        &format!("tint{k}"),
+                        &format!("lobe {k} tint at 82 deg (times Schlick's value)"),
+                        nc,
+                        F82_TINT_MIN,
+                        1.0,
+                        1.0,
+                    )));
+                }
+                LobeFresnel::Conductor => {
+                    specs.extend(non_linear(per_channel_specs(
+                        &format!("eta{k}"),
+                        &format!("lobe {k} real part of the complex index"),
+                        nc,
+                        0.01,
+                        5.0,
+                        0.2,
+                    )));
+                    specs.extend(non_linear(per_channel_specs(
+                        &format!("kappa{k}"),
+                        &format!("lobe {k} extinction coefficient"),
+                        nc,
+                        0.0,
+                        10.0,
+                        3.0,
+                    )));
+                }
+            }
+            let alpha = specs.len();
+            specs.push(alpha_spec(k, widths[i]));
+            lobes.push(LobeLayout {
+                fresnel,
+                start,
+                alpha,
+            });
+        }
+        let coat = coat.then(|| {
+            let at = specs.len();
+            specs.push(ParamSpec::new(
+                "coat_ior",
+                "index of refraction of the coat",
+                1.2,
+                2.0,
+                1.5,
+                false,
+            ));
+            specs.push(ParamSpec::new(
+                "coat_alpha",
+                "GGX width of the coat",
+                ALPHA_MIN,
+                1.0,
+                0.05,
+                false,
+            ));
+            at
+        });
+        let params = specs.iter().map(|s| s.default).collect();
+        Ok(ColouredLobes {
+            name,
+            channels,
+            masking,
+            lobes,
+            coat,
+            specs,
+            params,
+        })
+    }
+
+    /// The model with parameters `p` (checked against the box).
+    pub fn with_params(mut self, p: &[f64]) -> Result<Self, ParamError> {
+        self.set_params(p)?;
+        Ok(self)
+    }
+
+    /// The masking form of every lobe (and the coat).
+    pub fn masking(&self) -> Masking {
+        self.masking
+    }
+
+    /// The Fresnel law of each GGX lobe, in order.
+    pub fn fresnels(&self) -> Vec<LobeFresnel> {
+        self.lobes.iter().map(|l| l.fresnel).collect()
+    }
+
+    /// Whether the model has the dielectric coat lobe.
+    pub fn has_coat(&self) -> bool {
+        self.coat.is_some()
+    }
+
+    /// The per-pair kernel: channel `c`'s value into `out[c * os]` and,
+    /// with `grad = Some((g, gs))`, its gradient into `g[c * gs..c * gs + np]`
+    /// (strides let the batch write straight into its channel-major
+    /// layout). 0 (and a zero gradient) below the horizon.
+    #[inline]
+    fn kernel(
+        &self,
+        p: &[f64],
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        (out, os): (&mut [f64], usize),
+        mut grad: Option<(&mut [f64], usize)>,
+    ) {
+        let (nc, np) = (self.channels, self.specs.len());
+        if let Some((g, gs)) = grad.as_mut() {
+            for c in 0..nc {
+                g[c * *gs..c * *gs + np].fill(0.0);
+            }
+        }
+        let Some(geo) = LobeGeometry::new(l, v) else {
+            for c in 0..nc {
+                out[c * os] = 0.0;
+            }
+            return;
+        };
+        for c in 0..nc {
+            out[c * os] = p[c] * FRAC_1_PI;
+            if let Some((g, gs)) = grad.as_mut() {
+                g[c * *gs + c] = FRAC_1_PI;
+            }
+        }
+        let mu = geo.cos_d;
+        for lobe in &self.lobes {
+            let (s, ds) = geo.lobe(p[lobe.alpha], self.masking);
+            let (a, b) = (lobe.start, lobe.start + nc);
+            for c in 0..nc {
+                // Value F s and the derivatives of F in its (up to two)
+                // channel parameters.
+                let (f, d1, d2) = match lobe.fresnel {
+                    LobeFresnel::None => (p[a + c], 1.0, 0.0),
+                    LobeFresnel::F82Tint => f82_tint(p[a + c], p[b + c], mu),
+                    LobeFresnel::Conductor => fresnel_conductor_grad(mu, p[a + c], p[b + c]),
+                };
+                out[c * os] += f * s;
+                if let Some((g, gs)) = grad.as_mut() {
+                    let row = &mut g[c * *gs..c * *gs + np];
+                    row[a + c] = d1 * s;
+                    if lobe.fresnel != LobeFresnel::None {
+                        row[b + c] = d2 * s;
+                    }
+                    row[lobe.alpha] = f * ds;
+                }
+            }
+        }
+        if let Some(at) = self.coat {
+            let (s, ds) = geo.lobe(p[at + 1], self.masking);
+            let (f, df) = fresnel_dielectric_d_eta(mu, p[at]);
+            for c in 0..nc {
+                out[c * os] += f * s;
+                if let Some((g, gs)) = grad.as_mut() {
+                    g[c * *gs + at] = df * s;
+                    g[c * *gs + at + 1] = f * ds;
+                }
+            }
+        }
+    }
+}
+
+brdf_core::impl_brdf_via_params!(ColouredLobes);
+
+impl Parametric for ColouredLobes {
+    fn name(&self) -> &str {
+        self.name
+    }
+
+    brdf_core::param_accessors!();
+
+    fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
+        self.kernel(p, l, v, (out, 1), None);
+    }
+
+    fn eval_grad_at(
+        &self,
+        p: &[f64],
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [f64],
+        grad: &mut [f64],
+    ) {
+        let np = self.specs.len();
+        self.kernel(p, l, v, (out, 1), Some((grad, np)));
+    }
+
+    fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
+        let n = pairs.len();
+        for j in 0..n {
+            self.kernel(p, &pairs.l(j), &pairs.v(j), (&mut out[j..], n), None);
+        }
+    }
+
+    fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
+        // Layout: out[c * n + j], jac[(c * n + j) * np + k]: channel rows
+        // of pair j lie n values (n * np Jacobian entries) apart.
+        let (n, np) = (pairs.len(), self.specs.len());
+        for j in 0..n {
+            self.kernel(
+                p,
+                &pairs.l(j),
+                &pairs.v(j),
+                (&mut out[j..], n),
+                Some((&mut jac[j * np..], n * np)),
+            );
+        }
+    }
+}
