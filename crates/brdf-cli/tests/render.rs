@@ -153,3 +153,44 @@ fn measured_and_fitted_side_by_side_with_a_difference() {
     assert!(w >= 3 * 48, "three tiles side by side: width {w}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `brdf render` draws by default the sphere Python's `Model.render()`
+/// draws and the reports judge: the judge's camera under the studio light
+/// set at the reports' size (the EXR holds it as f32).
+#[test]
+fn the_default_sphere_is_the_judge_sphere() {
+    let dir = std::env::temp_dir().join(format!("brdf-render-judge-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = lambert_file(&dir);
+    let out = dir.join("s.exr");
+    let (ok, _, err) = brdf(&[
+        "render",
+        "--model",
+        model.to_str().unwrap(),
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let written = brdf_render::Image::read_exr(&out).unwrap();
+    let mut m = build("lambert", &ModelConfig::default()).unwrap();
+    m.set_params(&[0.5]).unwrap();
+    let size = brdf_render::compare::REPORT_SIZE;
+    let judge =
+        brdf_render::shading::render_judge(m.as_ref(), &brdf_render::LightSet::studio(), size);
+    assert_eq!((written.width, written.height), (size, size));
+    let mut lit = 0;
+    for y in 0..size {
+        for x in 0..size {
+            for c in 0..3 {
+                let want = judge.data[(y * size + x) * judge.channels + c.min(judge.channels - 1)];
+                let got = written.data[(y * size + x) * written.channels + c];
+                assert!(
+                    (got - want).abs() <= 1e-6 * want.abs() + 1e-12,
+                    "({x}, {y}, {c}): {got} vs {want}"
+                );
+                lit += usize::from(want > 0.0);
+            }
+        }
+    }
+    assert!(lit > size * size, "the sphere is lit");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,9 +1,11 @@
 //! The composition behind `brdf render`: a labelled sphere of measured
 //! data, of a model, or both side by side with their absolute difference.
-//! Lit by one directional light, seen from `+z`, tone mapped with the
-//! exposure of the first sphere stated in the image. The caller loads the
-//! data and the model (this crate reads no files); this module only
-//! renders and lays out.
+//! Lit by a standard light set on the judge's camera (the same sphere the
+//! reports, the image errors and Python's `Model.render` show), or by one
+//! directional light seen from `+z`; tone mapped with the exposure of the
+//! first sphere stated in the image. The caller loads the data and the
+//! model (this crate reads no files); this module only renders and lays
+//! out.
 
 use std::path::Path;
 
@@ -23,15 +25,49 @@ pub struct Side<'a> {
     pub title: String,
 }
 
+/// How the spheres are lit.
+#[derive(Clone, Debug)]
+pub enum SphereLight {
+    /// A standard light set on the judge's camera
+    /// ([`crate::shading::render_judge`]).
+    Set(crate::LightSet),
+    /// One directional light (unit, above the horizon), sphere seen from
+    /// `+z`.
+    Directional(Vector3<f64>),
+}
+
+impl SphereLight {
+    /// Render `brdf` at `size x size` pixels.
+    pub fn render(&self, brdf: &dyn Brdf, size: usize) -> Image {
+        match self {
+            SphereLight::Set(lights) => crate::shading::render_judge(brdf, lights, size),
+            SphereLight::Directional(l) => render_sphere(brdf, size, l, &Vector3::z(), false),
+        }
+    }
+
+    /// The footer's words for the light and camera.
+    fn describe(&self, label: &str, size: usize) -> String {
+        match self {
+            SphereLight::Set(_) => format!(
+                "Sphere {size} px on the judge's camera under the `{label}` light set (as the reports, the image errors and Python's Model.render), pixel = radiance."
+            ),
+            SphereLight::Directional(_) => format!(
+                "Sphere {size} px seen from +z, directional light at (theta, phi) = ({label}) deg, pixel = f(L, V) cos(theta_i)."
+            ),
+        }
+    }
+}
+
 /// The picture: measured data and/or a model under one light.
 pub struct SideBySide<'a> {
     /// Measured data (first column when given).
     pub measured: Option<Side<'a>>,
     /// A model (beside the data when both are given).
     pub model: Option<Side<'a>>,
-    /// Light direction (unit, above the horizon).
-    pub light: Vector3<f64>,
-    /// The light as the user gave it (`THETA,PHI` in degrees), for labels.
+    /// How the spheres are lit.
+    pub light: SphereLight,
+    /// The light as the user gave it (a set's name or `THETA,PHI` in
+    /// degrees), for labels.
     pub light_label: String,
     /// Sphere size in pixels.
     pub size: usize,
@@ -49,7 +85,7 @@ impl SideBySide<'_> {
         }
         let tiles: Vec<Image> = sides
             .iter()
-            .map(|s| render_sphere(s.brdf, self.size, &self.light, &Vector3::z(), false))
+            .map(|s| self.light.render(s.brdf, self.size))
             .collect();
         let exposure = exposure_for(&tiles[0], 0.95);
         let mut columns: Vec<String> = sides.iter().map(|s| s.column.clone()).collect();
@@ -78,7 +114,7 @@ impl SideBySide<'_> {
             rows: vec![format!("light {}\nexposure x{}", self.light_label, fmt_sig(exposure, 3))],
             tiles: vec![row],
             footer: vec![
-                format!("Sphere {} px seen from +z, directional light at (theta, phi) = ({}) deg, pixel = f(L, V) cos(theta_i).", self.size, self.light_label),
+                self.light.describe(&self.light_label, self.size),
                 "Tone mapping: linear x exposure (95th percentile of the first sphere's non-zero values -> 0.8), clamped, gamma 2.2; difference in Viridis from 0 to the bar's maximum (99th percentile of the differences; larger ones saturate).".into(),
             ],
         })

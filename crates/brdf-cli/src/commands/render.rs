@@ -1,15 +1,17 @@
 //! `brdf render`: a labelled sphere of a saved model (`--model FILE`) or of
 //! dense measured data (`--data PATH`, MERL or RGL), or both side by side
-//! with their difference when both are given. Lit by one directional light
-//! (`--light THETA,PHI` in degrees), seen from `+z`, tone mapped with the
-//! exposure stated in the image.
+//! with their difference when both are given. By default the judge's
+//! sphere under the studio light set at the reports' size, the sphere the
+//! reports, the image errors and Python's `Model.render()` show; `--light`
+//! names another light set or one directional light (`THETA,PHI` in
+//! degrees, sphere seen from `+z`). Tone mapped with the exposure stated in
+//! the image.
 
 use std::path::PathBuf;
 
-use brdf_core::nalgebra::Vector3;
 use brdf_fit::data_name;
 use brdf_models::saved_model::SavedModel;
-use brdf_render::side_by_side::{Side, SideBySide};
+use brdf_render::side_by_side::{Side, SideBySide, SphereLight};
 
 use crate::error::CliError;
 use crate::opts::parse_direction;
@@ -23,25 +25,36 @@ pub struct RenderArgs {
     /// Dense measured data (MERL `.binary`, RGL `.bsdf`).
     #[arg(long)]
     pub data: Option<String>,
-    /// Light direction `THETA,PHI` in degrees (polar angle from the view axis).
-    #[arg(long, default_value = "45,45", allow_hyphen_values = true)]
+    /// A light set (studio, sky, directional: the judge's camera) or one
+    /// directional light `THETA,PHI` in degrees (polar angle from the view
+    /// axis; the sphere seen from +z).
+    #[arg(long, default_value = "studio", allow_hyphen_values = true)]
     pub light: String,
     /// Sphere size in pixels (16 to 2048).
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = brdf_render::compare::REPORT_SIZE)]
     pub size: usize,
     /// Output image: `.png` (labelled, tone mapped) or `.exr` (linear
     /// radiance of the spheres, side by side).
     pub out: PathBuf,
 }
 
-fn light(s: &str) -> Result<Vector3<f64>, CliError> {
+fn light(s: &str) -> Result<SphereLight, CliError> {
+    if let Ok(set) = brdf_render::LightSet::parse(s) {
+        return Ok(SphereLight::Set(set));
+    }
+    if !s.contains(',') {
+        return Err(CliError::Usage(format!(
+            "--light {s}: expected a light set ({}) or a direction THETA,PHI in degrees",
+            brdf_render::light::LIGHT_SET_NAMES.join(", ")
+        )));
+    }
     let d = parse_direction(s, true, "--light")?;
     if d.vector().z <= 0.0 {
         return Err(CliError::Usage(format!(
             "--light {s}: the light must be above the horizon (THETA < 90)"
         )));
     }
-    Ok(*d.vector())
+    Ok(SphereLight::Directional(*d.vector()))
 }
 
 /// The image formats `brdf render` writes, chosen by the extension.
