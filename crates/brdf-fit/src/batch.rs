@@ -14,7 +14,7 @@
 //! order.
 //!
 //! Each fit is what `brdf fit` runs on the same file with the same
-//! `--metric` ([`crate::appearance::fit_judged`]): renderer models are
+//! `--metric` ([`crate::judged::fit_judged`]): renderer models are
 //! fitted for appearance on data that can be rendered (RGL, MERL), and
 //! every fit of such data carries its image errors (the sphere under the
 //! sky and studio light sets at [`REPORT_SIZE`] pixels: FLIP, PSNR, mean
@@ -28,10 +28,11 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, OnceLock};
 
+use brdf_render::judge::{Judge, REPORT_SIZE};
 use rayon::prelude::*;
 use serde_json::Value;
 
-use crate::appearance::{self, Judge, REPORT_SIZE};
+use crate::judged;
 use crate::table::{Cell, Table};
 use crate::{Channels, Fit, FitError, Objective, data_name};
 
@@ -335,7 +336,7 @@ fn fit_one(
 ) -> Result<Value, String> {
     let name = data_name(spec);
     let renderable = material.rendered.is_some();
-    let (for_appearance, metric) = appearance::metric_choice(&opts.metric, model, renderable);
+    let (for_appearance, metric) = judged::metric_choice(&opts.metric, model, renderable);
     let t0 = std::time::Instant::now();
     let rep = Objective::parse(metric)
         .and_then(|objective| {
@@ -346,14 +347,14 @@ fn fit_one(
                 .starts(opts.starts)
                 .polish_on_flip(opts.polish);
             match &material.rendered {
-                Some((data, judge)) => appearance::fit_judged_on(
+                Some((data, judge)) => judged::fit_judged_on(
                     &fit,
                     &material.samples,
                     data.as_ref(),
                     for_appearance,
                     judge,
                 ),
-                None => appearance::fit_judged(&fit, &material.samples, None, false),
+                None => judged::fit_judged(&fit, &material.samples, None, false),
             }
         })
         .map_err(|e| format!("{name} x {model}: {e}"))?;

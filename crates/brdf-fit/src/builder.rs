@@ -20,8 +20,11 @@ use brdf_models::{ModelConfig, ModelEntry};
 use crate::FitError;
 use crate::boxed::BoxedModel;
 use crate::names::resolve;
-use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
+use crate::objective::Objective;
+use crate::options::{FitOptions, Solver};
+use crate::pipeline::{fit, fit_sopp};
 use crate::scaling::fit_scaled;
+use crate::summary::FitSummary;
 
 /// Which channels a fit uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -72,8 +75,8 @@ pub struct FitReport {
     /// bound of their box), for the report.
     pub notes: Vec<String>,
     /// Image errors against the data under the standard light sets, for
-    /// data that can be rendered ([`crate::appearance::fit_judged`]).
-    pub image_error: Option<crate::appearance::ImageError>,
+    /// data that can be rendered ([`crate::judged::fit_judged`]).
+    pub image_error: Option<brdf_render::ImageError>,
     /// Why there is no image error (scattered data), when there is none.
     pub image_note: Option<String>,
     /// The candidates of a fit chosen by image error.
@@ -134,7 +137,7 @@ impl Fit {
     }
 
     /// Whether the fit is in the image objective without a target yet (a
-    /// front end's `--metric image`: [`crate::appearance::fit_judged`]
+    /// front end's `--metric image`: [`crate::judged::fit_judged`]
     /// makes the target and its start).
     pub(crate) fn needs_image_target(&self) -> bool {
         self.options.objective == Objective::Image && self.options.image.is_none()
@@ -161,7 +164,7 @@ impl Fit {
     }
 
     /// Reweighting cap of a robust (IRLS) fit (default
-    /// [`IRLS_MAX_ITERATIONS`](crate::pipeline::IRLS_MAX_ITERATIONS); 50 is
+    /// [`IRLS_MAX_ITERATIONS`](crate::options::IRLS_MAX_ITERATIONS); 50 is
     /// MATLAB's `robustfit`'s, which with
     /// [`Fit::irls_stop_on_cycle`]`(false)` is MATLAB's loop); 0 is
     /// refused by [`Fit::run`].

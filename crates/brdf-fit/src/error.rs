@@ -20,6 +20,9 @@ pub enum FitError {
     /// Reading data failed.
     #[error(transparent)]
     Data(#[from] brdf_io::IoError),
+    /// Rendering or judging a fit failed.
+    #[error(transparent)]
+    Render(#[from] brdf_render::RenderError),
     /// A solver was misused or given impossible input.
     #[error(transparent)]
     Solve(#[from] brdf_solve::SolveError),

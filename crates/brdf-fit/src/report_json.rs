@@ -4,9 +4,11 @@
 //! outputs, so every front end names fits and data the same way.
 
 use brdf_core::SampleSet;
+use brdf_render::ImageError;
 
-use crate::appearance::{ImageChoice, ImageError, SCATTERED_NOTE};
+use crate::judged::SCATTERED_NOTE;
 use crate::select::{Search, SelectRow};
+use crate::select_by_image::ImageChoice;
 use crate::{FitError, FitReport};
 
 /// The JSON report of the fits of one data set (one per channel set): the
@@ -33,7 +35,7 @@ pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::V
 /// The JSON report of a selection (`brdf select --json`): every
 /// candidate's row, the choice's, and the choice's image errors (`null`
 /// on scattered data, with the note why; `image` as
-/// [`crate::appearance::select_judged`] returns it).
+/// [`crate::judged::select_judged`] returns it).
 pub fn select_json(
     data: &SampleSet,
     tolerance: f64,
@@ -62,7 +64,7 @@ pub fn select_json(
 
 /// The JSON report of a selection by image error (`brdf select --by-image
 /// --json`): the data set's name, the choice's row and every row, in the
-/// order [`crate::appearance::select_by_image`] returns them. One function
+/// order [`crate::select_by_image::select_by_image`] returns them. One function
 /// so that the command and the Python module print the same shape; a
 /// `choice` outside `rows` is an error naming the data rather than a panic.
 pub fn select_by_image_json(

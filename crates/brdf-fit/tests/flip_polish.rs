@@ -3,7 +3,8 @@
 //! free parameters (a lobe switched off stays off); its candidate is
 //! listed as `flip` and its report names the search.
 
-use brdf_fit::appearance::{FIT_SIZE, Judge, fit_for_appearance};
+use brdf_fit::appearance::fit_for_appearance;
+use brdf_render::judge::{FIT_SIZE, Judge};
 
 mod common;
 use common::{rgb_fit, rgb_model, rgb_samples};

@@ -61,7 +61,7 @@ use crate::fitted::{PyFit, PyModel};
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
 #[pyo3(signature = (data, model, *, channels="rgb", metric="auto", limit_deg=80.0,
-    starts=12, irls_max_iterations=brdf_fit::pipeline::IRLS_MAX_ITERATIONS, solver="auto",
+    starts=12, irls_max_iterations=brdf_fit::options::IRLS_MAX_ITERATIONS, solver="auto",
     lobes=1, order=8, degree=7, save=None, polish=false))]
 pub fn fit<'py>(
     py: Python<'py>,
@@ -91,8 +91,7 @@ pub fn fit<'py>(
         (Some(s), "rgb" | "grey") => py.detach(|| brdf_io::load_dense(s)).map_err(to_py)?,
         _ => None,
     };
-    let (appearance, metric) =
-        brdf_fit::appearance::metric_choice(metric, entry.name, dense.is_some());
+    let (appearance, metric) = brdf_fit::judged::metric_choice(metric, entry.name, dense.is_some());
     if polish && !appearance {
         return Err(usage(format!(
             "polish=True refines a fit for appearance, which `{model}` with metric=\"{metric}\" on these data is not: use a renderer model (principled, gltf, gltf-ext, ggx) or metric=\"appearance\" on an RGL `.bsdf` or MERL `.binary` path"
@@ -179,7 +178,7 @@ fn run_all(
     let mut models = Vec::new();
     for (set, channels) in sets {
         let f = fit.clone().channels(*channels);
-        let report = brdf_fit::appearance::fit_judged(&f, set, dense, appearance).map_err(to_py)?;
+        let report = brdf_fit::judged::fit_judged(&f, set, dense, appearance).map_err(to_py)?;
         let saved = report.saved_model(name).map_err(to_py)?;
         if let Some(path) = save {
             saved.save(path).map_err(to_py)?;

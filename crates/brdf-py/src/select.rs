@@ -7,7 +7,6 @@
 use std::path::PathBuf;
 
 use brdf_fit::FitOptions;
-use brdf_fit::appearance::RENDERER_MODELS;
 use brdf_fit::select::{Among, Search};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -129,7 +128,7 @@ pub fn select<'py>(
             Some(s) => brdf_io::load_dense(s)?,
             None => None,
         };
-        let (selection, image) = brdf_fit::appearance::select_judged(
+        let (selection, image) = brdf_fit::judged::select_judged(
             &set,
             dense.as_deref(),
             tolerance,
@@ -165,8 +164,12 @@ fn select_by_image<'py>(
         ));
     }
     let spec = crate::fit::data_spec(data)?;
-    let names: Vec<String> =
-        models.unwrap_or_else(|| RENDERER_MODELS.iter().map(|m| m.to_string()).collect());
+    let names: Vec<String> = models.unwrap_or_else(|| {
+        brdf_models::by_image_models()
+            .iter()
+            .map(|m| m.to_string())
+            .collect()
+    });
     let report = py.detach(|| -> PyResult<serde_json::Value> {
         let samples = brdf_io::load(&spec).map_err(to_py)?;
         let Some(dense) = brdf_io::load_dense(&spec).map_err(to_py)? else {
@@ -176,7 +179,7 @@ fn select_by_image<'py>(
         };
         let names: Vec<&str> = names.iter().map(String::as_str).collect();
         let (rows, choice) =
-            brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref(), polish)
+            brdf_fit::select_by_image::select_by_image(&names, &samples, dense.as_ref(), polish)
                 .map_err(to_py)?;
         brdf_fit::select_by_image_json(&samples.name, &rows, choice).map_err(to_py)
     });

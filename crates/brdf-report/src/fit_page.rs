@@ -5,8 +5,8 @@
 use std::path::Path;
 
 use brdf_core::{Brdf, SampleSet};
-use brdf_fit::appearance::{ImageError, Judge};
 use brdf_models::saved_model::SavedModel;
+use brdf_render::{ImageError, Judge};
 use serde::Serialize;
 use serde_json::Value;
 

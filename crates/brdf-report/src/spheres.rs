@@ -5,9 +5,9 @@
 //! each as a PNG `data:` URI with its exposure.
 
 use brdf_core::Brdf;
-use brdf_fit::appearance::LightRenders;
 use brdf_render::LightSet;
 use brdf_render::ShadingPoints;
+use brdf_render::judge::LightRenders;
 use brdf_render::tonemap::p99_exposure;
 use serde::Serialize;
 
@@ -16,7 +16,7 @@ use crate::embed::png_uri;
 
 /// Pixels per side of the report's spheres: the judge's film, so a page's
 /// image errors are those `brdf fit` and `brdf batch` report.
-pub const SIZE: usize = brdf_fit::appearance::REPORT_SIZE;
+pub const SIZE: usize = brdf_render::judge::REPORT_SIZE;
 
 /// The spheres of one light set.
 #[derive(Clone, Debug, Serialize)]

@@ -2,13 +2,14 @@
 //! visible colour difference, FLIP above threshold, parameters on their
 //! bounds, a solver that did not converge — and what only looks wrong:
 //! optional lobes switched off (at 0 on their lower bound by design,
-//! `brdf_fit::appearance::optional_lobes`), and a refinement in the image
+//! `brdf_models::ModelEntry::optional_lobes`), and a refinement in the image
 //! objective that stopped at its iteration cap (it is kept only because it
 //! renders closer to the data, and the verdict judges the render).
 
 use brdf_fit::Objective;
-use brdf_fit::appearance::{ImageError, colour_plane_note, optional_lobes};
+use brdf_fit::judged::colour_plane_note;
 use brdf_models::saved_model::SavedModel;
+use brdf_render::ImageError;
 use serde::Serialize;
 
 /// The verdict: a headline and the reasons.
@@ -92,8 +93,9 @@ pub fn verdict(
 /// The optional lobes of `saved`'s model that are off: the lobe's own
 /// parameter (named as the lobe) is 0.
 fn lobes_off(saved: &SavedModel) -> Vec<String> {
-    optional_lobes(&saved.model)
+    brdf_models::optional_lobes(&saved.model)
         .iter()
+        .map(|l| l.name)
         .filter(|l| {
             saved
                 .parameters
@@ -147,7 +149,7 @@ mod tests {
     }
 
     fn looks_right() -> ImageError {
-        let light = |name: &str| brdf_fit::appearance::LightError {
+        let light = |name: &str| brdf_render::LightError {
             light: name.into(),
             flip: 0.05,
             psnr: 35.0,
@@ -180,7 +182,8 @@ mod tests {
     /// note's threshold, or no figure, adds none.
     #[test]
     fn colours_off_the_single_colour_plane_are_a_reason() {
-        use brdf_fit::appearance::{COLOUR_PLANE_NOTE, DataColourPlane};
+        use brdf_fit::judged::COLOUR_PLANE_NOTE;
+        use brdf_render::image_error::DataColourPlane;
         let with = |outside: f64| ImageError {
             colour_plane: Some(DataColourPlane {
                 light: "studio".into(),

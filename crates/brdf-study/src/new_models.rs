@@ -27,7 +27,7 @@
 //! studio light is the judge's faithful one; the sky light of brdf-render
 //! is being matched to Mitsuba's, so its FLIP is printed but not judged.
 
-use brdf_fit::appearance::{fit_judged, metric_choice};
+use brdf_fit::judged::{fit_judged, metric_choice};
 use brdf_fit::{Fit, FitReport};
 use rayon::prelude::*;
 

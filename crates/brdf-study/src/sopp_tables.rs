@@ -16,7 +16,8 @@ use brdf_io::sopp_grid::{CAM_PHIS, CAM_THETAS, LIGHTS, SoppGrid};
 use brdf_models::{ModelConfig, build};
 
 use crate::StudyError;
-use crate::pipeline::{FitOptions, FitSummary, Objective, fit, fit_sopp};
+use brdf_fit::pipeline::{fit, fit_sopp};
+use brdf_fit::{FitOptions, FitSummary, Objective};
 use rayon::prelude::*;
 
 use crate::context::{Study, Written, progress};

@@ -7,8 +7,9 @@
 mod common;
 
 use brdf_core::{Parametric, SampleSet};
+use brdf_fit::pipeline::{fit, fit_sopp};
+use brdf_fit::{FitOptions, Objective, Solver};
 use brdf_models::{ModelConfig, build, catalogue};
-use brdf_study::pipeline::{FitOptions, Objective, Solver, fit, fit_sopp};
 use brdf_study::synthetic::scattered_pairs;
 
 /// Parameters inside the box away from the defaults the fit starts from:

@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
-use brdf_fit::appearance::{Judge, REPORT_SIZE};
-use brdf_fit::{Channels, Fit, Objective, Solver, appearance};
+use brdf_fit::{Channels, Fit, Objective, Solver, judged};
+use brdf_render::judge::{Judge, REPORT_SIZE};
 
 use crate::error::CliError;
 
@@ -43,7 +43,7 @@ pub struct FitArgs {
     /// Reweighting cap of a robust (IRLS) fit (50 is MATLAB's
     /// `robustfit`'s); a fit whose reweighting cycles stops earlier, when
     /// a weighted solution recurs, and says so.
-    #[arg(long, default_value_t = brdf_fit::pipeline::IRLS_MAX_ITERATIONS)]
+    #[arg(long, default_value_t = brdf_fit::options::IRLS_MAX_ITERATIONS)]
     pub irls_max_iterations: usize,
     /// End the fit for appearance with a search on the judge's own metric,
     /// the mean HDR-FLIP of the renders: a lower image error for a few
@@ -104,7 +104,7 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
     let entry = brdf_fit::resolve(&args.model)?;
     // Per-channel fits are grey models of one channel: not rendered.
     let dense = dense.as_deref().filter(|_| args.channels != "per-channel");
-    let (appearance, metric) = appearance::metric_choice(&args.metric, entry.name, dense.is_some());
+    let (appearance, metric) = judged::metric_choice(&args.metric, entry.name, dense.is_some());
     if args.polish && !appearance {
         return Err(CliError::Usage(format!(
             "--polish refines a fit for appearance, which `{}` with --metric {} on {} is not: use a renderer model (principled, gltf, gltf-ext, ggx) or --metric appearance on RGL `.bsdf` or MERL `.binary` data",
@@ -133,10 +133,10 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
         let (report, judge) = match dense.filter(|_| args.report.is_some()) {
             Some(d) => {
                 let judge = Judge::with_data(REPORT_SIZE, d)?;
-                let report = appearance::fit_judged_on(&fit, set, d, appearance, &judge)?;
+                let report = judged::fit_judged_on(&fit, set, d, appearance, &judge)?;
                 (report, Some(judge))
             }
-            None => (appearance::fit_judged(&fit, set, dense, appearance)?, None),
+            None => (judged::fit_judged(&fit, set, dense, appearance)?, None),
         };
         let seconds = t0.elapsed().as_secs_f64();
         if let Some(path) = &args.save {

@@ -5,7 +5,7 @@
 
 use crate::error::CliError;
 use brdf_fit::FitOptions;
-use brdf_fit::appearance::SCATTERED_NOTE;
+use brdf_fit::judged::SCATTERED_NOTE;
 use brdf_fit::report_text::image_error_lines;
 
 /// Arguments of `brdf select`.
@@ -78,7 +78,7 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
         brdf_fit::select::Search::CoarseToFine
     };
     let dense = brdf_io::load_dense(&args.data)?;
-    let (selection, image) = brdf_fit::appearance::select_judged(
+    let (selection, image) = brdf_fit::judged::select_judged(
         &data,
         dense.as_deref(),
         args.tolerance,
@@ -112,7 +112,7 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
 }
 
 /// `brdf select --by-image`: a thin layer over
-/// [`brdf_fit::appearance::select_by_image`].
+/// [`brdf_fit::select_by_image::select_by_image`].
 fn by_image(args: &SelectArgs) -> Result<(), CliError> {
     let samples = brdf_io::load(&args.data)?;
     let Some(dense) = brdf_io::load_dense(&args.data)? else {
@@ -122,12 +122,12 @@ fn by_image(args: &SelectArgs) -> Result<(), CliError> {
         )));
     };
     let names: Vec<&str> = if args.models.is_empty() {
-        brdf_fit::appearance::RENDERER_MODELS.to_vec()
+        brdf_models::by_image_models()
     } else {
         args.models.iter().map(String::as_str).collect()
     };
     let (rows, choice) =
-        brdf_fit::appearance::select_by_image(&names, &samples, dense.as_ref(), args.polish)?;
+        brdf_fit::select_by_image::select_by_image(&names, &samples, dense.as_ref(), args.polish)?;
     if args.json {
         let v = brdf_fit::select_by_image_json(&samples.name, &rows, choice)?;
         return say!("{}", serde_json::to_string_pretty(&v)?);

@@ -24,7 +24,8 @@ use brdf_core::{Parametric, SampleSet};
 use rayon::prelude::*;
 
 use crate::FitError;
-use crate::pipeline::{FitOptions, fit};
+use crate::options::FitOptions;
+use crate::pipeline::fit;
 
 mod candidates;
 pub mod coarse;

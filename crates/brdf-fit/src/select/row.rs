@@ -6,7 +6,7 @@ use brdf_core::SampleSet;
 use serde::Serialize;
 
 use super::candidates::stored_numbers;
-use crate::pipeline::FitSummary;
+use crate::summary::FitSummary;
 
 /// One candidate's outcome.
 #[derive(Clone, Debug, Serialize)]

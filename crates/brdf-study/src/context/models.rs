@@ -123,7 +123,7 @@ impl Default for FitHow {
 /// fit cycles, and where it stops sets its error (0.0201 at 50, 0.0237 at
 /// 1000; Kurt's 0.015), so the study runs MATLAB's loop to the cap, no
 /// cycle test. `brdf fit` allows more
-/// ([`brdf_fit::pipeline::IRLS_MAX_ITERATIONS`]), so that the RGL fits,
+/// ([`brdf_fit::options::IRLS_MAX_ITERATIONS`]), so that the RGL fits,
 /// which need up to 409, converge, and stops a cycling fit early.
 pub const KURT_IRLS_MAX_ITERATIONS: usize = 50;
 
