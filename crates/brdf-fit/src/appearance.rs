@@ -233,7 +233,7 @@ impl Stages<'_> {
                 best = Some(Choice { report: r, k });
             }
         }
-        let best = best.ok_or_else(|| FitError::Usage("no candidate fit".into()))?;
+        let best = best.ok_or(FitError::NoCandidate)?;
         Ok((bases, best))
     }
 

@@ -240,20 +240,23 @@ impl Fit {
     /// for them and fit it.
     pub fn run(&self, samples: &SampleSet) -> Result<FitReport, FitError> {
         if !(self.limit_deg > 0.0 && self.limit_deg <= 90.0) {
-            return Err(FitError::Usage(format!(
-                "angle limit {} must be in (0, 90] degrees",
-                self.limit_deg
-            )));
+            return Err(FitError::OutOfRange {
+                option: "angle limit",
+                value: self.limit_deg,
+                range: "in (0, 90] degrees",
+            });
         }
         if self.options.starts == 0 {
-            return Err(FitError::Usage(
-                "starts = 0: a fit needs at least one start".into(),
-            ));
+            return Err(FitError::ZeroCount {
+                option: "starts",
+                needs: "a fit needs at least one start",
+            });
         }
         if self.options.irls_max_iterations == 0 {
-            return Err(FitError::Usage(
-                "irls_max_iterations = 0: a robust fit needs at least one reweighting".into(),
-            ));
+            return Err(FitError::ZeroCount {
+                option: "irls_max_iterations",
+                needs: "a robust fit needs at least one reweighting",
+            });
         }
         let present = samples.len();
         let (data, invalid) = samples.filter_invalid(false);
@@ -263,13 +266,13 @@ impl Fit {
             Channels::Grey => data.mean_channel(),
         };
         if data.is_empty() {
-            return Err(FitError::Usage(format!(
-                "`{}`: no sample is left of {present} after dropping {} invalid and {} beyond {} deg",
-                samples.name,
-                invalid.dropped(),
-                angle.dropped(),
-                self.limit_deg
-            )));
+            return Err(FitError::NoSampleLeft {
+                data: samples.name.clone(),
+                present,
+                invalid: invalid.dropped(),
+                beyond: angle.dropped(),
+                limit_deg: self.limit_deg,
+            });
         }
         let config = ModelConfig {
             channels: data.channels(),
@@ -358,10 +361,9 @@ impl Fit {
             return Ok(options);
         }
         match options.solver {
-            Solver::Ols | Solver::Irls(_) => Err(FitError::Usage(format!(
-                "--solver ols/irls solve linear least squares; the log metric is not linear in `{}`'s parameters: use --solver auto, sqp or lm",
-                self.entry.name
-            ))),
+            Solver::Ols | Solver::Irls(_) => Err(FitError::LinearSolverOnTransformed {
+                model: self.entry.name.to_string(),
+            }),
             Solver::Auto => {
                 let probe = (self.entry.build)(config)?;
                 if probe.param_specs().iter().all(|s| s.linear) {

@@ -34,6 +34,7 @@ use brdf_render::{ImageError, Judge};
 use brdf_solve::{CompassOptions, LmOptions, compass_search};
 
 use crate::image_objective::ImageTarget;
+use crate::termination::Termination;
 use crate::{Fit, FitError, FitReport, Objective};
 
 /// Evaluation budget of the search (each one renders the fit under every
@@ -114,11 +115,10 @@ pub(crate) fn polish(
         judge.size()
     );
     out.summary.iterations = found.evaluations;
-    out.summary.termination = format!(
-        "{}; mean FLIP {:.4} from {:.4}",
-        found.termination.describe(),
-        found.value,
-        found.start_value
-    );
+    out.summary.termination = Termination::FlipSearch {
+        end: found.termination,
+        mean_flip: found.value,
+        from: found.start_value,
+    };
     Ok(Some(out))
 }

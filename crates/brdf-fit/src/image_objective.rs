@@ -117,7 +117,7 @@ impl ImageTerms {
     ) -> Result<Self, FitError> {
         let n = pairs.len();
         if pixel.len() != n || weight_channels == 0 || weights.len() != weight_channels * n {
-            return Err(FitError::Usage(format!(
+            return Err(FitError::ImageTerms(format!(
                 "image terms: {n} pairs, {} pixel indices and {} weights in {weight_channels} channels; give one pixel and one weight per channel for every pair",
                 pixel.len(),
                 weights.len()
@@ -276,7 +276,7 @@ fn offsets(pixel: &[usize], np: usize) -> Result<Vec<usize>, FitError> {
     let mut off = vec![0; np + 1];
     for (k, &p) in pixel.iter().enumerate() {
         if p >= np || (k > 0 && p < pixel[k - 1]) {
-            return Err(FitError::Usage(format!(
+            return Err(FitError::ImageTerms(format!(
                 "image terms: term {k} has pixel {p}; pixels must be non-decreasing and below {np}"
             )));
         }
@@ -340,7 +340,7 @@ impl<'a> ImageProblem<'a> {
         let nc = model.channels();
         let np = terms.pixels();
         if reference.len() != nc * np || exposures.len() != terms.images() {
-            return Err(FitError::Usage(format!(
+            return Err(FitError::ImageTerms(format!(
                 "image objective: {} reference values for {nc} channels x {np} pixels, {} exposures for {} images",
                 reference.len(),
                 exposures.len(),

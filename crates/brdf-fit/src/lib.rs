@@ -46,7 +46,8 @@
 //! | [`starts`] | multi-start boxes, coarse and screened starts, subsamples |
 //! | [`linear`] | all-linear models by (non-negative) least squares or IRLS |
 //! | [`nonlinear`] | the multi-start non-linear fit and its polish |
-//! | [`summary`] | [`FitSummary`]: what a fit reports, and its termination |
+//! | [`summary`] | [`FitSummary`]: what a fit reports |
+//! | [`termination`] | [`Termination`]: why a fit stopped, typed, in today's words |
 //! | [`flip_polish`] | on request, an appearance fit's last step: compass search on the judge's mean FLIP |
 //! | [`image_objective`] | the image objective: residuals of tone-mapped sphere pixels |
 //! | [`boxed`] | [`BoxedModel`]: a model fitted in other parameter boxes than its own |
@@ -95,6 +96,7 @@ pub mod select_by_image;
 pub mod starts;
 pub mod summary;
 pub mod table;
+pub mod termination;
 pub mod transformed_rows;
 
 pub use boxed::BoxedModel;
@@ -105,3 +107,4 @@ pub use objective::Objective;
 pub use options::{FitOptions, Solver};
 pub use report_json::{data_name, fit_json, select_by_image_json, select_json};
 pub use summary::{FitSummary, FittedParam};
+pub use termination::Termination;

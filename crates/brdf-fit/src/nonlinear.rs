@@ -336,18 +336,13 @@ fn fit_image(
     opts: &FitOptions,
     full: &Constraints,
 ) -> Result<NonlinearFit, FitError> {
-    let target = opts.image.as_ref().ok_or_else(|| {
-        FitError::Usage(
-            "the image objective needs data that can be evaluated at any direction pair (RGL `.bsdf`, MERL `.binary`): use --metric cube-root or log for scattered data".into(),
-        )
-    })?;
+    let target = opts.image.as_ref().ok_or(FitError::NeedsDenseData)?;
     if target.start.len() != model.param_specs().len() {
-        return Err(FitError::Usage(format!(
-            "image objective: a start of {} parameters for `{}` with {}",
-            target.start.len(),
-            model.name(),
-            model.param_specs().len()
-        )));
+        return Err(FitError::StartLength {
+            given: target.start.len(),
+            model: model.name().to_string(),
+            parameters: model.param_specs().len(),
+        });
     }
     let problem = ImageProblem::new(model, &target.terms, &target.reference, &target.exposures)?;
     let mut p0 = target.start.clone();
@@ -425,7 +420,7 @@ fn fit_per_channel(
             },
         });
     }
-    let mut rep = total.ok_or_else(|| FitError::Usage("a model without channels".into()))?;
+    let mut rep = total.ok_or(FitError::NoChannels)?;
     rep.params.clone_from(&p);
     rep.bounds = bounds;
     Ok(NonlinearFit {

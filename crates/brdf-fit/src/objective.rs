@@ -59,9 +59,11 @@ impl Objective {
             "relative" => Objective::Relative,
             "image" => Objective::Image,
             other => {
-                return Err(FitError::Usage(format!(
-                    "unknown metric `{other}`: ngan, sopp, sopp-unweighted, lafortune, log, cube-root, relative or image"
-                )));
+                return Err(FitError::UnknownChoice {
+                    option: "metric",
+                    value: other.to_string(),
+                    choices: "ngan, sopp, sopp-unweighted, lafortune, log, cube-root, relative or image",
+                });
             }
         })
     }

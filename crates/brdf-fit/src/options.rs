@@ -38,11 +38,13 @@ impl Solver {
             "ols" => Solver::Ols,
             "irls" => Solver::Irls(RobustWeight::Bisquare),
             other => match other.strip_prefix("irls:") {
-                Some(w) => Solver::Irls(w.parse().map_err(|e| FitError::Usage(format!("{e}")))?),
+                Some(w) => Solver::Irls(w.parse()?),
                 None => {
-                    return Err(FitError::Usage(format!(
-                        "unknown solver `{other}`: auto, sqp, lm, sopp, ols, irls or irls:WEIGHT"
-                    )));
+                    return Err(FitError::UnknownChoice {
+                        option: "solver",
+                        value: other.to_string(),
+                        choices: "auto, sqp, lm, sopp, ols, irls or irls:WEIGHT",
+                    });
                 }
             },
         })

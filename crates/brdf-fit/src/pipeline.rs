@@ -44,6 +44,7 @@ use crate::nonlinear::fit_nonlinear;
 use crate::options::{FitOptions, Solver};
 use crate::param_box::box_constraints;
 use crate::summary::{FitSummary, summarise};
+use crate::termination::Termination;
 
 /// Fit `model` (same channel count as `data`) in place and summarise.
 pub fn fit(
@@ -53,23 +54,22 @@ pub fn fit(
 ) -> Result<FitSummary, FitError> {
     let t0 = Instant::now();
     if model.channels() != data.channels() {
-        return Err(FitError::Usage(format!(
-            "model `{}` has {} channels, data `{}` has {}",
-            model.name(),
-            model.channels(),
-            data.name,
-            data.channels()
-        )));
+        return Err(FitError::ChannelMismatch {
+            model: model.name().to_string(),
+            model_channels: model.channels(),
+            data: data.name.clone(),
+            data_channels: data.channels(),
+        });
     }
     let specs = model.param_specs().to_vec();
     let np = specs.len();
     if data.len() * data.channels() <= np {
-        return Err(FitError::Usage(format!(
-            "{} samples x {} channels are not more than the {np} parameters of `{}`",
-            data.len(),
-            data.channels(),
-            model.name()
-        )));
+        return Err(FitError::TooFewSamples {
+            samples: data.len(),
+            channels: data.channels(),
+            parameters: np,
+            model: model.name().to_string(),
+        });
     }
     let all_linear = specs.iter().all(|s| s.linear);
     let scales = opts.objective.row_scales(data);
@@ -101,20 +101,15 @@ pub fn fit(
     } else {
         match opts.solver {
             Solver::Ols | Solver::Irls(_) => {
-                return Err(FitError::Usage(format!(
-                    "--solver ols/irls need an all-linear model; `{}` has the non-linear parameter `{}`",
-                    model.name(),
-                    specs
+                return Err(FitError::NeedsAllLinear {
+                    model: model.name().to_string(),
+                    parameter: specs
                         .iter()
                         .find(|s| !s.linear)
-                        .map(|s| s.name.as_str())
-                        .unwrap_or("?")
-                )));
+                        .map_or_else(|| "?".to_string(), |s| s.name.clone()),
+                });
             }
-            Solver::Sopp => return Err(FitError::Usage(
-                "Sopp's two-stage procedure needs a one-channel model for stage 1: use fit_sopp"
-                    .into(),
-            )),
+            Solver::Sopp => return Err(FitError::SoppNeedsGreyModel),
             Solver::Sqp | Solver::Lm | Solver::Auto => {
                 let f = fit_nonlinear(model, data, &values, &scales, opts, false)?;
                 (f.params, f.how, Some(f.report), f.starts)
@@ -136,7 +131,7 @@ pub fn fit(
     )?;
     if let Some(end) = irls_end {
         summary.iterations = end.iterations.iter().sum();
-        summary.termination = format!("IRLS {}", end.termination.describe());
+        summary.termination = Termination::Irls(end.termination);
     }
     Ok(summary)
 }

@@ -15,9 +15,9 @@ use crate::{FitError, FitReport};
 /// fit summaries, and what the first fit's filters dropped; `data` is the
 /// data set as loaded (its negative values are counted, they are kept).
 pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::Value, FitError> {
-    let first = reports
-        .first()
-        .ok_or_else(|| FitError::Usage(format!("`{}`: no fit to report", data.name)))?;
+    let first = reports.first().ok_or_else(|| FitError::NoFit {
+        data: data.name.clone(),
+    })?;
     Ok(serde_json::json!({
         "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
         "notes": reports.iter().map(|r| &r.notes).collect::<Vec<_>>(),
@@ -44,9 +44,9 @@ pub fn select_json(
     choice: usize,
     image: Option<&ImageError>,
 ) -> Result<serde_json::Value, FitError> {
-    let chosen = rows
-        .get(choice)
-        .ok_or_else(|| FitError::Usage(format!("`{}`: no candidate chosen", data.name)))?;
+    let chosen = rows.get(choice).ok_or_else(|| FitError::NoChoice {
+        data: data.name.clone(),
+    })?;
     Ok(serde_json::json!({
         "data": data.name,
         "samples": data.len(),
@@ -72,9 +72,9 @@ pub fn select_by_image_json(
     rows: &[ImageChoice],
     choice: usize,
 ) -> Result<serde_json::Value, FitError> {
-    let chosen = rows
-        .get(choice)
-        .ok_or_else(|| FitError::Usage(format!("`{data_name}`: no candidate chosen")))?;
+    let chosen = rows.get(choice).ok_or_else(|| FitError::NoChoice {
+        data: data_name.to_string(),
+    })?;
     Ok(serde_json::json!({ "data": data_name, "choice": chosen, "candidates": rows }))
 }
 

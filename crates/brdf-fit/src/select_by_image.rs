@@ -58,9 +58,12 @@ pub fn select_by_image(
                 model: report.summary.model.clone(),
                 objective: chosen.map_or_else(String::new, |c| c.objective.clone()),
                 lobes: chosen.map_or_else(Vec::new, |c| c.lobes.clone()),
-                image: report.image_error.clone().ok_or_else(|| {
-                    FitError::Usage(format!("`{}`: the fit has no image error", samples.name))
-                })?,
+                image: report
+                    .image_error
+                    .clone()
+                    .ok_or_else(|| FitError::NoImageError {
+                        data: samples.name.clone(),
+                    })?,
                 ngan_l2: report.summary.ngan_l2,
                 parameters: report.summary.parameters.len(),
                 seconds: t0.elapsed().as_secs_f64(),
@@ -74,6 +77,6 @@ pub fn select_by_image(
                 .mean_flip()
                 .total_cmp(&rows[*b].image.mean_flip())
         })
-        .ok_or_else(|| FitError::Usage("select by image: no model to fit".into()))?;
+        .ok_or(FitError::NoModelToFit)?;
     Ok((rows, choice))
 }

@@ -7,12 +7,13 @@ use std::time::Instant;
 use brdf_core::metrics::ngan_l2;
 use brdf_core::{Parametric, SampleSet};
 use brdf_solve::covariance::standard_errors;
-use brdf_solve::{BoundStatus, LeastSquaresProblem, ModelProblem, SolverReport, Termination};
+use brdf_solve::{BoundStatus, LeastSquaresProblem, ModelProblem, SolverReport};
 use serde::Serialize;
 
 use crate::FitError;
 use crate::options::{FitOptions, Solver};
 use crate::param_box::box_constraints;
+use crate::termination::{Termination, VanishedTerm};
 
 /// One fitted parameter: name, value, standard error, bound status and
 /// whether it was projected out (the saved-model schema's parameter).
@@ -44,7 +45,7 @@ pub struct FitSummary {
     /// Iterations of the solve that produced the result.
     pub iterations: usize,
     /// Why it stopped.
-    pub termination: String,
+    pub termination: Termination,
     /// Starts tried, converged, and at the best cost (within 1e-6).
     pub starts: (usize, usize, usize),
     /// Wall-clock seconds.
@@ -110,7 +111,7 @@ pub(crate) fn summarise(
     })
 }
 
-/// The termination in words. A plateau where some free parameters have no
+/// Why the fit stopped. A plateau where some free parameters have no
 /// influence at all (their Jacobian columns are exactly 0) while others sit
 /// on bounds is a degenerate but genuine fit: a term of the model has
 /// vanished (a linear `ks = 0`; principled's dielectric lobe at
@@ -123,12 +124,12 @@ fn describe_termination(
     rep: Option<&SolverReport>,
     status: &[BoundStatus],
     specs: &[brdf_core::ParamSpec],
-) -> String {
+) -> Termination {
     let Some(rep) = rep else {
-        return "direct solve".into();
+        return Termination::DirectSolve;
     };
-    if rep.termination != Termination::SingularPlateau {
-        return rep.termination.describe().to_string();
+    if rep.termination != brdf_solve::Termination::SingularPlateau {
+        return Termination::Solver(rep.termination);
     }
     let zero_term = specs
         .iter()
@@ -137,23 +138,23 @@ fn describe_termination(
     let (m, n) = (mp.n_residuals(), p.len());
     let mut jac = vec![0.0; m * n];
     mp.jacobian(p, &mut jac);
-    let lost: Vec<&str> = (0..n)
+    let lost: Vec<String> = (0..n)
         .filter(|k| status[*k] == BoundStatus::Free)
         .filter(|k| (0..m).all(|i| jac[i * n + k] == 0.0))
-        .map(|k| specs[k].name.as_str())
+        .map(|k| specs[k].name.clone())
         .collect();
     let on_bound = status.iter().any(|b| *b != BoundStatus::Free);
     if lost.is_empty() || !on_bound {
-        rep.termination.describe().to_string()
+        Termination::Solver(rep.termination)
     } else if zero_term {
-        format!(
-            "converged to a degenerate fit: a linear term is 0, so {} have no influence",
-            lost.join(", ")
-        )
+        Termination::Degenerate {
+            cause: VanishedTerm::LinearTermZero,
+            lost,
+        }
     } else {
-        format!(
-            "converged to a degenerate fit: parameters on their bounds switch off the term of {}, which then have no influence",
-            lost.join(", ")
-        )
+        Termination::Degenerate {
+            cause: VanishedTerm::SwitchedOffByBounds,
+            lost,
+        }
     }
 }

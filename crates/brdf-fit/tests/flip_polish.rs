@@ -65,6 +65,12 @@ fn the_polish_starts_at_the_choice_and_moves_only_free_parameters() {
     assert!(!moved.is_empty());
     if last.chosen {
         assert!(polished.summary.solver.contains("compass search"));
-        assert!(polished.summary.termination.contains("mean FLIP"));
+        assert!(
+            polished
+                .summary
+                .termination
+                .to_string()
+                .contains("mean FLIP")
+        );
     }
 }

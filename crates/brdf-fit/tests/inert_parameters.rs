@@ -49,7 +49,7 @@ fn lobes_off_hold_their_companions_and_the_fit_converges() {
         }
     }
     assert!(held >= 1, "no lobe with companions was off: {p:?}");
-    let t = &report.summary.termination;
+    let t = &report.summary.termination.to_string();
     assert!(!t.contains("NOT converged"), "{t}");
 }
 
@@ -91,7 +91,7 @@ fn a_term_switched_off_by_a_bound_is_named() {
         .starts(2)
         .run(&s)
         .expect("fit");
-    let t = &report.summary.termination;
+    let t = &report.summary.termination.to_string();
     assert!(t.starts_with("converged to a degenerate fit"), "{t}");
     assert!(t.contains("specular") && t.contains("spec_tint"), "{t}");
 }

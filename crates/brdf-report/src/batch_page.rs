@@ -113,6 +113,7 @@ fn run_info(line: &Value) -> RunInfo {
             .or_else(|| fit["seconds"].as_f64())
             .unwrap_or(f64::NAN),
         termination: fit["termination"].as_str().unwrap_or("not recorded").into(),
+        ended: fit["termination"].as_str().and_then(|t| t.parse().ok()),
         iterations: fit["iterations"].as_u64().map(|n| n as usize),
     }
 }

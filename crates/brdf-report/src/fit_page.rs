@@ -12,6 +12,8 @@ use serde_json::Value;
 
 use crate::polar::{self, Slice};
 use crate::spheres::{self, SphereRow};
+use brdf_fit::Termination;
+
 use crate::verdict::{Verdict, verdict};
 use crate::{ReportError, coverage, select_plot, templates};
 
@@ -21,8 +23,12 @@ use crate::{ReportError, coverage, select_plot, templates};
 pub struct RunInfo {
     /// wall time of the fit
     pub seconds: f64,
-    /// how the solver ended
+    /// how the solver ended, in words
     pub termination: String,
+    /// how the solver ended (`None`: not recorded, or not a sentence a
+    /// fit prints)
+    #[serde(skip)]
+    pub ended: Option<Termination>,
     /// solver iterations
     pub iterations: Option<usize>,
 }
@@ -166,7 +172,7 @@ impl Analyser {
             }
             None => (None, spheres::fitted_rows(model, size)?),
         };
-        let termination = input.run.as_ref().map(|r| r.termination.as_str());
+        let termination = input.run.as_ref().and_then(|r| r.ended.as_ref());
         Ok(Analysis {
             samples: data.samples.len(),
             dense: dense_ref.is_some(),

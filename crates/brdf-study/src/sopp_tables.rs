@@ -162,7 +162,7 @@ fn material(rgl_dir: &Path, name: &str) -> Result<MaterialRows, StudyError> {
         cells.extend(cd.iter().chain(&cs).map(|v| Cell::Num(*v, 4)));
         cells.push(Cell::Num(rs, 4));
         cells.push(Cell::Num(sopp_error(data, m)?, 4));
-        cells.push(Cell::Text(r.termination.clone()));
+        cells.push(Cell::Text(r.termination.to_string()));
         rows.push(cells);
         Ok(())
     };

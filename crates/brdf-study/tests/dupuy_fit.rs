@@ -162,7 +162,7 @@ fn the_fit_is_exact_for_ggx_and_beckmann_data() {
         // D is off by tens of percent there).
         assert!(worst < 4e-2, "{ndf:?}: held-out relative error {worst}");
         assert!(
-            rep.summary.termination.contains("direct"),
+            rep.summary.termination.to_string().contains("direct"),
             "{}",
             rep.summary.termination
         );

@@ -348,7 +348,7 @@ fn real_curet_quarry_tile() {
         let mut m = build(name, &ModelConfig::default()).unwrap();
         let r = fit(m.as_mut(), &data, &FitOptions::default()).unwrap();
         assert!(
-            r.termination.starts_with("converged"),
+            r.termination.to_string().starts_with("converged"),
             "{name}: {}",
             r.termination
         );

@@ -175,7 +175,8 @@ fn write_report(
     let saved = report.saved_model(&brdf_fit::data_name(&args.data))?;
     let run = brdf_report::RunInfo {
         seconds,
-        termination: report.summary.termination.clone(),
+        termination: report.summary.termination.to_string(),
+        ended: Some(report.summary.termination.clone()),
         iterations: Some(report.summary.iterations),
     };
     let input = brdf_report::FitInput {

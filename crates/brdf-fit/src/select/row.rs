@@ -107,7 +107,7 @@ impl SelectRow {
             aic: ll + 2.0 * k as f64,
             bic: ll + k as f64 * n.ln(),
             seconds: r.seconds,
-            termination: r.termination.clone(),
+            termination: r.termination.to_string(),
             samples: data.len(),
             screened_out: false,
             coarse_error: None,

@@ -146,22 +146,19 @@ pub fn fit_model(
     Ok((model, summary))
 }
 
-// Moved to brdf-fit (the CLI's fit report names them too); the tables
-// of the study use them from here.
-pub use brdf_fit::report_text::undetermined;
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use brdf_core::Brdf;
     use brdf_core::nalgebra::Vector3;
+    use brdf_fit::report_text::undetermined;
 
     fn summary(params: &[(&str, f64, bool)]) -> FitSummary {
         let params = params
             .iter()
             .map(|(n, v, projected)| crate::test_support::param(n, *v, None, *projected))
             .collect();
-        crate::test_support::summary("", params)
+        crate::test_support::summary(brdf_fit::Termination::DirectSolve, params)
     }
 
     #[test]
