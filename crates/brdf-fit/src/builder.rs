@@ -14,7 +14,7 @@
 //! ```
 
 use brdf_core::{Parametric, SampleSet};
-use brdf_models::saved_model::{Provenance, RenderedError, SavedModel};
+use brdf_models::saved_model::{Provenance, RenderedError, SavedModel, SavedTermination};
 use brdf_models::{ModelConfig, ModelEntry};
 
 use crate::FitError;
@@ -456,6 +456,10 @@ impl FitReport {
                         delta_e: l.delta_e,
                     })
                     .collect()
+            }),
+            termination: Some(SavedTermination {
+                converged: self.summary.termination.is_converged(),
+                reason: self.summary.termination.to_string(),
             }),
         };
         Ok(SavedModel::capture(

@@ -12,7 +12,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use crate::fit_page::{Analyser, FitInput, RunInfo, render};
-use crate::{ReportError, spheres, templates};
+use crate::{ReportError, templates};
 
 /// What was written.
 #[derive(Clone, Debug)]
@@ -197,7 +197,7 @@ pub fn write_batch_report(
     // The judge's terms made once for the index, each material rendered
     // once for all its models; at the judge's size, so a page's image
     // errors are the ones `brdf batch` wrote for its line.
-    let mut analyser = Analyser::new(spheres::SIZE);
+    let mut analyser = Analyser::new(brdf_render::judge::REPORT_SIZE);
     for (k, ((data, model), line)) in fits.iter().enumerate() {
         progress(k, fits.len(), &format!("{data} x {model}"));
         let mut r = base_row(line);

@@ -251,7 +251,7 @@ pub fn material(spec: &str) -> String {
 
 /// The self-contained HTML page of a fit.
 pub fn fit_page(input: &FitInput) -> Result<String, ReportError> {
-    fit_page_with(input, &mut Analyser::new(spheres::SIZE))
+    fit_page_with(input, &mut Analyser::new(brdf_render::judge::REPORT_SIZE))
 }
 
 /// [`fit_page`] analysed by `analyser` (one holding the data's renders,
@@ -263,7 +263,11 @@ pub fn fit_page_with(input: &FitInput, analyser: &mut Analyser) -> Result<String
 
 /// [`fit_page`] written to `out`.
 pub fn write_fit_page(input: &FitInput, out: &Path) -> Result<(), ReportError> {
-    write_fit_page_with(input, out, &mut Analyser::new(spheres::SIZE))
+    write_fit_page_with(
+        input,
+        out,
+        &mut Analyser::new(brdf_render::judge::REPORT_SIZE),
+    )
 }
 
 /// [`fit_page_with`] written to `out`.

@@ -188,7 +188,7 @@ fn write_report(
     };
     let mut analyser = match judge {
         Some(judge) => brdf_report::Analyser::with_judge(&args.data, judge)?,
-        None => brdf_report::Analyser::new(brdf_report::spheres::SIZE),
+        None => brdf_report::Analyser::new(REPORT_SIZE),
     };
     crate::commands::report::fit_report(&input, path, args.quiet, &mut analyser)
 }
