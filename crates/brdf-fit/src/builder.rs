@@ -239,25 +239,7 @@ impl Fit {
     /// Filter `samples` (invalid values, the angle limit), build the model
     /// for them and fit it.
     pub fn run(&self, samples: &SampleSet) -> Result<FitReport, FitError> {
-        if !(self.limit_deg > 0.0 && self.limit_deg <= 90.0) {
-            return Err(FitError::OutOfRange {
-                option: "angle limit",
-                value: self.limit_deg,
-                range: "in (0, 90] degrees",
-            });
-        }
-        if self.options.starts == 0 {
-            return Err(FitError::ZeroCount {
-                option: "starts",
-                needs: "a fit needs at least one start",
-            });
-        }
-        if self.options.irls_max_iterations == 0 {
-            return Err(FitError::ZeroCount {
-                option: "irls_max_iterations",
-                needs: "a robust fit needs at least one reweighting",
-            });
-        }
+        self.check_options()?;
         let present = samples.len();
         let (data, invalid) = samples.filter_invalid(false);
         let (data, angle) = data.filter_angle_limit(self.limit_deg.to_radians());
@@ -287,15 +269,7 @@ impl Fit {
             ));
         }
         let options = self.options_for(&config, &mut notes)?;
-        let mut model = self.entry.build_from(&config, &data)?;
-        if !self.boxes.is_empty() {
-            let boxes: Vec<(&str, f64, f64)> = self
-                .boxes
-                .iter()
-                .map(|(p, l, u)| (p.as_str(), *l, *u))
-                .collect();
-            model = Box::new(BoxedModel::narrowed(model, &boxes)?);
-        }
+        let model = self.build_model(&config, &data)?;
         // Parameters whose box is one value (a lobe switched off, its
         // companions): held, not pushed onto a bound by the fit.
         let held: Vec<String> = model
@@ -317,20 +291,7 @@ impl Fit {
             notes.push(scale.describe());
         }
         check_finite(&summary, &samples.name)?;
-        for fp in &summary.parameters {
-            let value = brdf_io::error::short(fp.value);
-            if held.contains(&fp.name) {
-                notes.push(format!(
-                    "`{}` = {value} is held there (its box is that value)",
-                    fp.name
-                ));
-            } else if let Some(b) = &fp.at_bound {
-                notes.push(format!(
-                    "`{}` = {value} sits on the {b} bound of its box",
-                    fp.name
-                ));
-            }
-        }
+        notes.extend(bound_notes(&summary, &held));
         Ok(FitReport {
             model,
             config,
@@ -346,6 +307,48 @@ impl Fit {
             candidates: Vec::new(),
             pairs: data.pairs().clone(),
         })
+    }
+
+    /// Refuse options no fit can run with.
+    fn check_options(&self) -> Result<(), FitError> {
+        if !(self.limit_deg > 0.0 && self.limit_deg <= 90.0) {
+            return Err(FitError::OutOfRange {
+                option: "angle limit",
+                value: self.limit_deg,
+                range: "in (0, 90] degrees",
+            });
+        }
+        if self.options.starts == 0 {
+            return Err(FitError::ZeroCount {
+                option: "starts",
+                needs: "a fit needs at least one start",
+            });
+        }
+        if self.options.irls_max_iterations == 0 {
+            return Err(FitError::ZeroCount {
+                option: "irls_max_iterations",
+                needs: "a robust fit needs at least one reweighting",
+            });
+        }
+        Ok(())
+    }
+
+    /// The model for `data` in this fit's boxes.
+    fn build_model(
+        &self,
+        config: &ModelConfig,
+        data: &SampleSet,
+    ) -> Result<Box<dyn Parametric>, FitError> {
+        let model = self.entry.build_from(config, data)?;
+        if self.boxes.is_empty() {
+            return Ok(model);
+        }
+        let boxes: Vec<(&str, f64, f64)> = self
+            .boxes
+            .iter()
+            .map(|(p, l, u)| (p.as_str(), *l, *u))
+            .collect();
+        Ok(Box::new(BoxedModel::narrowed(model, &boxes)?))
     }
 
     /// The options of this fit for the model: the automatic solver of an
@@ -431,6 +434,27 @@ fn check_finite(summary: &FitSummary, data: &str) -> Result<(), FitError> {
         return bad(&format!("parameter `{}`", p.name), p.value);
     }
     Ok(())
+}
+
+/// The notes on parameters a fit left on a bound of their box, or held
+/// (`held`: their box is one value).
+fn bound_notes(summary: &FitSummary, held: &[String]) -> Vec<String> {
+    let mut notes = Vec::new();
+    for fp in &summary.parameters {
+        let value = brdf_io::error::short(fp.value);
+        if held.contains(&fp.name) {
+            notes.push(format!(
+                "`{}` = {value} is held there (its box is that value)",
+                fp.name
+            ));
+        } else if let Some(b) = &fp.at_bound {
+            notes.push(format!(
+                "`{}` = {value} sits on the {b} bound of its box",
+                fp.name
+            ));
+        }
+    }
+    notes
 }
 
 impl FitReport {
