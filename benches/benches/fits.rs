@@ -16,8 +16,9 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use brdf_benches::peers::{PeerProblem, ours, problem};
+use brdf_fit::FitOptions;
+use brdf_fit::pipeline::fit;
 use brdf_models::{ModelConfig, build};
-use brdf_study::pipeline::{FitOptions, fit};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn data_dir() -> Option<PathBuf> {

@@ -12,9 +12,9 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use brdf_core::Parametric;
-use brdf_fit::appearance::{FIT_SIZE, Judge, REPORT_SIZE, image_terms};
-use brdf_fit::image_objective::{ImageProblem, ImageTarget};
+use brdf_fit::image_objective::{ImageProblem, ImageTarget, image_terms};
 use brdf_models::Principled;
+use brdf_render::judge::{FIT_SIZE, Judge, REPORT_SIZE};
 use brdf_solve::LeastSquaresProblem;
 use criterion::{Criterion, criterion_group, criterion_main};
 

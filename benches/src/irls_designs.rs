@@ -24,7 +24,7 @@ pub struct Design {
 }
 
 /// Kurt's degree-7 polynomial design of one grey CUReT sample set, built as
-/// `brdf-fit`'s `pipeline::fit_all_linear` builds it (columns that are zero on every
+/// `brdf-fit`'s `linear::fit_all_linear` builds it (columns that are zero on every
 /// row dropped; rows scaled by `sqrt(w) cos_i`).
 pub fn polynomial_design(set: &SampleSet) -> Result<Design, PeerError> {
     let config = ModelConfig {

@@ -3,7 +3,7 @@
 //! data say why there are none, and `brdf select --by-image` ranks renderer
 //! models by their image error.
 
-use brdf_fit::appearance::COLOUR_PLANE_NOTE;
+use brdf_fit::judged::COLOUR_PLANE_NOTE;
 
 mod common;
 use common::{brdf, data_file};

@@ -173,7 +173,7 @@ fn the_default_sphere_is_the_judge_sphere() {
     let written = brdf_render::Image::read_exr(&out).unwrap();
     let mut m = build("lambert", &ModelConfig::default()).unwrap();
     m.set_params(&[0.5]).unwrap();
-    let size = brdf_render::compare::REPORT_SIZE;
+    let size = brdf_render::judge::REPORT_SIZE;
     let judge =
         brdf_render::shading::render_judge(m.as_ref(), &brdf_render::LightSet::studio(), size);
     assert_eq!((written.width, written.height), (size, size));

@@ -15,7 +15,7 @@
 //! `appearance: false` the conversion is the plain BRDF-space fit (Ngan's
 //! objective). The result is measured on the sampled pairs (Ngan's L2 and
 //! that L2 relative to the source's own, `0` = identical) and in the image
-//! ([`brdf_fit::appearance::Judge`] at `judge_size` pixels: HDR-FLIP per
+//! ([`brdf_render::Judge`] at `judge_size` pixels: HDR-FLIP per
 //! light set and the CIEDE2000 difference of the mean sphere colours).
 //!
 //! ## When a conversion is refused
@@ -54,12 +54,12 @@ use brdf_core::half_diff::HalfDiff;
 use brdf_core::{Brdf, DirPairs, Direction, Parametric, SampleSet};
 use std::sync::Arc;
 
-use brdf_fit::appearance::{
-    FIT_SIZE, ImageError, Judge, REPORT_SIZE, fit_for_appearance_with, image_terms,
-};
-use brdf_fit::image_objective::ImageTarget;
+use brdf_fit::appearance::fit_for_appearance_with;
+use brdf_fit::image_objective::{ImageTarget, image_terms};
 use brdf_fit::{Channels, Fit, FitOptions, Objective, pipeline};
 use brdf_models::ModelConfig;
+use brdf_render::ImageError;
+use brdf_render::judge::{FIT_SIZE, Judge, REPORT_SIZE};
 
 use crate::pbrt_mix::PbrtMix;
 use crate::{ExportError, Target};

@@ -26,9 +26,9 @@ use brdf_core::{Brdf, Direction, Parametric, SampleSet};
 use brdf_export::convert::{ConvertOptions, image_note};
 use brdf_export::file::{ExportJob, run};
 use brdf_export::{Target, WriteOptions};
-use brdf_fit::appearance::Judge;
 use brdf_models::ModelConfig;
 use brdf_models::saved_model::{Provenance, SavedModel};
+use brdf_render::Judge;
 
 const RGB: ModelConfig = ModelConfig {
     channels: 3,

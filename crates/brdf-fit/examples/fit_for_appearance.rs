@@ -5,7 +5,8 @@
 //! `BRDF_DATA=path/to/data cargo run --release -p brdf-fit --example fit_for_appearance [MODEL] [FILE]`
 
 use brdf_fit::Fit;
-use brdf_fit::appearance::{Judge, REPORT_SIZE, fit_for_appearance};
+use brdf_fit::appearance::fit_for_appearance;
+use brdf_render::judge::{Judge, REPORT_SIZE};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let Ok(root) = std::env::var("BRDF_DATA") else {

@@ -32,9 +32,9 @@ use brdf_core::progress::{Progress, Task};
 use rayon::prelude::*;
 use serde_json::Value;
 
-use crate::appearance::{Judge, REPORT_SIZE};
 use crate::table::{Cell, Table};
 use crate::{ChannelMode, FitError, FitRequest, Material, Metric, data_name};
+use brdf_render::judge::{Judge, REPORT_SIZE};
 
 /// The file of fits in a batch folder.
 pub const FITS: &str = "fits.jsonl";
@@ -57,7 +57,11 @@ impl Shard {
 
     /// Parse `I/N` (1-based, `1 <= I <= N`).
     pub fn parse(s: &str) -> Result<Shard, FitError> {
-        let bad = || FitError::Usage(format!("--shard {s}: expected I/N with 1 <= I <= N"));
+        let bad = || FitError::InvalidOption {
+            option: "--shard",
+            value: s.to_string(),
+            expected: "I/N with 1 <= I <= N",
+        };
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
         let i: usize = i.trim().parse().map_err(|_| bad())?;
         let n: usize = n.trim().parse().map_err(|_| bad())?;

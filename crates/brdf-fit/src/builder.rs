@@ -14,14 +14,17 @@
 //! ```
 
 use brdf_core::{Parametric, SampleSet};
-use brdf_models::saved_model::{Provenance, RenderedError, SavedModel};
+use brdf_models::saved_model::{Provenance, RenderedError, SavedModel, SavedTermination};
 use brdf_models::{ModelConfig, ModelEntry};
 
 use crate::FitError;
 use crate::boxed::BoxedModel;
 use crate::names::resolve;
-use crate::pipeline::{FitOptions, FitSummary, Objective, Solver, fit, fit_sopp};
+use crate::objective::Objective;
+use crate::options::{FitOptions, Solver};
+use crate::pipeline::{fit, fit_sopp};
 use crate::scaling::fit_scaled;
+use crate::summary::FitSummary;
 
 /// Which channels a fit uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -72,8 +75,8 @@ pub struct FitReport {
     /// bound of their box), for the report.
     pub notes: Vec<String>,
     /// Image errors against the data under the standard light sets, for
-    /// data that can be rendered ([`crate::appearance::fit_judged`]).
-    pub image_error: Option<crate::appearance::ImageError>,
+    /// data that can be rendered ([`crate::judged::fit_judged`]).
+    pub image_error: Option<brdf_render::ImageError>,
     /// Why there is no image error (scattered data), when there is none.
     pub image_note: Option<String>,
     /// The candidates of a fit chosen by image error.
@@ -134,7 +137,7 @@ impl Fit {
     }
 
     /// Whether the fit is in the image objective without a target yet (a
-    /// front end's `--metric image`: [`crate::appearance::fit_judged`]
+    /// front end's `--metric image`: [`crate::judged::fit_judged`]
     /// makes the target and its start).
     pub(crate) fn needs_image_target(&self) -> bool {
         self.options.objective == Objective::Image && self.options.image.is_none()
@@ -161,7 +164,7 @@ impl Fit {
     }
 
     /// Reweighting cap of a robust (IRLS) fit (default
-    /// [`IRLS_MAX_ITERATIONS`](crate::pipeline::IRLS_MAX_ITERATIONS); 50 is
+    /// [`IRLS_MAX_ITERATIONS`](crate::options::IRLS_MAX_ITERATIONS); 50 is
     /// MATLAB's `robustfit`'s, which with
     /// [`Fit::irls_stop_on_cycle`]`(false)` is MATLAB's loop); 0 is
     /// refused by [`Fit::run`].
@@ -236,22 +239,7 @@ impl Fit {
     /// Filter `samples` (invalid values, the angle limit), build the model
     /// for them and fit it.
     pub fn run(&self, samples: &SampleSet) -> Result<FitReport, FitError> {
-        if !(self.limit_deg > 0.0 && self.limit_deg <= 90.0) {
-            return Err(FitError::Usage(format!(
-                "angle limit {} must be in (0, 90] degrees",
-                self.limit_deg
-            )));
-        }
-        if self.options.starts == 0 {
-            return Err(FitError::Usage(
-                "starts = 0: a fit needs at least one start".into(),
-            ));
-        }
-        if self.options.irls_max_iterations == 0 {
-            return Err(FitError::Usage(
-                "irls_max_iterations = 0: a robust fit needs at least one reweighting".into(),
-            ));
-        }
+        self.check_options()?;
         let present = samples.len();
         let (data, invalid) = samples.filter_invalid(false);
         let (data, angle) = data.filter_angle_limit(self.limit_deg.to_radians());
@@ -260,13 +248,13 @@ impl Fit {
             Channels::Grey => data.mean_channel(),
         };
         if data.is_empty() {
-            return Err(FitError::Usage(format!(
-                "`{}`: no sample is left of {present} after dropping {} invalid and {} beyond {} deg",
-                samples.name,
-                invalid.dropped(),
-                angle.dropped(),
-                self.limit_deg
-            )));
+            return Err(FitError::NoSampleLeft {
+                data: samples.name.clone(),
+                present,
+                invalid: invalid.dropped(),
+                beyond: angle.dropped(),
+                limit_deg: self.limit_deg,
+            });
         }
         let config = ModelConfig {
             channels: data.channels(),
@@ -281,15 +269,7 @@ impl Fit {
             ));
         }
         let options = self.options_for(&config, &mut notes)?;
-        let mut model = self.entry.build_from(&config, &data)?;
-        if !self.boxes.is_empty() {
-            let boxes: Vec<(&str, f64, f64)> = self
-                .boxes
-                .iter()
-                .map(|(p, l, u)| (p.as_str(), *l, *u))
-                .collect();
-            model = Box::new(BoxedModel::narrowed(model, &boxes)?);
-        }
+        let model = self.build_model(&config, &data)?;
         // Parameters whose box is one value (a lobe switched off, its
         // companions): held, not pushed onto a bound by the fit.
         let held: Vec<String> = model
@@ -311,20 +291,7 @@ impl Fit {
             notes.push(scale.describe());
         }
         check_finite(&summary, &samples.name)?;
-        for fp in &summary.parameters {
-            let value = brdf_io::error::short(fp.value);
-            if held.contains(&fp.name) {
-                notes.push(format!(
-                    "`{}` = {value} is held there (its box is that value)",
-                    fp.name
-                ));
-            } else if let Some(b) = &fp.at_bound {
-                notes.push(format!(
-                    "`{}` = {value} sits on the {b} bound of its box",
-                    fp.name
-                ));
-            }
-        }
+        notes.extend(bound_notes(&summary, &held));
         Ok(FitReport {
             model,
             config,
@@ -342,6 +309,48 @@ impl Fit {
         })
     }
 
+    /// Refuse options no fit can run with.
+    fn check_options(&self) -> Result<(), FitError> {
+        if !(self.limit_deg > 0.0 && self.limit_deg <= 90.0) {
+            return Err(FitError::OutOfRange {
+                option: "angle limit",
+                value: self.limit_deg,
+                range: "in (0, 90] degrees",
+            });
+        }
+        if self.options.starts == 0 {
+            return Err(FitError::ZeroCount {
+                option: "starts",
+                needs: "a fit needs at least one start",
+            });
+        }
+        if self.options.irls_max_iterations == 0 {
+            return Err(FitError::ZeroCount {
+                option: "irls_max_iterations",
+                needs: "a robust fit needs at least one reweighting",
+            });
+        }
+        Ok(())
+    }
+
+    /// The model for `data` in this fit's boxes.
+    fn build_model(
+        &self,
+        config: &ModelConfig,
+        data: &SampleSet,
+    ) -> Result<Box<dyn Parametric>, FitError> {
+        let model = self.entry.build_from(config, data)?;
+        if self.boxes.is_empty() {
+            return Ok(model);
+        }
+        let boxes: Vec<(&str, f64, f64)> = self
+            .boxes
+            .iter()
+            .map(|(p, l, u)| (p.as_str(), *l, *u))
+            .collect();
+        Ok(Box::new(BoxedModel::narrowed(model, &boxes)?))
+    }
+
     /// The options of this fit for the model: the automatic solver of an
     /// all-linear model under the log objective (not a linear problem) is
     /// the bounded LM; the linear solvers asked for with it are an error.
@@ -355,10 +364,9 @@ impl Fit {
             return Ok(options);
         }
         match options.solver {
-            Solver::Ols | Solver::Irls(_) => Err(FitError::Usage(format!(
-                "--solver ols/irls solve linear least squares; the log metric is not linear in `{}`'s parameters: use --solver auto, sqp or lm",
-                self.entry.name
-            ))),
+            Solver::Ols | Solver::Irls(_) => Err(FitError::LinearSolverOnTransformed {
+                model: self.entry.name.to_string(),
+            }),
             Solver::Auto => {
                 let probe = (self.entry.build)(config)?;
                 if probe.param_specs().iter().all(|s| s.linear) {
@@ -428,6 +436,27 @@ fn check_finite(summary: &FitSummary, data: &str) -> Result<(), FitError> {
     Ok(())
 }
 
+/// The notes on parameters a fit left on a bound of their box, or held
+/// (`held`: their box is one value).
+fn bound_notes(summary: &FitSummary, held: &[String]) -> Vec<String> {
+    let mut notes = Vec::new();
+    for fp in &summary.parameters {
+        let value = brdf_io::error::short(fp.value);
+        if held.contains(&fp.name) {
+            notes.push(format!(
+                "`{}` = {value} is held there (its box is that value)",
+                fp.name
+            ));
+        } else if let Some(b) = &fp.at_bound {
+            notes.push(format!(
+                "`{}` = {value} sits on the {b} bound of its box",
+                fp.name
+            ));
+        }
+    }
+    notes
+}
+
 impl FitReport {
     /// The saved form of the fitted model, with structured provenance;
     /// `data` names the data set (relative to `BRDF_DATA` where possible).
@@ -451,6 +480,10 @@ impl FitReport {
                         delta_e: l.delta_e,
                     })
                     .collect()
+            }),
+            termination: Some(SavedTermination {
+                converged: self.summary.termination.is_converged(),
+                reason: self.summary.termination.to_string(),
             }),
         };
         Ok(SavedModel::capture(

@@ -9,7 +9,7 @@
 //! fit chosen by [`crate::appearance::fit_for_appearance`] is moved by
 //! compass search ([`brdf_solve::compass`], derivative-free, in the fit's
 //! own boxes: held parameters stay held) to lower the mean FLIP of its
-//! renders at the fitting size ([`crate::appearance::FIT_SIZE`]).
+//! renders at the fitting size ([`brdf_render::judge::FIT_SIZE`]).
 //!
 //! Measured (`brdf fit --model principled --polish` on the shared RGL
 //! files; brdf-render's judge at 128 px, sky / studio, before -> after):
@@ -30,14 +30,15 @@
 use std::sync::Arc;
 
 use brdf_core::SampleSet;
+use brdf_render::{ImageError, Judge};
 use brdf_solve::{CompassOptions, LmOptions, compass_search};
 
-use crate::appearance::{ImageError, Judge};
 use crate::image_objective::ImageTarget;
+use crate::termination::Termination;
 use crate::{Fit, FitError, FitReport, Objective};
 
 /// Evaluation budget of the search (each one renders the fit under every
-/// light set at [`crate::appearance::FIT_SIZE`] pixels, about 25 ms on
+/// light set at [`brdf_render::judge::FIT_SIZE`] pixels, about 25 ms on
 /// two cores). The default principled fits of the shared films converge
 /// within it (cc_iris_purple_gem, the longest, in 196 evaluations; with
 /// 150 it stopped at the budget at the same mean FLIP to four digits).
@@ -114,11 +115,10 @@ pub(crate) fn polish(
         judge.size()
     );
     out.summary.iterations = found.evaluations;
-    out.summary.termination = format!(
-        "{}; mean FLIP {:.4} from {:.4}",
-        found.termination.describe(),
-        found.value,
-        found.start_value
-    );
+    out.summary.termination = Termination::FlipSearch {
+        end: found.termination,
+        mean_flip: found.value,
+        from: found.start_value,
+    };
     Ok(Some(out))
 }

@@ -6,9 +6,11 @@
 
 use brdf_models::ModelEntry;
 
-use crate::appearance::{
-    COLOUR_PLANE_NOTE, FLIP_WARN, ImageError, RENDERER_MODELS, is_single_colour_model,
-};
+use brdf_models::ColourStructure;
+use brdf_render::ImageError;
+use brdf_render::image_error::FLIP_WARN;
+
+use crate::judged::COLOUR_PLANE_NOTE;
 
 /// How a hint starts, so a reader (or a test) finds it among the notes.
 pub const HINT: &str = "hint: ";
@@ -29,12 +31,12 @@ pub fn hints(spec: &str, model: &ModelEntry, default_fit: bool, image: &ImageErr
         .colour_plane
         .as_ref()
         .is_some_and(|c| c.outside > COLOUR_PLANE_NOTE);
-    if off_plane && is_single_colour_model(model.name) {
+    if off_plane && model.colour == ColourStructure::Single {
         out.push(format!(
             "{HINT}`brdf fit --data {data} --model {SECOND_COLOUR_MODEL}` renders closer: its specular colour is a second colour, off the plane of white and the base colour"
         ));
     }
-    let default_fit = default_fit && RENDERER_MODELS.contains(&model.name);
+    let default_fit = default_fit && brdf_models::by_image_models().contains(&model.name);
     let high = image.lights.iter().any(|l| l.flip > FLIP_WARN);
     if high && default_fit {
         out.push(format!(

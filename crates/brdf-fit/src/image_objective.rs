@@ -38,6 +38,8 @@
 //! derivatives.
 
 use brdf_core::{Brdf, DirPairs, Parametric};
+use brdf_render::ShadingPoints;
+use brdf_render::judge::standard_lights;
 use brdf_solve::{LeastSquaresProblem, ModelProblem};
 use rayon::prelude::*;
 
@@ -115,7 +117,7 @@ impl ImageTerms {
     ) -> Result<Self, FitError> {
         let n = pairs.len();
         if pixel.len() != n || weight_channels == 0 || weights.len() != weight_channels * n {
-            return Err(FitError::Usage(format!(
+            return Err(FitError::ImageTerms(format!(
                 "image terms: {n} pairs, {} pixel indices and {} weights in {weight_channels} channels; give one pixel and one weight per channel for every pair",
                 pixel.len(),
                 weights.len()
@@ -274,7 +276,7 @@ fn offsets(pixel: &[usize], np: usize) -> Result<Vec<usize>, FitError> {
     let mut off = vec![0; np + 1];
     for (k, &p) in pixel.iter().enumerate() {
         if p >= np || (k > 0 && p < pixel[k - 1]) {
-            return Err(FitError::Usage(format!(
+            return Err(FitError::ImageTerms(format!(
                 "image terms: term {k} has pixel {p}; pixels must be non-decreasing and below {np}"
             )));
         }
@@ -338,7 +340,7 @@ impl<'a> ImageProblem<'a> {
         let nc = model.channels();
         let np = terms.pixels();
         if reference.len() != nc * np || exposures.len() != terms.images() {
-            return Err(FitError::Usage(format!(
+            return Err(FitError::ImageTerms(format!(
                 "image objective: {} reference values for {nc} channels x {np} pixels, {} exposures for {} images",
                 reference.len(),
                 exposures.len(),
@@ -603,39 +605,28 @@ impl ImageTarget {
     }
 }
 
-/// The fit in the image objective: the bounded solver on all parameters
-/// from the target's start (see [`crate::pipeline`]).
-pub(crate) fn fit_image(
-    model: &dyn Parametric,
-    opts: &crate::FitOptions,
-    full: &brdf_solve::Constraints,
-) -> Result<crate::pipeline::NonlinearFit, FitError> {
-    let target = opts.image.as_ref().ok_or_else(|| {
-        FitError::Usage(
-            "the image objective needs data that can be evaluated at any direction pair (RGL `.bsdf`, MERL `.binary`): use --metric cube-root or log for scattered data".into(),
-        )
-    })?;
-    if target.start.len() != model.param_specs().len() {
-        return Err(FitError::Usage(format!(
-            "image objective: a start of {} parameters for `{}` with {}",
-            target.start.len(),
-            model.name(),
-            model.param_specs().len()
-        )));
+/// The shading terms of the standard light sets at `size` pixels (no
+/// background: only the sphere is fitted), as image-objective terms.
+pub fn image_terms(size: usize) -> Result<ImageTerms, FitError> {
+    let mut pairs = DirPairs::with_capacity(0);
+    let mut weight_rows: [Vec<f64>; 3] = Default::default();
+    let mut pixel = Vec::new();
+    let mut image_of_pixel = Vec::new();
+    for (i, light) in standard_lights().iter().enumerate() {
+        let sp = ShadingPoints::judge(light, size);
+        for px in &sp.pixels {
+            let q = image_of_pixel.len();
+            image_of_pixel.push(i);
+            for k in px.start..px.end {
+                // The renderers' order, as ShadingPoints::render.
+                pairs.push(&px.v_local, &sp.l_local[k]);
+                for (c, row) in weight_rows.iter_mut().enumerate() {
+                    row.push(sp.weight[k][c]);
+                }
+                pixel.push(q);
+            }
+        }
     }
-    let problem = ImageProblem::new(model, &target.terms, &target.reference, &target.exposures)?;
-    let mut p0 = target.start.clone();
-    full.clamp(&mut p0);
-    let lm = brdf_solve::LmOptions {
-        max_iterations: opts.lm.max_iterations.min(IMAGE_MAX_ITERATIONS),
-        ..opts.lm.clone()
-    };
-    let rep = brdf_solve::bounded_least_squares(&problem, &p0, full, &lm)?;
-    let how = format!(
-        "bounded LM on all parameters in the image objective ({} pixels of {} images, {} shading terms; at most {IMAGE_MAX_ITERATIONS} iterations), from the best BRDF-space fit",
-        target.terms.pixels(),
-        target.terms.images(),
-        target.terms.len()
-    );
-    Ok((rep.params.clone(), rep, (1, 1, 1), how))
+    let [r, g, b] = weight_rows;
+    ImageTerms::new(pairs, [r, g, b].concat(), 3, &pixel, image_of_pixel)
 }

@@ -33,13 +33,23 @@
 //!
 //! | module | what |
 //! | --- | --- |
-//! | [`appearance`] | image errors of a fit (FLIP, PSNR, CIEDE2000 under the standard lights) and the fit chosen by them |
+//! | [`appearance`] | the fit chosen by its image errors (candidates, lobes, refinement) |
+//! | [`judged`] | fits and selections as front ends run them, judged at the report size |
+//! | [`select_by_image`] | renderer models chosen among by image error |
+//! | [`isotropy`] | whether data are isotropic |
 //! | [`builder`] | [`Fit`] (the builder) and [`FitReport`] |
-//! | [`pipeline`] | objectives, solvers, the automatic fit, Sopp's two stages |
-//! | [`fit_linear`] | all-linear models by (non-negative) least squares |
+//! | [`pipeline`] | the automatic fit's dispatch, Sopp's two stages |
+//! | [`objective`] | the objectives: row scalings, transforms, their errors |
+//! | [`transformed_rows`] | a transformed objective's residual as a row transform |
+//! | [`options`] | [`Solver`] and [`FitOptions`] |
+//! | [`param_box`] | a model's parameter box as solver constraints |
+//! | [`starts`] | multi-start boxes, coarse and screened starts, subsamples |
+//! | [`linear`] | all-linear models by (non-negative) least squares or IRLS |
+//! | [`nonlinear`] | the multi-start non-linear fit and its polish |
+//! | [`summary`] | [`FitSummary`]: what a fit reports |
+//! | [`termination`] | [`Termination`]: why a fit stopped, typed, in today's words |
 //! | [`flip_polish`] | on request, an appearance fit's last step: compass search on the judge's mean FLIP |
 //! | [`image_objective`] | the image objective: residuals of tone-mapped sphere pixels |
-//! | [`reference`](mod@reference) | the data's judge render made once, and fits' image errors against it |
 //! | [`boxed`] | [`BoxedModel`]: a model fitted in other parameter boxes than its own |
 //! | [`scaling`] | internal scaling of extreme data and weights (scale invariance) |
 //! | [`select`] | the smallest adequate model, AIC/BIC, the error-vs-size curve |
@@ -55,8 +65,8 @@
 //! ## Layering
 //!
 //! `brdf-fit` sits on `brdf-core`, `brdf-models`, `brdf-solve` and
-//! `brdf-io` (and on `brdf-render` only for the number format of its report
-//! tables). `brdf-export` (conversion by fitting), `brdf-study` (the
+//! `brdf-io` (and on `brdf-render` for the judge of image errors and the number
+//! format of its report tables). `brdf-export` (conversion by fitting), `brdf-study` (the
 //! reproduction), the `brdf` command (`brdf-cli`) and the Python module
 //! (`brdf-py`) build on it.
 
@@ -65,30 +75,43 @@ pub mod batch;
 pub mod boxed;
 pub mod builder;
 pub mod error;
-pub mod fit_linear;
 pub mod flip_polish;
 pub mod hints;
 pub mod image_objective;
+pub mod isotropy;
+pub mod judged;
+pub mod linear;
 pub mod linear_box;
 pub mod material;
 pub mod names;
+pub mod nonlinear;
+pub mod objective;
+pub mod options;
+pub mod param_box;
 pub mod pipeline;
-pub mod reference;
 pub mod report_json;
 pub mod report_text;
 pub mod request;
 pub mod resample;
 pub mod scaling;
 pub mod select;
+pub mod select_by_image;
 pub mod select_request;
+pub mod starts;
+pub mod summary;
 pub mod table;
+pub mod termination;
+pub mod transformed_rows;
 
 pub use boxed::BoxedModel;
 pub use builder::{Channels, Fit, FitReport};
 pub use error::FitError;
 pub use material::Material;
 pub use names::resolve;
-pub use pipeline::{FitOptions, FitSummary, FittedParam, Objective, Solver};
+pub use objective::Objective;
+pub use options::{FitOptions, Solver};
 pub use report_json::{data_name, fit_json, select_by_image_json, select_json};
 pub use request::{ChannelMode, FitOutcome, FitRequest, Metric};
 pub use select_request::{SelectBy, SelectOutcome, SelectRequest};
+pub use summary::{FitSummary, FittedParam};
+pub use termination::Termination;

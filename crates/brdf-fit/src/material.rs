@@ -11,7 +11,7 @@ use std::sync::OnceLock;
 use brdf_core::{Brdf, SampleSet};
 
 use crate::FitError;
-use crate::appearance::{Judge, REPORT_SIZE};
+use brdf_render::judge::{Judge, REPORT_SIZE};
 
 /// A data set loaded once for fits, selection, reports and batches.
 pub struct Material {
@@ -29,9 +29,9 @@ impl Material {
     pub fn load(spec: &str) -> Result<Self, FitError> {
         let (path, _) = brdf_io::load::resolve_spec(spec)?;
         if path.is_dir() {
-            return Err(FitError::Usage(format!(
-                "`{spec}` is a folder: fit one file, or `brdf batch --data {spec}`"
-            )));
+            return Err(FitError::FolderGiven {
+                spec: spec.to_string(),
+            });
         }
         Ok(Material {
             spec: spec.to_string(),

@@ -53,16 +53,8 @@ pub fn resolve(name: &str) -> Result<ModelEntry, FitError> {
         .take(3)
         .map(|(_, n)| *n)
         .collect();
-    Err(FitError::Usage(if suggest.is_empty() {
-        format!("no model `{name}`; `brdf models` lists them")
-    } else {
-        format!(
-            "no model `{name}`; did you mean {}?",
-            suggest
-                .iter()
-                .map(|s| format!("`{s}`"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )
-    }))
+    Err(FitError::UnknownModel {
+        name: name.to_string(),
+        suggestions: suggest.iter().map(|s| s.to_string()).collect(),
+    })
 }

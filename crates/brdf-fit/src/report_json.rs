@@ -4,18 +4,20 @@
 //! outputs, so every front end names fits and data the same way.
 
 use brdf_core::SampleSet;
+use brdf_render::ImageError;
 
-use crate::appearance::{ImageChoice, ImageError, SCATTERED_NOTE};
+use crate::judged::SCATTERED_NOTE;
 use crate::select::{Search, SelectRow};
+use crate::select_by_image::ImageChoice;
 use crate::{FitError, FitReport};
 
 /// The JSON report of the fits of one data set (one per channel set): the
 /// fit summaries, and what the first fit's filters dropped; `data` is the
 /// data set as loaded (its negative values are counted, they are kept).
 pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::Value, FitError> {
-    let first = reports
-        .first()
-        .ok_or_else(|| FitError::Usage(format!("`{}`: no fit to report", data.name)))?;
+    let first = reports.first().ok_or_else(|| FitError::NoFit {
+        data: data.name.clone(),
+    })?;
     Ok(serde_json::json!({
         "fits": reports.iter().map(|r| &r.summary).collect::<Vec<_>>(),
         "notes": reports.iter().map(|r| &r.notes).collect::<Vec<_>>(),
@@ -33,7 +35,7 @@ pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::V
 /// The JSON report of a selection (`brdf select --json`): every
 /// candidate's row, the choice's, and the choice's image errors (`null`
 /// on scattered data, with the note why; `image` as
-/// [`crate::appearance::select_judged`] returns it).
+/// [`crate::judged::select_judged`] returns it).
 pub fn select_json(
     data: &SampleSet,
     tolerance: f64,
@@ -42,9 +44,9 @@ pub fn select_json(
     choice: usize,
     image: Option<&ImageError>,
 ) -> Result<serde_json::Value, FitError> {
-    let chosen = rows
-        .get(choice)
-        .ok_or_else(|| FitError::Usage(format!("`{}`: no candidate chosen", data.name)))?;
+    let chosen = rows.get(choice).ok_or_else(|| FitError::NoChoice {
+        data: data.name.clone(),
+    })?;
     Ok(serde_json::json!({
         "data": data.name,
         "samples": data.len(),
@@ -62,7 +64,7 @@ pub fn select_json(
 
 /// The JSON report of a selection by image error (`brdf select --by-image
 /// --json`): the data set's name, the choice's row and every row, in the
-/// order [`crate::appearance::select_by_image`] returns them. One function
+/// order [`crate::select_by_image::select_by_image`] returns them. One function
 /// so that the command and the Python module print the same shape; a
 /// `choice` outside `rows` is an error naming the data rather than a panic.
 pub fn select_by_image_json(
@@ -70,9 +72,9 @@ pub fn select_by_image_json(
     rows: &[ImageChoice],
     choice: usize,
 ) -> Result<serde_json::Value, FitError> {
-    let chosen = rows
-        .get(choice)
-        .ok_or_else(|| FitError::Usage(format!("`{data_name}`: no candidate chosen")))?;
+    let chosen = rows.get(choice).ok_or_else(|| FitError::NoChoice {
+        data: data_name.to_string(),
+    })?;
     Ok(serde_json::json!({ "data": data_name, "choice": chosen, "candidates": rows }))
 }
 

@@ -5,8 +5,8 @@
 
 use std::fmt::Write as _;
 
-use crate::appearance::ImageError;
 use crate::{FitReport, FitSummary};
+use brdf_render::ImageError;
 
 /// The readable report of one fit (several lines).
 pub fn text(rep: &FitReport) -> String {

@@ -23,8 +23,8 @@ use brdf_core::SampleSet;
 use brdf_core::progress::{Progress, Silent};
 use brdf_models::{ModelConfig, ModelEntry};
 
-use crate::appearance::{self, SCATTERED_NOTE};
 use crate::hints::hints;
+use crate::judged::{self, SCATTERED_NOTE};
 use crate::{Channels, Fit, FitError, FitOptions, FitReport, Material, Objective, Solver};
 
 /// What a fit minimises, as a front end's `--metric` names it.
@@ -65,10 +65,7 @@ impl Metric {
     /// the candidates' first, for appearance).
     pub fn resolve(self, model: &ModelEntry, renderable: bool) -> (bool, Objective) {
         match self {
-            Metric::Auto => (
-                appearance::is_renderer_model(model.name) && renderable,
-                Objective::Ngan,
-            ),
+            Metric::Auto => (model.renderer && renderable, Objective::Ngan),
             Metric::Appearance => (true, Objective::Ngan),
             Metric::Objective(o) => (false, o),
         }
@@ -95,9 +92,11 @@ impl ChannelMode {
             "rgb" => Ok(ChannelMode::Rgb),
             "grey" => Ok(ChannelMode::Grey),
             "per-channel" => Ok(ChannelMode::PerChannel),
-            other => Err(FitError::Usage(format!(
-                "channels `{other}`: expected grey, rgb or per-channel"
-            ))),
+            other => Err(FitError::InvalidOption {
+                option: "channels",
+                value: other.to_string(),
+                expected: "grey, rgb or per-channel",
+            }),
         }
     }
 
@@ -161,10 +160,9 @@ impl FitOutcome {
     pub fn report(&self) -> Result<&FitReport, FitError> {
         match self.reports.as_slice() {
             [one] => Ok(one),
-            _ => Err(FitError::Usage(format!(
-                "{} models were fitted (one per channel): saving or reporting needs one model; fit with channels rgb or grey",
-                self.reports.len()
-            ))),
+            _ => Err(FitError::NeedsOneModel {
+                models: self.reports.len(),
+            }),
         }
     }
 
@@ -173,7 +171,7 @@ impl FitOutcome {
         self.report()?;
         self.reports
             .pop()
-            .ok_or(FitError::Usage("the fit gave no model".into()))
+            .ok_or(FitError::NeedsOneModel { models: 0 })
     }
 }
 
@@ -277,16 +275,13 @@ impl<'a> FitRequest<'a> {
             }
         };
         let (report, judge) = rayon::join(
-            || appearance::fit_rendered(fit, set, data, for_appearance),
+            || judged::fit_rendered(fit, set, data, for_appearance),
             || self.material.judge(),
         );
-        let judge = judge?.ok_or_else(|| {
-            FitError::Usage(format!(
-                "`{}`: the data cannot be rendered",
-                self.material.name()
-            ))
+        let judge = judge?.ok_or_else(|| FitError::NotRenderable {
+            data: self.material.name().to_string(),
         })?;
-        let mut report = appearance::with_image_errors(report?, judge)?;
+        let mut report = judged::with_image_errors(report?, judge)?;
         if let Some(image) = &report.image_error {
             let advice = hints(
                 self.material.spec(),
@@ -313,11 +308,10 @@ impl<'a> FitRequest<'a> {
     }
 
     fn polish_refused(&self) -> FitError {
-        FitError::Usage(format!(
-            "polish refines a fit for appearance, which `{}` with metric {} on {} is not: use a renderer model (principled, gltf, gltf-ext, ggx) or metric appearance on RGL `.bsdf` or MERL `.binary` data",
-            self.model.name,
-            self.metric.name(),
-            self.material.spec()
-        ))
+        FitError::PolishNeedsAppearance {
+            model: self.model.name.to_string(),
+            metric: self.metric.name(),
+            data: self.material.spec().to_string(),
+        }
     }
 }

@@ -33,9 +33,11 @@ impl std::str::FromStr for Target {
             "merl" => Ok(Target::Merl),
             "sopp-grid" => Ok(Target::SoppGrid),
             "csv" => Ok(Target::Csv),
-            other => Err(FitError::Usage(format!(
-                "--to {other}: expected merl, sopp-grid or csv"
-            ))),
+            other => Err(FitError::InvalidOption {
+                option: "--to",
+                value: other.to_string(),
+                expected: "merl, sopp-grid or csv",
+            }),
         }
     }
 }
@@ -45,9 +47,7 @@ impl std::str::FromStr for Target {
 pub fn resample(from: &str, to: Target, out: &Path) -> Result<Option<String>, FitError> {
     let from_model = from.ends_with(".json");
     let dense: Option<Box<dyn Brdf>> = if from_model {
-        let m = SavedModel::load(Path::new(from))
-            .map_err(|e| FitError::Usage(e.to_string()))?
-            .build()?;
+        let m = SavedModel::load(Path::new(from))?.build()?;
         Some(Box::new(ModelBrdf(m)))
     } else {
         brdf_io::load_dense(from)?
@@ -81,9 +81,9 @@ pub fn resample(from: &str, to: Target, out: &Path) -> Result<Option<String>, Fi
         }
         (Target::Csv, _) => csv_samples::write(out, &brdf_io::load(from)?)?,
         (Target::Merl | Target::SoppGrid, None) => {
-            return Err(FitError::Usage(format!(
-                "{from}: scattered data cannot be resampled onto a grid without an interpolation; use --to csv, or fit a model and resample the saved model"
-            )));
+            return Err(FitError::ScatteredToGrid {
+                from: from.to_string(),
+            });
         }
     }
     Ok(None)

@@ -27,7 +27,8 @@ use brdf_core::{DirPairs, ParamSpec, Parametric, SampleSet};
 
 use crate::FitError;
 use crate::boxed::BoxedModel;
-use crate::pipeline::{FitSummary, Objective};
+use crate::objective::Objective;
+use crate::summary::FitSummary;
 
 /// Binary exponents within this bound are left unscaled.
 const UNSCALED_EXPONENT: i32 = 16;

@@ -7,8 +7,10 @@
 use brdf_core::SampleSet;
 use brdf_core::progress::{Progress, Silent};
 
-use crate::appearance::{self, ImageChoice, ImageError, RENDERER_MODELS};
+use brdf_render::ImageError;
+
 use crate::select::{Among, Search, SelectRow};
+use crate::select_by_image::{ImageChoice, select_by_image};
 use crate::{FitError, FitOptions, Material};
 
 /// How the choice among candidates is made.
@@ -38,7 +40,7 @@ pub struct SelectRequest<'a> {
     /// Fit the mean of the channels.
     pub grey: bool,
     /// The candidates admitted (by name and size); by image, the models
-    /// (empty: [`RENDERER_MODELS`]).
+    /// (empty: [`brdf_models::by_image_models`]).
     pub among: Among,
     /// Coarse to fine, or every candidate on all samples (by L2).
     pub search: Search,
@@ -125,9 +127,11 @@ impl<'a> SelectRequest<'a> {
 
     fn by_l2(&self) -> Result<SelectOutcome, FitError> {
         if self.polish && self.by == SelectBy::L2 {
-            return Err(FitError::Usage(
-                "polish refines fits for appearance: use it with a selection by image (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),
-            ));
+            return Err(FitError::InvalidOption {
+                option: "polish",
+                value: "on".into(),
+                expected: "a selection by image: it refines fits for appearance (renderer models on RGL `.bsdf` or MERL `.binary` data)",
+            });
         }
         let data = crate::select::prepare(self.material.samples(), self.limit_deg, self.grey)?;
         let n = crate::select::candidates(data.channels()).len();
@@ -163,14 +167,13 @@ impl<'a> SelectRequest<'a> {
     }
 
     fn by_image(&self) -> Result<SelectOutcome, FitError> {
-        let Some(dense) = self.material.dense() else {
-            return Err(FitError::Usage(format!(
-                "select by image: `{}` holds scattered samples that cannot be rendered; use RGL `.bsdf` or MERL `.binary` data, or select by L2",
-                self.material.spec()
-            )));
-        };
+        if !self.material.is_renderable() {
+            return Err(FitError::NotRenderable {
+                data: self.material.spec().to_string(),
+            });
+        }
         let names: Vec<&str> = if self.among.models.is_empty() {
-            RENDERER_MODELS.to_vec()
+            brdf_models::by_image_models()
         } else {
             self.among.models.iter().map(String::as_str).collect()
         };
@@ -180,8 +183,7 @@ impl<'a> SelectRequest<'a> {
             names.len(),
             self.material.name()
         ));
-        let (rows, choice) =
-            appearance::select_by_image(&names, self.material.samples(), dense, self.polish)?;
+        let (rows, choice) = select_by_image(&names, self.material, self.polish, task.as_ref())?;
         task.finish();
         Ok(SelectOutcome::Image {
             data: self.material.samples().name.clone(),

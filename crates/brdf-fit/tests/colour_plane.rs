@@ -1,4 +1,4 @@
-//! The colour plane of the image errors (`appearance::DataColourPlane`):
+//! The colour plane of the image errors (`brdf_render::image_error::DataColourPlane`):
 //! under the white studio light every render of a single-colour model
 //! (`principled`, `gltf`) keeps its colours in one plane of white and its
 //! base colour, whatever its parameters, so the bound is 0 on their own
@@ -7,9 +7,8 @@
 //! the single-colour models.
 
 use brdf_core::Parametric;
-use brdf_fit::appearance::{
-    COLOUR_PLANE_NOTE, ImageError, Judge, colour_plane_note, is_single_colour_model,
-};
+use brdf_fit::judged::{COLOUR_PLANE_NOTE, colour_plane_note};
+use brdf_render::{ImageError, Judge};
 
 mod common;
 use common::rgb_model;
@@ -103,7 +102,8 @@ fn a_second_colour_leaves_the_plane_and_only_single_colour_models_get_the_note()
     let e = own_errors(m.as_ref());
     let c = e.colour_plane.as_ref().expect("plane");
     assert!(c.outside > COLOUR_PLANE_NOTE, "{c:?}");
-    assert!(!is_single_colour_model("gltf-ext"));
+    let colour = brdf_models::entry("gltf-ext").map(|e| e.colour);
+    assert_eq!(colour, Some(brdf_models::ColourStructure::PerLobe));
     assert!(colour_plane_note("gltf-ext", &e).is_none());
     // The same data fitted by principled: the note, with the figure.
     let note = colour_plane_note("principled", &e).expect("note");

@@ -39,7 +39,10 @@ fn iterations_are_the_sum_of_the_channels() {
     assert!(k.iter().all(|&n| n > 1), "{k:?}");
     assert_eq!(r.summary.iterations, k.iter().sum::<usize>());
     assert!(
-        r.summary.termination.starts_with("IRLS converged"),
+        r.summary
+            .termination
+            .to_string()
+            .starts_with("IRLS converged"),
         "{}",
         r.summary.termination
     );
@@ -61,7 +64,7 @@ fn a_capped_channel_makes_the_fit_not_converged() {
         );
     }
     assert_eq!(
-        r.summary.termination,
+        r.summary.termination.to_string(),
         "IRLS NOT converged: iteration cap reached",
         "{k:?} capped at {}",
         slowest - 1

@@ -10,7 +10,7 @@
 //! `k = ceil(N / COARSE_SAMPLES)`).
 
 use brdf_core::{Direction, SampleSet};
-use brdf_fit::pipeline::FitOptions;
+use brdf_fit::FitOptions;
 use brdf_fit::select::{Among, COARSE_SAMPLES, Search, SelectRow, select_with};
 
 use brdf_models::ModelConfig;

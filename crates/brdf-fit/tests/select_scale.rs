@@ -8,7 +8,7 @@
 //! count alone.
 
 use brdf_core::{Direction, SampleSet};
-use brdf_fit::pipeline::FitOptions;
+use brdf_fit::FitOptions;
 use brdf_fit::select::{Among, Search, SelectRow, select_with};
 
 /// Ward's model (`kd = 0.2`, `ks = 0.5`, `alpha = 0.15`, grey) at 300 pairs

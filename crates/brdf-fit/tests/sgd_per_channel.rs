@@ -7,7 +7,8 @@
 //! the RGB model's per-pair formula.
 
 use brdf_core::{Direction, Parametric, SampleSet};
-use brdf_fit::pipeline::{FitOptions, fit};
+use brdf_fit::FitOptions;
+use brdf_fit::pipeline::fit;
 use brdf_models::Sgd;
 use brdf_models::channel_slice::{ChannelSlice, channel_blocks};
 

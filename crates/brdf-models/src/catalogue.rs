@@ -6,9 +6,12 @@
 //! (`from_samples`: its normal distribution is extracted from their
 //! back-scattering values before the fit solves its free parameters).
 
+use std::sync::OnceLock;
+
 use brdf_core::{DirPairs, ParamError, Parametric, SampleSet};
 
 use crate::Lambert;
+use crate::entry_facts::{ColourStructure, LinearSolver, OptionalLobe};
 
 /// Structural options of a model (not parameters: they fix the parameter
 /// vector's length).
@@ -92,6 +95,21 @@ pub struct ModelEntry {
     /// ([`ChannelSlice`](crate::channel_slice::ChannelSlice)) evaluates
     /// every channel per direction pair. `None`: the slice evaluates.
     pub channel_model: Option<ChannelModel>,
+    /// Whether renderers offer the model (principled, glTF, the GGX
+    /// family): front ends fit it for appearance by default.
+    pub renderer: bool,
+    /// The model's place among those selection by image error (`brdf
+    /// select --by-image`) chooses among, one per kind of renderer model
+    /// (the order of its rows; [`by_image_models`]); `None`: not among
+    /// them.
+    pub by_image_rank: Option<u8>,
+    /// How the model colours its lobes.
+    pub colour: ColourStructure,
+    /// Lobes the model may switch off, in the order a fit tries them.
+    pub optional_lobes: &'static [OptionalLobe],
+    /// How the model is solved by default when all its parameters are
+    /// linear.
+    pub linear_solver: LinearSolver,
 }
 
 impl ModelEntry {
@@ -166,8 +184,39 @@ impl std::fmt::Debug for ModelEntry {
     }
 }
 
-/// Every model compiled into this build, in a stable order.
-pub fn catalogue() -> Vec<ModelEntry> {
+/// Principled's optional lobes, in the order a fit tries them.
+#[cfg(feature = "renderer")]
+const PRINCIPLED_LOBES: &[OptionalLobe] = &[
+    OptionalLobe {
+        name: "sheen",
+        companions: &["sheen_tint"],
+    },
+    OptionalLobe {
+        name: "clearcoat",
+        companions: &["clearcoat_gloss"],
+    },
+    OptionalLobe {
+        name: "anisotropic",
+        companions: &[],
+    },
+];
+
+/// The extended glTF model's optional lobe.
+#[cfg(feature = "renderer")]
+const GLTF_EXT_LOBES: &[OptionalLobe] = &[OptionalLobe {
+    name: "clearcoat",
+    companions: &["clearcoat_roughness"],
+}];
+
+/// Every model compiled into this build, in a stable order: the table is
+/// built once and every lookup reads it.
+pub fn catalogue() -> &'static [ModelEntry] {
+    static CATALOGUE: OnceLock<Vec<ModelEntry>> = OnceLock::new();
+    CATALOGUE.get_or_init(entries)
+}
+
+/// The catalogue's entries ([`catalogue`] keeps them).
+fn entries() -> Vec<ModelEntry> {
     #[allow(unused_mut)]
     let mut v = vec![ModelEntry {
         name: Lambert::NAME,
@@ -181,6 +230,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
         starts: None,
         polish_factor: 1,
         channel_model: None,
+        renderer: false,
+        by_image_rank: None,
+        colour: ColourStructure::PerLobe,
+        optional_lobes: &[],
+        linear_solver: LinearSolver::Direct,
     }];
     macro_rules! lobe_model {
         ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
@@ -196,6 +250,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
                 starts: None,
                 polish_factor: 1,
                 channel_model: None,
+                renderer: matches!($family, "renderer"),
+                by_image_rank: None,
+                colour: ColourStructure::PerLobe,
+                optional_lobes: &[],
+                linear_solver: LinearSolver::Direct,
             })
         };
     }
@@ -291,6 +350,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: <crate::sgd::SgdShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -304,6 +368,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: Some(crate::sgd::suggested_starts),
             polish_factor: 10,
             channel_model: Some(|| Ok(Box::new(crate::sgd::channel::SgdChannel::with_defaults()?))),
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: <crate::low::LowAbcShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -317,6 +386,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: <crate::low::LowSmoothShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -330,6 +404,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: crate::dupuy::NAME,
@@ -343,6 +422,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
     }
     #[cfg(feature = "lafortune")]
@@ -359,6 +443,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: crate::Lafortune::NAME_ANISO,
@@ -372,6 +461,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
     }
     #[cfg(feature = "oren-nayar")]
@@ -387,6 +481,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
         starts: None,
         polish_factor: 1,
         channel_model: None,
+        renderer: false,
+        by_image_rank: None,
+        colour: ColourStructure::PerLobe,
+        optional_lobes: &[],
+        linear_solver: LinearSolver::Direct,
     });
     #[cfg(feature = "oren-nayar")]
     v.push(ModelEntry {
@@ -401,6 +500,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
         starts: None,
         polish_factor: 1,
         channel_model: None,
+        renderer: false,
+        by_image_rank: None,
+        colour: ColourStructure::PerLobe,
+        optional_lobes: &[],
+        linear_solver: LinearSolver::Direct,
     });
     #[cfg(feature = "sopp")]
     {
@@ -433,6 +537,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
     }
     #[cfg(feature = "koenderink")]
@@ -448,6 +557,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
         starts: None,
         polish_factor: 1,
         channel_model: None,
+        renderer: false,
+        by_image_rank: None,
+        colour: ColourStructure::PerLobe,
+        optional_lobes: &[],
+        linear_solver: LinearSolver::Direct,
     });
     #[cfg(feature = "polynomial")]
     {
@@ -474,6 +588,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::RobustIrls,
         });
         v.push(ModelEntry {
             name: KurtPolynomial::NAME_ANISO,
@@ -497,6 +616,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: false,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::RobustIrls,
         });
     }
     #[cfg(feature = "renderer")]
@@ -513,6 +637,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: true,
+            by_image_rank: Some(3),
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: <crate::ggx::GgxSeparableLobe as crate::combinators::Lobe>::NAME,
@@ -526,6 +655,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: true,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         lobe_model!(
             crate::GgxAniso,
@@ -599,6 +733,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: true,
+            by_image_rank: Some(0),
+            colour: ColourStructure::Single,
+            optional_lobes: PRINCIPLED_LOBES,
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfFormula as crate::dual_model::DualFormula>::NAME,
@@ -612,6 +751,11 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: true,
+            by_image_rank: Some(1),
+            colour: ColourStructure::Single,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfExtFormula as crate::dual_model::DualFormula>::NAME,
@@ -625,9 +769,33 @@ pub fn catalogue() -> Vec<ModelEntry> {
             starts: None,
             polish_factor: 1,
             channel_model: None,
+            renderer: true,
+            by_image_rank: Some(2),
+            colour: ColourStructure::PerLobe,
+            optional_lobes: GLTF_EXT_LOBES,
+            linear_solver: LinearSolver::Direct,
         });
     }
+    #[cfg(feature = "renderer")]
+    v.extend(crate::coloured_lobes::entries());
     v
+}
+
+/// The models selection by image error chooses among, in the order of its
+/// rows ([`ModelEntry::by_image_rank`]).
+pub fn by_image_models() -> Vec<&'static str> {
+    let mut ranked: Vec<(u8, &'static str)> = catalogue()
+        .iter()
+        .filter_map(|e| e.by_image_rank.map(|r| (r, e.name)))
+        .collect();
+    ranked.sort_unstable();
+    ranked.into_iter().map(|(_, name)| name).collect()
+}
+
+/// The optional lobes of catalogue model `name` ([`ModelEntry::optional_lobes`];
+/// none for a model not in the catalogue).
+pub fn optional_lobes(name: &str) -> &'static [OptionalLobe] {
+    entry(name).map_or(&[], |e| e.optional_lobes)
 }
 
 /// Build a model by name for the samples it will be fitted to
@@ -642,7 +810,7 @@ pub fn build_from(
 
 /// Look up a model by name.
 pub fn entry(name: &str) -> Option<ModelEntry> {
-    catalogue().into_iter().find(|e| e.name == name)
+    catalogue().iter().find(|e| e.name == name).copied()
 }
 
 /// Build a model by name at its default parameters.
@@ -674,5 +842,39 @@ fn entry_or_error(name: &str) -> Result<ModelEntry, ParamError> {
                     .join(", ")
             ),
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every optional lobe and companion an entry names is a parameter of
+    /// its model, the lobe with a lower bound of 0 (held there to switch
+    /// it off); only renderer models have optional lobes.
+    #[test]
+    fn optional_lobes_name_parameters_of_their_models() {
+        for e in catalogue().iter().filter(|e| !e.optional_lobes.is_empty()) {
+            assert!(e.renderer, "{}", e.name);
+            let m = (e.build)(&ModelConfig::default()).expect("model");
+            let specs = m.param_specs();
+            let spec = |n: &str| specs.iter().find(|s| s.name == n);
+            for lobe in e.optional_lobes {
+                let s = spec(lobe.name).unwrap_or_else(|| panic!("{}: no `{}`", e.name, lobe.name));
+                assert_eq!(s.lower, 0.0, "{}: {}", e.name, lobe.name);
+                for c in lobe.companions {
+                    assert!(spec(c).is_some(), "{}: no `{c}`", e.name);
+                }
+            }
+        }
+        assert!(optional_lobes("lambert").is_empty());
+    }
+
+    /// Selection by image error compares one model of each renderer kind,
+    /// in a fixed order.
+    #[cfg(feature = "renderer")]
+    #[test]
+    fn by_image_models_keep_their_order() {
+        assert_eq!(by_image_models(), ["principled", "gltf", "gltf-ext", "ggx"]);
     }
 }

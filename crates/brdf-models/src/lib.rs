@@ -22,7 +22,10 @@
 //! | `renderer` | [`Ggx`] (K lobes) and the [`ggx`] family (anisotropic; separable Smith; dielectric and conductor Fresnel), [`Principled`] (Disney, as Mitsuba 3), [`GltfPbr`], [`GltfPbrExt`], [`ColouredLobes`] (a colour and width per GGX lobe, a dielectric coat) |
 //!
 //! [`catalogue()`] lists the models compiled into this build; [`build`]
-//! constructs one by name.
+//! constructs one by name. Each entry also states facts about its model
+//! ([`entry_facts`]: renderer model, colour structure, optional lobes,
+//! default linear solver) that fitting front ends ask instead of matching
+//! names.
 //!
 //! ## Crate features
 //!
@@ -48,6 +51,7 @@ pub mod dual;
 pub mod dual_model;
 #[cfg(feature = "microfacet")]
 pub mod dupuy;
+pub mod entry_facts;
 #[cfg(feature = "microfacet")]
 pub mod fitted_lobes;
 #[cfg(feature = "renderer")]
@@ -93,8 +97,8 @@ pub use ashikhmin_shirley::{
 #[cfg(feature = "phong")]
 pub use blinn_phong::BlinnPhong;
 pub use catalogue::{
-    ModelConfig, ModelEntry, build, build_for, build_from, catalogue, entry, polish_factor,
-    suggested_starts,
+    ModelConfig, ModelEntry, build, build_for, build_from, by_image_models, catalogue, entry,
+    optional_lobes, polish_factor, suggested_starts,
 };
 #[cfg(feature = "sopp")]
 pub use clear_coat::ClearCoat;
@@ -103,8 +107,9 @@ pub use coloured_lobes::ColouredLobes;
 #[cfg(feature = "microfacet")]
 pub use cook_torrance::CookTorrance;
 #[cfg(feature = "microfacet")]
-#[cfg(feature = "microfacet")]
 pub use dupuy::{Dupuy, TabulatedMicrofacet, TabulatedNdf};
+#[cfg(feature = "microfacet")]
+pub use entry_facts::{ColourStructure, LinearSolver, OptionalLobe};
 #[cfg(feature = "microfacet")]
 pub use fitted_lobes::FittedLobe;
 #[cfg(feature = "renderer")]

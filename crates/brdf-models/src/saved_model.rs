@@ -28,8 +28,13 @@
 //! reads off its data (`{ "theta": [...], "d": [...] }`: node angles of
 //! the half vector in radians, `D` in 1/sr), which its parameters do not
 //! hold. Only files with a table are written as version 2: a reader of
-//! version 1 would ignore the table and evaluate another model. This build
-//! reads both versions.
+//! version 1 would ignore the table and evaluate another model.
+//!
+//! Version 3 adds `provenance.termination`, how the fit ended
+//! (`{ "converged": true, "reason": "converged: gradient below tolerance" }`),
+//! which a reader judges the fit by; files that record it are written as
+//! version 3 (they may hold a table too), the others as before. This build
+//! reads versions 1 to 3.
 //!
 //! ```
 //! use brdf_core::Brdf;
@@ -58,9 +63,12 @@ pub const SCHEMA: &str = "brdf-fit/saved-model";
 /// The schema version this crate writes for models given by their
 /// parameters alone.
 pub const VERSION: u32 = 1;
-/// The schema version of files holding a data table ([`NdfTable`]); this
-/// build reads [`VERSION`] to [`TABLE_VERSION`].
+/// The schema version of files holding a data table ([`NdfTable`]).
 pub const TABLE_VERSION: u32 = 2;
+/// The schema version of files recording how their fit ended
+/// ([`Provenance::termination`]); this build reads [`VERSION`] to
+/// [`TERMINATION_VERSION`].
+pub const TERMINATION_VERSION: u32 = 3;
 
 /// Errors of reading, writing and rebuilding saved models; each names the
 /// file.
@@ -84,7 +92,7 @@ pub enum SavedModelError {
     },
     /// Another schema or a version this crate cannot read.
     #[error(
-        "{path}: schema `{schema}` version {version}; this build reads `{SCHEMA}` versions {VERSION} to {TABLE_VERSION}"
+        "{path}: schema `{schema}` version {version}; this build reads `{SCHEMA}` versions {VERSION} to {TERMINATION_VERSION}"
     )]
     Version {
         /// the file
@@ -211,6 +219,19 @@ pub struct Provenance {
     /// sets (empty when the data cannot be rendered: scattered samples).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub image_error: Vec<RenderedError>,
+    /// How the fit ended (version 3; `None` in older files and where no
+    /// fit produced the model).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub termination: Option<SavedTermination>,
+}
+
+/// How the fit of a saved model ended.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SavedTermination {
+    /// Whether the fit ended at a (local) minimum.
+    pub converged: bool,
+    /// Why it stopped, as the fit report says it.
+    pub reason: String,
 }
 
 /// A fit's image error under one light set (see `brdf_fit::appearance`).
@@ -356,7 +377,9 @@ impl SavedModel {
         };
         Ok(Self {
             schema: SCHEMA.into(),
-            version: if ndf_table.is_some() {
+            version: if provenance.termination.is_some() {
+                TERMINATION_VERSION
+            } else if ndf_table.is_some() {
                 TABLE_VERSION
             } else {
                 VERSION
@@ -444,7 +467,7 @@ impl SavedModel {
             reason: e.to_string(),
         };
         let h: Header = serde_json::from_str(text).map_err(json_err)?;
-        if h.schema != SCHEMA || !(VERSION..=TABLE_VERSION).contains(&h.version) {
+        if h.schema != SCHEMA || !(VERSION..=TERMINATION_VERSION).contains(&h.version) {
             return Err(SavedModelError::Version {
                 path: origin.to_string(),
                 schema: h.schema,
@@ -494,5 +517,51 @@ impl SavedModel {
                 path: path.display().to_string(),
                 reason: e.to_string(),
             })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A version-1 file written before the termination was recorded (a
+    /// committed conversion of paper_white) still reads, every field as
+    /// written, with no termination.
+    #[test]
+    fn an_old_version_reads() {
+        let text = include_str!("../../brdf-export/tests/reference/paper_white/ggx.pbrt.json");
+        let saved = SavedModel::from_json(text, "ggx.pbrt.json").expect("reads");
+        assert_eq!(saved.version, VERSION);
+        assert_eq!(saved.model, "ggx-dielectric");
+        assert_eq!(saved.structure.channels, 3);
+        assert_eq!(saved.channel_names, ["r", "g", "b"]);
+        assert_eq!(saved.parameters[0].name, "kd_r");
+        assert_eq!(saved.parameters[0].value, 0.7940103739598579);
+        let p = &saved.provenance;
+        assert_eq!(p.data, "rgl/paper_white_rgb.bsdf");
+        assert_eq!((p.samples_used, p.samples_present), (2048, 2048));
+        assert_eq!(p.objective, "ngan");
+        assert_eq!(p.limit_deg, 80.0);
+        assert_eq!(p.error, 0.017455689107313214);
+        assert_eq!(p.software, "brdf-export 0.1.0");
+        assert_eq!(p.termination, None);
+    }
+
+    /// A file recording its termination is version 3 and reads back the
+    /// same; a version beyond this build's is refused.
+    #[test]
+    fn the_termination_is_version_3() {
+        let text = include_str!("../../brdf-export/tests/reference/paper_white/ggx.pbrt.json");
+        let mut saved = SavedModel::from_json(text, "ggx.pbrt.json").expect("reads");
+        saved.version = TERMINATION_VERSION;
+        saved.provenance.termination = Some(SavedTermination {
+            converged: false,
+            reason: "NOT converged: iteration cap".into(),
+        });
+        let written = serde_json::to_string_pretty(&saved).expect("writes");
+        let back = SavedModel::from_json(&written, "v3.json").expect("reads");
+        assert_eq!(back, saved);
+        let future = written.replace("\"version\": 3", "\"version\": 4");
+        assert!(SavedModel::from_json(&future, "v4.json").is_err());
     }
 }

@@ -61,7 +61,7 @@ use crate::fitted::{PyFit, PyModel};
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
 #[pyo3(signature = (data, model, *, channels="rgb", metric="auto", limit_deg=80.0,
-    starts=12, irls_max_iterations=brdf_fit::pipeline::IRLS_MAX_ITERATIONS, solver="auto",
+    starts=12, irls_max_iterations=brdf_fit::options::IRLS_MAX_ITERATIONS, solver="auto",
     lobes=1, order=8, degree=7, save=None, polish=false))]
 pub fn fit<'py>(
     py: Python<'py>,

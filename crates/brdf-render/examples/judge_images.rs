@@ -72,7 +72,7 @@ fn main() -> Result<(), RenderError> {
         let e = compare(&reference, &test, &lights, 128)?;
         println!(
             "{name}: HDR-FLIP {:.4}, PSNR {:.2} dB, dE00 {:.3}, exposure {:.4}",
-            e.flip, e.psnr, e.delta_e_mean_colour, e.exposure
+            e.flip, e.psnr, e.delta_e, e.exposure
         );
     }
     Ok(())

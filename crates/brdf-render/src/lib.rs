@@ -32,6 +32,11 @@
 //! - [`colour_plane`](mod@colour_plane): how far an image's colours lie from
 //!   every plane of white and one colour, a bound on what a renderer model
 //!   with one base colour can match;
+//! - [`image_error`]: the image errors of a fit per light set and over the
+//!   judge's light sets, and their warnings;
+//! - [`reference`](mod@reference): the data's render made once, and tests compared with it;
+//! - [`judge`]: [`Judge`], the data and fits rendered under the standard
+//!   light sets and compared;
 //! - [`compare`](mod@compare): all metrics of a test BRDF against a reference.
 //!
 //! ## Layering
@@ -52,12 +57,15 @@ pub mod film;
 pub mod flip;
 pub mod grid;
 pub mod image;
+pub mod image_error;
+pub mod judge;
 pub mod light;
 pub mod number;
 pub mod openexr;
 pub mod plot;
 pub mod psnr;
 pub mod quadrature;
+pub mod reference;
 pub mod scene;
 pub mod shading;
 pub mod side_by_side;
@@ -65,9 +73,11 @@ pub mod sky;
 pub mod sphere;
 pub mod tonemap;
 
-pub use compare::{ImageErrors, compare};
+pub use compare::compare;
 pub use error::RenderError;
 pub use image::Image;
+pub use image_error::{ImageError, LightError};
+pub use judge::Judge;
 pub use light::LightSet;
 pub use number::fmt_sig;
 pub use shading::ShadingPoints;

@@ -12,7 +12,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use crate::fit_page::{Analyser, FitInput, RunInfo, render};
-use crate::{ReportError, spheres, templates};
+use crate::{ReportError, templates};
 
 /// What was written.
 #[derive(Clone, Debug)]
@@ -113,6 +113,7 @@ fn run_info(line: &Value) -> RunInfo {
             .or_else(|| fit["seconds"].as_f64())
             .unwrap_or(f64::NAN),
         termination: fit["termination"].as_str().unwrap_or("not recorded").into(),
+        ended: fit["termination"].as_str().and_then(|t| t.parse().ok()),
         iterations: fit["iterations"].as_u64().map(|n| n as usize),
     }
 }
@@ -194,7 +195,7 @@ pub fn write_batch_report(
     // The judge's terms made once for the index, each material rendered
     // once for all its models; at the judge's size, so a page's image
     // errors are the ones `brdf batch` wrote for its line.
-    let mut analyser = Analyser::new(spheres::SIZE);
+    let mut analyser = Analyser::new(brdf_render::judge::REPORT_SIZE);
     for (k, ((data, model), line)) in fits.iter().enumerate() {
         progress(k, fits.len(), &format!("{data} x {model}"));
         let mut r = base_row(line);
@@ -233,7 +234,7 @@ pub fn write_batch_report(
 
 /// A verdict in a word and the worst image error: `ok` or `off`, and the
 /// largest FLIP over the light sets with its light.
-fn short_verdict(good: bool, image: Option<&brdf_fit::appearance::ImageError>) -> String {
+fn short_verdict(good: bool, image: Option<&brdf_render::ImageError>) -> String {
     let word = if good { "ok" } else { "off" };
     let worst = image.and_then(|i| i.lights.iter().max_by(|a, b| a.flip.total_cmp(&b.flip)));
     match worst {

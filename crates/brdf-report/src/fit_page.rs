@@ -7,9 +7,10 @@ use std::path::Path;
 use std::sync::Arc;
 
 use brdf_core::Brdf;
-use brdf_fit::Material;
-use brdf_fit::appearance::{ImageError, Judge, REPORT_SIZE};
+use brdf_fit::{Material, Termination};
 use brdf_models::saved_model::SavedModel;
+use brdf_render::judge::REPORT_SIZE;
+use brdf_render::{ImageError, Judge};
 use serde::Serialize;
 use serde_json::Value;
 
@@ -24,8 +25,12 @@ use crate::{ReportError, coverage, select_plot, templates};
 pub struct RunInfo {
     /// wall time of the fit
     pub seconds: f64,
-    /// how the solver ended
+    /// how the solver ended, in words
     pub termination: String,
+    /// how the solver ended (`None`: not recorded, or not a sentence a
+    /// fit prints)
+    #[serde(skip)]
+    pub ended: Option<Termination>,
     /// solver iterations
     pub iterations: Option<usize>,
 }
@@ -134,7 +139,7 @@ impl Analyser {
             }
             None => (None, spheres::fitted_rows(model, size)?),
         };
-        let termination = input.run.as_ref().map(|r| r.termination.as_str());
+        let termination = input.run.as_ref().and_then(|r| r.ended.as_ref());
         Ok(Analysis {
             samples: data.samples().len(),
             dense: dense_ref.is_some(),
@@ -213,7 +218,7 @@ pub fn material(spec: &str) -> String {
 
 /// The self-contained HTML page of a fit.
 pub fn fit_page(input: &FitInput) -> Result<String, ReportError> {
-    fit_page_with(input, &mut Analyser::new(spheres::SIZE))
+    fit_page_with(input, &mut Analyser::new(REPORT_SIZE))
 }
 
 /// [`fit_page`] analysed by `analyser` (one holding the data's renders,
@@ -225,7 +230,7 @@ pub fn fit_page_with(input: &FitInput, analyser: &mut Analyser) -> Result<String
 
 /// [`fit_page`] written to `out`.
 pub fn write_fit_page(input: &FitInput, out: &Path) -> Result<(), ReportError> {
-    write_fit_page_with(input, out, &mut Analyser::new(spheres::SIZE))
+    write_fit_page_with(input, out, &mut Analyser::new(REPORT_SIZE))
 }
 
 /// [`fit_page_with`] written to `out`.

@@ -5,18 +5,13 @@
 //! each as a PNG `data:` URI with its exposure.
 
 use brdf_core::Brdf;
-use brdf_fit::appearance::LightRenders;
-use brdf_render::LightSet;
 use brdf_render::ShadingPoints;
+use brdf_render::judge::{LightRenders, standard_lights};
 use brdf_render::tonemap::p99_exposure;
 use serde::Serialize;
 
 use crate::ReportError;
 use crate::embed::png_uri;
-
-/// Pixels per side of the report's spheres: the judge's film, so a page's
-/// image errors are those `brdf fit` and `brdf batch` report.
-pub const SIZE: usize = brdf_fit::appearance::REPORT_SIZE;
 
 /// The spheres of one light set.
 #[derive(Clone, Debug, Serialize)]
@@ -32,11 +27,6 @@ pub struct SphereRow {
     pub fitted: String,
     /// HDR-FLIP map, magma (dense data only)
     pub flip: Option<String>,
-}
-
-/// The light sets shown.
-pub fn lights() -> Vec<LightSet> {
-    vec![LightSet::sky(), LightSet::studio()]
 }
 
 /// The spheres of the judge's renders (dense data): measured | fitted |
@@ -58,10 +48,10 @@ pub fn rows_of(renders: &[LightRenders]) -> Result<Vec<SphereRow>, ReportError> 
         .collect()
 }
 
-/// The spheres of `fitted` alone under [`lights`] at `size` pixels
+/// The spheres of `fitted` alone under [`standard_lights`] at `size` pixels
 /// (scattered data: nothing measured to show beside it).
 pub fn fitted_rows(fitted: &dyn Brdf, size: usize) -> Result<Vec<SphereRow>, ReportError> {
-    lights()
+    standard_lights()
         .iter()
         .map(|light| {
             let sp = ShadingPoints::judge(light, size);

@@ -2,13 +2,14 @@
 //! visible colour difference, FLIP above threshold, parameters on their
 //! bounds, a solver that did not converge — and what only looks wrong:
 //! optional lobes switched off (at 0 on their lower bound by design,
-//! `brdf_fit::appearance::optional_lobes`), and a refinement in the image
+//! `brdf_models::ModelEntry::optional_lobes`), and a refinement in the image
 //! objective that stopped at its iteration cap (it is kept only because it
 //! renders closer to the data, and the verdict judges the render).
 
-use brdf_fit::Objective;
-use brdf_fit::appearance::{ImageError, colour_plane_note, optional_lobes};
+use brdf_fit::judged::colour_plane_note;
+use brdf_fit::{Objective, Termination};
 use brdf_models::saved_model::SavedModel;
+use brdf_render::ImageError;
 use serde::Serialize;
 
 /// The verdict: a headline and the reasons.
@@ -24,22 +25,12 @@ pub struct Verdict {
     pub notes: Vec<String>,
 }
 
-/// Whether a termination text means the solver did not converge: the
-/// solvers' "NOT converged", an iteration limit, or the FLIP search's
-/// "stopped at the evaluation budget" (`brdf_solve::compass`).
-pub fn not_converged(termination: &str) -> bool {
-    let t = termination.to_ascii_lowercase();
-    t.contains("not converged")
-        || t.contains("max") && t.contains("iteration")
-        || t.contains("evaluation budget")
-}
-
 /// The verdict on `saved`, its image errors (`None`: scattered data) and
 /// how the solver ended (`None`: not recorded).
 pub fn verdict(
     saved: &SavedModel,
     image: Option<&ImageError>,
-    termination: Option<&str>,
+    termination: Option<&Termination>,
 ) -> Verdict {
     let mut reasons = image.map(ImageError::warnings).unwrap_or_default();
     // What no fit of this model can mend: colours off its one colour plane.
@@ -64,7 +55,7 @@ pub fn verdict(
             on_bound.join(", ")
         ));
     }
-    if let Some(t) = termination.filter(|t| not_converged(t)) {
+    if let Some(t) = termination.filter(|t| !t.is_converged()) {
         if image.is_some() && saved.provenance.objective == Objective::Image.name() {
             notes.push(format!(
                 "the kept solve, a refinement of the render (in the image objective, or the search on its FLIP of --polish), ended without meeting its convergence test ({t}); it was kept because it renders closer to the data, and this verdict judges the render"
@@ -92,8 +83,9 @@ pub fn verdict(
 /// The optional lobes of `saved`'s model that are off: the lobe's own
 /// parameter (named as the lobe) is 0.
 fn lobes_off(saved: &SavedModel) -> Vec<String> {
-    optional_lobes(&saved.model)
+    brdf_models::optional_lobes(&saved.model)
         .iter()
+        .map(|l| l.name)
         .filter(|l| {
             saved
                 .parameters
@@ -107,6 +99,7 @@ fn lobes_off(saved: &SavedModel) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use brdf_solve::Termination as SolverEnd;
 
     #[test]
     fn bounds_and_non_convergence_are_named() {
@@ -115,11 +108,19 @@ mod tests {
           "parameters": [ { "name": "kd", "value": 0.5, "at_bound": "lower" },
                           { "name": "ks", "value": 0.0 }, { "name": "n", "value": 10.0 } ] }"#;
         let saved = SavedModel::from_json(text, "inline").expect("valid");
-        let v = verdict(&saved, None, Some("NOT converged: iteration limit"));
+        let v = verdict(
+            &saved,
+            None,
+            Some(&Termination::Solver(SolverEnd::MaxIterations)),
+        );
         assert!(!v.good);
         assert_eq!(v.reasons.len(), 2, "{:?}", v.reasons);
         assert!(v.reasons[0].contains("kd (lower)"));
-        let ok = verdict(&saved, None, Some("converged: gradient"));
+        let ok = verdict(
+            &saved,
+            None,
+            Some(&Termination::Solver(SolverEnd::SmallGradient)),
+        );
         assert_eq!(ok.reasons.len(), 1);
     }
 
@@ -147,7 +148,7 @@ mod tests {
     }
 
     fn looks_right() -> ImageError {
-        let light = |name: &str| brdf_fit::appearance::LightError {
+        let light = |name: &str| brdf_render::LightError {
             light: name.into(),
             flip: 0.05,
             psnr: 35.0,
@@ -165,7 +166,11 @@ mod tests {
 
     #[test]
     fn lobes_switched_off_are_not_parameters_on_bounds() {
-        let v = verdict(&principled("ngan"), None, Some("converged: gradient"));
+        let v = verdict(
+            &principled("ngan"),
+            None,
+            Some(&Termination::Solver(SolverEnd::SmallGradient)),
+        );
         assert_eq!(v.reasons.len(), 1, "{:?}", v.reasons);
         assert!(v.reasons[0].contains("metallic (upper)"));
         assert!(!v.reasons[0].contains("sheen") && !v.reasons[0].contains("clearcoat"));
@@ -180,7 +185,8 @@ mod tests {
     /// note's threshold, or no figure, adds none.
     #[test]
     fn colours_off_the_single_colour_plane_are_a_reason() {
-        use brdf_fit::appearance::{COLOUR_PLANE_NOTE, DataColourPlane};
+        use brdf_fit::judged::COLOUR_PLANE_NOTE;
+        use brdf_render::image_error::DataColourPlane;
         let with = |outside: f64| ImageError {
             colour_plane: Some(DataColourPlane {
                 light: "studio".into(),
@@ -203,7 +209,7 @@ mod tests {
     #[test]
     fn an_image_refinement_at_its_cap_is_judged_by_its_render() {
         let image = looks_right();
-        let capped = Some("NOT converged: iteration cap");
+        let capped = Some(&Termination::Solver(SolverEnd::MaxIterations));
         let v = verdict(&principled("image"), Some(&image), capped);
         assert!(
             v.reasons.iter().all(|r| !r.contains("did not converge")),
@@ -229,14 +235,17 @@ mod tests {
     fn a_polish_at_its_budget_is_named() {
         let image = looks_right();
         use brdf_solve::compass::CompassTermination;
-        // As brdf_fit::flip_polish words the termination of its search.
-        let text =
-            |t: CompassTermination| format!("{}; mean FLIP 0.2510 from 0.2600", t.describe());
+        // As brdf_fit::flip_polish ends its search.
+        let end = |end: CompassTermination| Termination::FlipSearch {
+            end,
+            mean_flip: 0.2510,
+            from: 0.2600,
+        };
         let (budget, done) = (
-            text(CompassTermination::EvaluationBudget),
-            text(CompassTermination::StepBelowTolerance),
+            end(CompassTermination::EvaluationBudget),
+            end(CompassTermination::StepBelowTolerance),
         );
-        let (budget, done) = (Some(budget.as_str()), Some(done.as_str()));
+        let (budget, done) = (Some(&budget), Some(&done));
         let v = verdict(&principled("image"), Some(&image), budget);
         assert!(
             v.notes

@@ -72,6 +72,9 @@ fn a_fit_page_of_scattered_data_is_self_contained_and_complete() {
         run: Some(RunInfo {
             seconds: 1.5,
             termination: "NOT converged: iteration limit".into(),
+            ended: Some(brdf_fit::Termination::Solver(
+                brdf_solve::Termination::MaxIterations,
+            )),
             iterations: Some(100),
         }),
         selection: None,

@@ -43,8 +43,5 @@ mod test_support;
 
 pub use error::StudyError;
 
-// The fitting library, re-exported under the paths the study and its tests
-// have always used.
-pub use brdf_fit::{fit_linear as fit, pipeline, select};
 pub use brdf_io::load as data;
 pub use brdf_models::saved_model;

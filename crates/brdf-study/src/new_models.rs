@@ -88,7 +88,7 @@ fn outcome(entry: &Entry, r: Result<FitReport, brdf_fit::FitError>) -> Result<Ou
         flip_sky: flip("sky"),
         flip_studio: flip("studio"),
         shape_on_bound,
-        termination: r.summary.termination.clone(),
+        termination: r.summary.termination.to_string(),
         objective: r
             .candidates
             .iter()

@@ -12,7 +12,9 @@ use brdf_models::ModelConfig;
 use rayon::prelude::*;
 
 use crate::StudyError;
-use crate::context::models::{FitHow, fit_model, undetermined};
+use brdf_fit::report_text::undetermined;
+
+use crate::context::models::{FitHow, fit_model};
 use crate::context::progress;
 use crate::kurt::common::converged;
 
@@ -72,7 +74,7 @@ pub fn status<M>(fit: &Result<(M, FitSummary), StudyError>) -> String {
     let mut words = vec![if converged(r) {
         "converged".to_string()
     } else {
-        r.termination.clone()
+        r.termination.to_string()
     }];
     let bound = at_bounds(r);
     words.push(if bound.is_empty() {
@@ -106,8 +108,9 @@ pub fn tally<'a>(fits: impl IntoIterator<Item = Option<&'a FitSummary>>) -> Stri
 #[cfg(test)]
 mod tests {
     use super::*;
+    use brdf_fit::Termination;
 
-    fn summary(termination: &str, bounds: &[(&str, Option<&str>)]) -> FitSummary {
+    fn summary(termination: Termination, bounds: &[(&str, Option<&str>)]) -> FitSummary {
         let params = bounds
             .iter()
             .map(|(n, b)| crate::test_support::param(n, 0.5, *b, false))
@@ -118,13 +121,13 @@ mod tests {
     #[test]
     fn status_names_the_end_and_the_bounds() {
         let free = summary(
-            "converged: relative reduction below tolerance",
+            Termination::Solver(brdf_solve::Termination::SmallReduction),
             &[("alpha", None)],
         );
         let ok: Result<((), FitSummary), StudyError> = Ok(((), free.clone()));
         assert_eq!(status(&ok), "converged; no parameter on a bound");
         let stuck = summary(
-            "NOT converged: iteration cap",
+            Termination::Solver(brdf_solve::Termination::MaxIterations),
             &[
                 ("metallic", Some("upper")),
                 ("roughness", None),

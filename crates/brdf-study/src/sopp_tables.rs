@@ -16,7 +16,8 @@ use brdf_io::sopp_grid::{CAM_PHIS, CAM_THETAS, LIGHTS, SoppGrid};
 use brdf_models::{ModelConfig, build};
 
 use crate::StudyError;
-use crate::pipeline::{FitOptions, FitSummary, Objective, fit, fit_sopp};
+use brdf_fit::pipeline::{fit, fit_sopp};
+use brdf_fit::{FitOptions, FitSummary, Objective};
 use rayon::prelude::*;
 
 use crate::context::{Study, Written, progress};
@@ -161,7 +162,7 @@ fn material(rgl_dir: &Path, name: &str) -> Result<MaterialRows, StudyError> {
         cells.extend(cd.iter().chain(&cs).map(|v| Cell::Num(*v, 4)));
         cells.push(Cell::Num(rs, 4));
         cells.push(Cell::Num(sopp_error(data, m)?, 4));
-        cells.push(Cell::Text(r.termination.clone()));
+        cells.push(Cell::Text(r.termination.to_string()));
         rows.push(cells);
         Ok(())
     };

@@ -191,7 +191,7 @@ pub fn fit_case(group: &'static str, case: &str, fit: CaseFit, data: &SampleSet)
                 group,
                 case: case.into(),
                 outcome: "fitted",
-                termination: r.summary.termination.clone(),
+                termination: r.summary.termination.to_string(),
                 iterations: Some(r.summary.iterations),
                 ngan_l2: Some(r.summary.ngan_l2),
                 detail,

@@ -1,6 +1,6 @@
 //! Fit summaries made by hand for the unit tests of the study's tables.
 
-use brdf_fit::{FitSummary, FittedParam};
+use brdf_fit::{FitSummary, FittedParam, Termination};
 
 /// A parameter of a hand-made summary.
 pub(crate) fn param(
@@ -20,7 +20,7 @@ pub(crate) fn param(
 
 /// A summary that ended with `termination` at `parameters` (every other
 /// field empty or zero).
-pub(crate) fn summary(termination: &str, parameters: Vec<FittedParam>) -> FitSummary {
+pub(crate) fn summary(termination: Termination, parameters: Vec<FittedParam>) -> FitSummary {
     FitSummary {
         model: String::new(),
         data: String::new(),
@@ -33,7 +33,7 @@ pub(crate) fn summary(termination: &str, parameters: Vec<FittedParam>) -> FitSum
         ngan_l2_per_channel: vec![],
         solver: String::new(),
         iterations: 0,
-        termination: termination.into(),
+        termination,
         starts: (0, 0, 0),
         seconds: 0.0,
         stored_numbers: 0,

@@ -3,9 +3,18 @@
 //! tested in `crates/brdf-cli/tests/fit_command.rs`).
 
 use brdf_core::SampleSet;
+use brdf_fit::pipeline::fit;
+use brdf_fit::{FitOptions, Solver};
 use brdf_models::{ModelConfig, entry};
-use brdf_study::fit::fit_linear;
 use brdf_study::synthetic::scattered_pairs;
+
+/// Direct linear least squares on Ngan's objective.
+fn ols() -> FitOptions {
+    FitOptions {
+        solver: Solver::Ols,
+        ..FitOptions::default()
+    }
+}
 
 #[test]
 fn known_coefficients_are_recovered_exactly() {
@@ -57,9 +66,10 @@ fn known_coefficients_are_recovered_exactly() {
             set.push(l, v, &f, 1.0).unwrap();
         }
         let mut model = (e.build)(&config).unwrap();
-        let r = fit_linear(model.as_mut(), &set).unwrap();
+        let r = fit(model.as_mut(), &set, &ols()).unwrap();
         assert!(r.ngan_l2 < 1e-12, "{name}: {}", r.ngan_l2);
-        for (k, (_, v)) in r.parameters.iter().enumerate() {
+        for (k, q) in r.parameters.iter().enumerate() {
+            let v = q.value;
             assert!((v - p[k]).abs() < 1e-9, "{name} param {k}: {v} vs {}", p[k]);
         }
     }
@@ -73,6 +83,6 @@ fn non_linear_models_are_refused_with_a_message() {
         set.push(l, v, &[0.1], 1.0).unwrap();
     }
     let mut m = (entry("ward").unwrap().build)(&ModelConfig::default()).unwrap();
-    let e = fit_linear(m.as_mut(), &set).unwrap_err();
+    let e = fit(m.as_mut(), &set, &ols()).unwrap_err();
     assert!(e.to_string().contains("non-linear parameter `a`"), "{e}");
 }

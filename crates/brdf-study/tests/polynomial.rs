@@ -4,11 +4,12 @@
 //! the fit can represent and shrinks with the degree for one it cannot.
 
 use brdf_core::{DirPairs, SampleSet};
+use brdf_fit::pipeline::fit;
+use brdf_fit::{FitOptions, Solver};
 use brdf_models::kurt_polynomial::{Pca, PolyVariant};
 use brdf_models::{KurtPolynomial, ModelConfig, build};
 use brdf_solve::{LstsqMethod, lstsq};
 use brdf_study::bias::expected_bias;
-use brdf_study::pipeline::{FitOptions, Solver, fit};
 use brdf_study::synthetic::scattered_pairs;
 use faer::Mat;
 

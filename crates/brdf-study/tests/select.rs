@@ -10,8 +10,8 @@
 //! - BIC, whose penalty grows with `ln n`, is smallest for Lambert.
 
 use brdf_core::SampleSet;
-use brdf_study::pipeline::FitOptions;
-use brdf_study::select::select;
+use brdf_fit::FitOptions;
+use brdf_fit::select::select;
 use brdf_study::synthetic::scattered_pairs;
 
 const N: usize = 150;

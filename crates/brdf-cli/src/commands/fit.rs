@@ -45,7 +45,7 @@ pub struct FitArgs {
     /// Reweighting cap of a robust (IRLS) fit (50 is MATLAB's
     /// `robustfit`'s); a fit whose reweighting cycles stops earlier, when
     /// a weighted solution recurs, and says so.
-    #[arg(long, default_value_t = brdf_fit::pipeline::IRLS_MAX_ITERATIONS)]
+    #[arg(long, default_value_t = brdf_fit::options::IRLS_MAX_ITERATIONS)]
     pub irls_max_iterations: usize,
     /// End the fit for appearance with a search on the judge's own metric,
     /// the mean HDR-FLIP of the renders: a lower image error for a few
@@ -149,7 +149,8 @@ fn write_report(
 ) -> Result<(), CliError> {
     let run = brdf_report::RunInfo {
         seconds,
-        termination: report.summary.termination.clone(),
+        termination: report.summary.termination.to_string(),
+        ended: Some(report.summary.termination.clone()),
         iterations: Some(report.summary.iterations),
     };
     let input = brdf_report::FitInput {

@@ -31,7 +31,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "studio", allow_hyphen_values = true)]
     pub light: String,
     /// Sphere size in pixels (16 to 2048).
-    #[arg(long, default_value_t = brdf_render::compare::REPORT_SIZE)]
+    #[arg(long, default_value_t = brdf_render::judge::REPORT_SIZE)]
     pub size: usize,
     /// Output image: `.png` (labelled, tone mapped) or `.exr` (linear
     /// radiance of the spheres, side by side).

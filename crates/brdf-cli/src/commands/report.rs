@@ -69,7 +69,7 @@ pub fn run(args: &ReportArgs) -> Result<(), CliError> {
         run: None,
         selection: selection.as_ref().zip(select_name.as_deref()),
     };
-    let mut analyser = brdf_report::Analyser::new(brdf_report::spheres::SIZE);
+    let mut analyser = brdf_report::Analyser::new(brdf_render::judge::REPORT_SIZE);
     fit_report(&input, &out, args.quiet, &mut analyser)
 }
 

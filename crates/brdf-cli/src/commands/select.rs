@@ -3,7 +3,7 @@
 //! with `--exhaustive`) and choose the smallest one within the tolerance
 //! of the best.
 
-use brdf_fit::appearance::SCATTERED_NOTE;
+use brdf_fit::judged::SCATTERED_NOTE;
 use brdf_fit::report_text::image_error_lines;
 use brdf_fit::select::{Among, Search};
 use brdf_fit::{Material, SelectBy, SelectOutcome, SelectRequest};
@@ -121,7 +121,7 @@ fn print_by_l2(
     rows: &[brdf_fit::select::SelectRow],
     choice: usize,
     tolerance: f64,
-    image: Option<&brdf_fit::appearance::ImageError>,
+    image: Option<&brdf_render::ImageError>,
 ) -> Result<(), CliError> {
     let table = brdf_fit::select::table(name, rows, choice, tolerance);
     say_raw!("{}", table.markdown())?;
@@ -143,7 +143,7 @@ fn print_by_l2(
 
 /// One line per renderer model, the choice starred.
 fn print_by_image(
-    rows: &[brdf_fit::appearance::ImageChoice],
+    rows: &[brdf_fit::select_by_image::ImageChoice],
     choice: usize,
 ) -> Result<(), CliError> {
     for (i, r) in rows.iter().enumerate() {

@@ -17,6 +17,11 @@ pub fn candidates(channels: usize) -> Vec<(String, &'static str, ModelConfig)> {
     };
     let mut v = Vec::new();
     for e in catalogue() {
+        // The coloured-lobe variants are the same model written for each
+        // renderer: a selection by L2 would fit it ten times over.
+        if brdf_models::coloured_lobes::variant_named(e.name).is_some() {
+            continue;
+        }
         match e.name {
             "koenderink" => {
                 for order in 2..=8 {

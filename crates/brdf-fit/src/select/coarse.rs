@@ -19,7 +19,12 @@ use rayon::prelude::*;
 use super::candidates::{Candidate, Todo};
 use super::{Fitted, SelectRow, fit_candidate};
 use crate::FitError;
-use crate::pipeline::{FitOptions, FitSummary, Objective, box_constraints, fit};
+use crate::objective::Objective;
+use crate::options::FitOptions;
+use crate::param_box::box_constraints;
+use crate::pipeline::fit;
+use crate::summary::FitSummary;
+use crate::termination::Termination;
 
 /// Size of the shared coarse subsample (every `k`-th sample of the
 /// prepared data, `k = ceil(n / COARSE_SAMPLES)`, as the pipeline's start
@@ -53,7 +58,7 @@ pub(super) fn coarse_to_fine(
     opts: &FitOptions,
     todo: Vec<Todo>,
 ) -> Vec<Fitted> {
-    let (sub, _) = crate::pipeline::stratified_subsample(data, COARSE_SAMPLES);
+    let (sub, _) = crate::starts::stratified_subsample(data, COARSE_SAMPLES);
     if sub.len() == data.len() {
         return super::fit_all(data, opts, todo);
     }
@@ -256,10 +261,10 @@ fn adopt(
     summary.ngan_l2 = ngan.total;
     summary.ngan_l2_per_channel = ngan.per_channel;
     summary.iterations = rep.iterations;
-    summary.termination = format!(
-        "{} (from the coarse optimum, below the default starts' {default_cost:.4e})",
-        rep.termination.describe()
-    );
+    summary.termination = Termination::FromCoarseOptimum {
+        end: rep.termination,
+        default_cost,
+    };
     summary.solver = format!(
         "{}; the coarse-subsample optimum solved on all samples as one more start",
         summary.solver

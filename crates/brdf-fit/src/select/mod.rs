@@ -24,7 +24,8 @@ use brdf_core::{Parametric, SampleSet};
 use rayon::prelude::*;
 
 use crate::FitError;
-use crate::pipeline::{FitOptions, fit};
+use crate::options::FitOptions;
+use crate::pipeline::fit;
 
 mod candidates;
 pub mod coarse;
@@ -103,9 +104,11 @@ pub fn select_fitted(
     search: Search,
 ) -> Result<Selection, FitError> {
     if !(tolerance >= 0.0 && tolerance.is_finite()) {
-        return Err(FitError::Usage(format!(
-            "--tolerance {tolerance} must be >= 0"
-        )));
+        return Err(FitError::OutOfRange {
+            option: "--tolerance",
+            value: tolerance,
+            range: ">= 0",
+        });
     }
     let todo = candidates::admitted(data, among)?;
     let fitted = match search {
@@ -116,12 +119,12 @@ pub fn select_fitted(
         fitted.into_iter().unzip();
     let choice = choose(&data.name, &rows, tolerance)?;
     // A row fitted to all samples with a finite error has its model.
-    let model = models[choice].take().ok_or_else(|| {
-        FitError::Usage(format!(
-            "`{}`: the chosen candidate {} kept no model",
-            data.name, rows[choice].label
-        ))
-    })?;
+    let model = models[choice]
+        .take()
+        .ok_or_else(|| FitError::ChoiceWithoutModel {
+            data: data.name.clone(),
+            label: rows[choice].label.clone(),
+        })?;
     Ok(Selection {
         rows,
         choice,
@@ -163,12 +166,12 @@ fn choose(data: &str, rows: &[SelectRow], tolerance: f64) -> Result<usize, FitEr
         })
         .map(|(i, _)| i)
         .ok_or_else(|| {
-            FitError::Usage(format!(
-                "`{data}`: no candidate could be fitted ({})",
-                rows.first()
+            FitError::NoCandidateFitted {
+                data: data.to_string(),
+                why: rows.first()
                     .map(|r| format!("{}: {}", r.label, r.termination))
-                    .unwrap_or_else(|| "no candidate has fewer parameters than samples, or within --models and --max-parameters".into())
-            ))
+                    .unwrap_or_else(|| "no candidate has fewer parameters than samples, or within --models and --max-parameters".into()),
+            }
         })
 }
 
@@ -209,9 +212,11 @@ pub use brdf_solve::sequential_factorisations;
 /// `limit_deg` dropped, the mean of the channels when `grey`.
 pub fn prepare(data: &SampleSet, limit_deg: f64, grey: bool) -> Result<SampleSet, FitError> {
     if !(limit_deg > 0.0 && limit_deg <= 90.0) {
-        return Err(FitError::Usage(format!(
-            "--limit {limit_deg} must be in (0, 90] degrees"
-        )));
+        return Err(FitError::OutOfRange {
+            option: "--limit",
+            value: limit_deg,
+            range: "in (0, 90] degrees",
+        });
     }
     let (data, _) = data.filter_invalid(false);
     let (data, _) = data.filter_angle_limit(limit_deg.to_radians());

@@ -6,7 +6,7 @@ use brdf_core::SampleSet;
 use serde::Serialize;
 
 use super::candidates::stored_numbers;
-use crate::pipeline::FitSummary;
+use crate::summary::FitSummary;
 
 /// One candidate's outcome.
 #[derive(Clone, Debug, Serialize)]
@@ -107,7 +107,7 @@ impl SelectRow {
             aic: ll + 2.0 * k as f64,
             bic: ll + k as f64 * n.ln(),
             seconds: r.seconds,
-            termination: r.termination.clone(),
+            termination: r.termination.to_string(),
             samples: data.len(),
             screened_out: false,
             coarse_error: None,

@@ -209,6 +209,13 @@ pub fn entries() -> Vec<ModelEntry> {
             starts: Some(super::starts::suggested_starts),
             polish_factor: 1,
             channel_model: None,
+            // Renderers evaluate every lobe exactly: fitted for appearance
+            // by default, each lobe of its own colour.
+            renderer: true,
+            by_image_rank: None,
+            colour: crate::ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: crate::LinearSolver::Direct,
         })
         .collect()
 }

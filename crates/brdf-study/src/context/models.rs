@@ -123,7 +123,7 @@ impl Default for FitHow {
 /// fit cycles, and where it stops sets its error (0.0201 at 50, 0.0237 at
 /// 1000; Kurt's 0.015), so the study runs MATLAB's loop to the cap, no
 /// cycle test. `brdf fit` allows more
-/// ([`brdf_fit::pipeline::IRLS_MAX_ITERATIONS`]), so that the RGL fits,
+/// ([`brdf_fit::options::IRLS_MAX_ITERATIONS`]), so that the RGL fits,
 /// which need up to 409, converge, and stops a cycling fit early.
 pub const KURT_IRLS_MAX_ITERATIONS: usize = 50;
 
@@ -146,22 +146,19 @@ pub fn fit_model(
     Ok((model, summary))
 }
 
-// Moved to brdf-fit (the CLI's fit report names them too); the tables
-// of the study use them from here.
-pub use brdf_fit::report_text::undetermined;
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use brdf_core::Brdf;
     use brdf_core::nalgebra::Vector3;
+    use brdf_fit::report_text::undetermined;
 
     fn summary(params: &[(&str, f64, bool)]) -> FitSummary {
         let params = params
             .iter()
             .map(|(n, v, projected)| crate::test_support::param(n, *v, None, *projected))
             .collect();
-        crate::test_support::summary("", params)
+        crate::test_support::summary(brdf_fit::Termination::DirectSolve, params)
     }
 
     #[test]

@@ -40,12 +40,9 @@ pub fn err(r: &FitSummary) -> f64 {
     r.error
 }
 
-/// Whether a fit ended converged (or was a direct solve). The solvers say
-/// "converged: ..." or "NOT converged: ..." (after a tag such as "IRLS "),
-/// so the word alone does not decide.
+/// Whether a fit ended converged (or was a direct solve).
 pub fn converged(r: &FitSummary) -> bool {
-    let t = &r.termination;
-    t == "direct solve" || (t.contains("converged") && !t.contains("NOT converged"))
+    r.termination.is_converged()
 }
 
 /// Note on how Lafortune was fitted.
@@ -63,9 +60,10 @@ pub fn lafortune_note(lbox: crate::context::spec::LafortuneBox) -> &'static str 
 #[cfg(test)]
 mod tests {
     use super::converged;
-    use brdf_fit::FitSummary;
+    use brdf_fit::{FitSummary, Termination};
+    use brdf_solve::{IrlsTermination, Termination as SolverEnd};
 
-    fn ended(termination: &str) -> FitSummary {
+    fn ended(termination: Termination) -> FitSummary {
         crate::test_support::summary(termination, vec![])
     }
 
@@ -73,17 +71,18 @@ mod tests {
     /// description counts (the count of Table 9.4 once took it as converged).
     #[test]
     fn converged_reads_the_start_of_the_description() {
-        assert!(converged(&ended(
-            "converged: relative reduction below tolerance"
-        )));
-        assert!(converged(&ended("direct solve")));
-        assert!(!converged(&ended("NOT converged: iteration cap")));
-        assert!(!converged(&ended("NOT converged: iteration cap reached")));
-        assert!(converged(&ended(
-            "IRLS converged: coefficient change below tolerance (MATLAB test)"
-        )));
-        assert!(!converged(&ended(
-            "IRLS NOT converged: iteration cap reached"
-        )));
+        assert!(converged(&ended(Termination::Solver(
+            SolverEnd::SmallReduction
+        ))));
+        assert!(converged(&ended(Termination::DirectSolve)));
+        assert!(!converged(&ended(Termination::Solver(
+            SolverEnd::MaxIterations
+        ))));
+        assert!(converged(&ended(Termination::Irls(
+            IrlsTermination::CoefficientTest
+        ))));
+        assert!(!converged(&ended(Termination::Irls(
+            IrlsTermination::IterationCap
+        ))));
     }
 }

@@ -118,7 +118,7 @@ mod tests {
             ngan_l2_per_channel: vec![],
             solver: String::new(),
             iterations: 0,
-            termination: String::new(),
+            termination: brdf_fit::Termination::DirectSolve,
             starts: (0, 0, 0),
             seconds: 0.0,
             stored_numbers: 0,

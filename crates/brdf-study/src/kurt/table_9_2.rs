@@ -8,8 +8,8 @@ use brdf_fit::FitSummary;
 use super::common::{KURT_9_2, TABLE_9_2_MATERIALS, err, lafortune_note, nine_index};
 use crate::StudyError;
 use crate::context::Study;
-use crate::context::models::undetermined;
 use crate::report::{Cell, Table};
+use brdf_fit::report_text::undetermined;
 
 /// Kurt's fitted parameters (RGB; Kurt 2007), per model label, in the
 /// material order of [`TABLE_9_2_MATERIALS`].
@@ -171,7 +171,7 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
                 Cell::Text(TABLE_9_2_MATERIALS[*k].1.to_string()),
                 Cell::Text(parameter_text(r)),
                 Cell::Text(kurt.1[*k].to_string()),
-                Cell::Text(r.termination.clone()),
+                Cell::Text(r.termination.to_string()),
             ]);
         }
     }

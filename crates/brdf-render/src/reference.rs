@@ -3,21 +3,24 @@
 //! The data's render under a light set does not depend on the fit:
 //! [`Reference`] keeps it (with its sphere mask, exposure and mean colour),
 //! so ranking candidates renders the data once, not once per candidate.
-//! Renders are `brdf_render::ShadingPoints::render`, a row of terms per
-//! batch evaluation (`brdf_render::batch`).
+//! Renders are [`ShadingPoints::render`], a row of terms per batch
+//! evaluation ([`crate::batch`]).
 
 use brdf_core::Brdf;
-use brdf_render::colour::{delta_e_mean_colours, mean_colour};
-use brdf_render::colour_plane::{ColourPlane, colour_plane};
-use brdf_render::compare::ImageErrors;
-use brdf_render::flip::{FlipMap, hdr_flip_map};
-use brdf_render::psnr::psnr;
-use brdf_render::tonemap::p99_exposure;
-use brdf_render::{Image, RenderError, ShadingPoints};
+
+use crate::colour::{delta_e_mean_colours, mean_colour};
+use crate::colour_plane::{ColourPlane, colour_plane};
+use crate::flip::{FlipMap, hdr_flip_map};
+use crate::image_error::LightError;
+use crate::psnr::psnr;
+use crate::tonemap::p99_exposure;
+use crate::{Image, LightSet, RenderError, ShadingPoints};
 
 /// The data's render under one light set, with what every comparison
 /// against it needs (sphere mask, exposure, mean colour).
 pub struct Reference {
+    /// The light set's name.
+    light: &'static str,
     image: Image,
     mask: Vec<bool>,
     exposure: f64,
@@ -26,14 +29,19 @@ pub struct Reference {
 }
 
 impl Reference {
-    /// Render `data` on `sp`.
-    pub fn new(sp: &ShadingPoints, data: &dyn Brdf) -> Result<Self, RenderError> {
+    /// Render `data` on `sp`, the terms of `light`.
+    pub fn new(
+        light: &LightSet,
+        sp: &ShadingPoints,
+        data: &(impl Brdf + ?Sized),
+    ) -> Result<Self, RenderError> {
         let image: Image = sp.render(data);
         let mask = sp.mask();
         let exposure = p99_exposure(&image, Some(&mask))?;
         let mean_colour = mean_colour(&image, &mask);
         let colour_plane = colour_plane(&image, &mask);
         Ok(Reference {
+            light: light.name(),
             image,
             mask,
             exposure,
@@ -44,7 +52,7 @@ impl Reference {
 
     /// The plane of white and one colour closest to the data's sphere
     /// colours, and how much of them lies off it
-    /// ([`brdf_render::colour_plane`]; a bound on models with one base
+    /// ([`crate::colour_plane`]; a bound on models with one base
     /// colour only under a white light set).
     pub fn colour_plane(&self) -> Option<ColourPlane> {
         self.colour_plane
@@ -60,19 +68,19 @@ impl Reference {
         self.exposure
     }
 
-    /// The image errors of `t`, a fit rendered on the terms this reference
-    /// was rendered on (as `brdf_render::compare::compare_with`), and the
-    /// HDR-FLIP map whose mean is their FLIP (a report shows it beside the
-    /// number).
-    pub fn compare(&self, t: &Image) -> Result<(ImageErrors, FlipMap), RenderError> {
+    /// The image errors of `t`, a test rendered on the terms this
+    /// reference was rendered on, and the HDR-FLIP map whose mean is their
+    /// FLIP (a report shows it beside the number).
+    pub fn compare(&self, t: &Image) -> Result<(LightError, FlipMap), RenderError> {
         let map = hdr_flip_map(&self.image, t)?;
-        let mean_colour_test = mean_colour(t, &self.mask);
-        let errors = ImageErrors {
+        let mean_colour_fit = mean_colour(t, &self.mask);
+        let errors = LightError {
+            light: self.light.to_string(),
             flip: map.mean(),
             psnr: psnr(&self.image, t, self.exposure)?,
-            delta_e_mean_colour: delta_e_mean_colours(self.mean_colour, mean_colour_test),
-            mean_colour_ref: self.mean_colour,
-            mean_colour_test,
+            delta_e: delta_e_mean_colours(self.mean_colour, mean_colour_fit),
+            mean_colour_data: self.mean_colour,
+            mean_colour_fit,
             exposure: self.exposure,
         };
         Ok((errors, map))
@@ -81,8 +89,6 @@ impl Reference {
 
 #[cfg(test)]
 mod tests {
-    use brdf_render::LightSet;
-
     use super::*;
 
     /// The batched render of a model (its batch kernel) is the sum of its

@@ -1,0 +1,142 @@
+//! All-linear models (Lambert, Koenderink, Kurt's polynomial) fitted
+//! directly, channel by channel: NNLS (Lawson-Hanson) where the box starts
+//! at 0, column-pivoted QR otherwise, or robust IRLS.
+//!
+//! The design matrix comes from the model's own parameter derivatives
+//! (`Parametric::eval_grad_batch_at`), never from a named model: for an
+//! all-linear model they do not depend on the parameters.
+
+use brdf_core::{Parametric, SampleSet};
+use brdf_solve::{IrlsOptions, IrlsTermination, ScaleConvention, irls};
+use faer::Mat;
+
+use crate::FitError;
+use crate::options::{FitOptions, Solver};
+
+/// An all-linear fit ([`fit_all_linear`]).
+pub(crate) struct LinearFit {
+    /// The parameters.
+    pub params: Vec<f64>,
+    /// The solver, in words.
+    pub how: String,
+    /// How the robust fit ended, for IRLS.
+    pub irls: Option<IrlsEnd>,
+}
+
+/// How a robust (IRLS) fit ended over the channels.
+pub(crate) struct IrlsEnd {
+    /// Reweighting iterations of each fitted channel.
+    pub iterations: Vec<usize>,
+    /// The termination of the first channel that did not converge, else
+    /// of the last: a fit converges only if every channel does.
+    pub termination: IrlsTermination,
+}
+
+impl IrlsEnd {
+    fn add(end: &mut Option<IrlsEnd>, iterations: usize, termination: IrlsTermination) {
+        let e = end.get_or_insert(IrlsEnd {
+            iterations: Vec::new(),
+            termination,
+        });
+        e.iterations.push(iterations);
+        if e.termination.is_converged() {
+            e.termination = termination;
+        }
+    }
+}
+
+/// Fit an all-linear model channel by channel on rows scaled by `scales`.
+pub(crate) fn fit_all_linear(
+    model: &dyn Parametric,
+    data: &SampleSet,
+    scales: &[f64],
+    opts: &FitOptions,
+) -> Result<LinearFit, FitError> {
+    let solver = opts.solver;
+    let specs = model.param_specs();
+    let (n, nc, np) = (data.len(), model.channels(), specs.len());
+    let zero = vec![0.0; np];
+    let mut offset = vec![0.0; nc * n];
+    let mut jac = vec![0.0; nc * n * np];
+    model.eval_grad_batch_at(&zero, data.pairs(), &mut offset, &mut jac);
+    let mut p = zero;
+    let mut how = String::new();
+    let mut irls_end = None;
+    for c in 0..nc {
+        let cols: Vec<usize> = (0..np)
+            .filter(|&k| (0..n).any(|j| jac[(c * n + j) * np + k] != 0.0))
+            .collect();
+        if cols.is_empty() {
+            continue;
+        }
+        let y = data.channel(c);
+        let a = Mat::from_fn(n, cols.len(), |j, k| {
+            scales[j] * jac[(c * n + j) * np + cols[k]]
+        });
+        let b: Vec<f64> = (0..n)
+            .map(|j| scales[j] * (y[j] - offset[c * n + j]))
+            .collect();
+        let x: Vec<f64> = match solver {
+            Solver::Irls(weight) => {
+                let s = irls(
+                    a.as_ref(),
+                    &b,
+                    &IrlsOptions {
+                        weight,
+                        scale: ScaleConvention::Matlab2004,
+                        max_iterations: opts.irls_max_iterations,
+                        stop_on_cycle: opts.irls_stop_on_cycle,
+                        ..IrlsOptions::default()
+                    },
+                )?;
+                IrlsEnd::add(&mut irls_end, s.iterations, s.termination);
+                s.coef
+            }
+            _ if cols.iter().all(|&k| specs[k].lower == 0.0) => {
+                how = "NNLS (Lawson-Hanson)".into();
+                let s = brdf_solve::nnls(a.as_ref(), &b, 3 * cols.len() + 10)?;
+                let upper: Vec<f64> = cols.iter().map(|&k| specs[k].upper).collect();
+                match crate::linear_box::within_upper(a.as_ref(), &b, s.x, &upper)? {
+                    (x, true) => {
+                        how = "least squares within the box (LSI: NNLS exceeded an upper bound)"
+                            .into();
+                        x
+                    }
+                    (x, false) => x,
+                }
+            }
+            _ => {
+                let bm = Mat::from_fn(n, 1, |j, _| b[j]);
+                let s = brdf_solve::lstsq(
+                    a.as_ref(),
+                    bm.as_ref(),
+                    None,
+                    brdf_solve::LstsqMethod::PivotedQr,
+                )?;
+                how = format!("least squares (column-pivoted QR, rank {})", s.rank);
+                (0..cols.len()).map(|k| s.x[(k, 0)]).collect()
+            }
+        };
+        for (k, &col) in cols.iter().enumerate() {
+            p[col] = x[k];
+        }
+    }
+    if let (Solver::Irls(weight), Some(end)) = (solver, &irls_end) {
+        let counts: Vec<String> = end.iterations.iter().map(|k| k.to_string()).collect();
+        how = format!(
+            "IRLS ({}, MATLAB 2004 scale), {} iterations{}",
+            weight.name(),
+            counts.join(" / "),
+            if counts.len() > 1 {
+                " (per channel)"
+            } else {
+                ""
+            }
+        );
+    }
+    Ok(LinearFit {
+        params: p,
+        how,
+        irls: irls_end,
+    })
+}

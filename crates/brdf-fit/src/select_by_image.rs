@@ -1,0 +1,86 @@
+//! Selection by image error (Bieron and Peers 2020): renderer models each
+//! fitted for appearance ([`crate::appearance`]) and judged at the report
+//! size ([`brdf_render::judge`]); the least mean FLIP is the choice.
+
+use std::time::Instant;
+
+use brdf_core::progress::Task;
+use brdf_render::ImageError;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::{FitError, FitRequest, Material, Metric};
+
+/// One model of [`select_by_image`]: its appearance fit and image errors.
+#[derive(Clone, Debug, Serialize)]
+pub struct ImageChoice {
+    /// Catalogue name.
+    pub model: String,
+    /// Objective of the chosen candidate of this model.
+    pub objective: String,
+    /// Optional lobes it kept.
+    pub lobes: Vec<String>,
+    /// Its image errors at the report size.
+    pub image: ImageError,
+    /// Ngan's L2.
+    pub ngan_l2: f64,
+    /// Parameters.
+    pub parameters: usize,
+    /// Seconds of the model's appearance fit.
+    pub seconds: f64,
+}
+
+/// Selection by image error (Bieron and Peers 2020): every model of
+/// `models` fitted for appearance to `material` as `brdf fit` fits it (a
+/// [`FitRequest`], each fit ended by the search on its render's FLIP when
+/// `polish`), judged against the material's renders at the report size; the index of the least mean FLIP is the choice. The renders are
+/// made once for every model, the models fitted in parallel (rows in the
+/// order of `models`, each fit the same for any number of threads).
+pub fn select_by_image(
+    models: &[&str],
+    material: &Material,
+    polish: bool,
+    task: &dyn Task,
+) -> Result<(Vec<ImageChoice>, usize), FitError> {
+    // The judge first, so the parallel fits share it instead of racing to
+    // make it.
+    material.judge()?;
+    let rows = models
+        .par_iter()
+        .map(|name| {
+            task.item(&format!("{name} on {}", material.name()));
+            let t0 = Instant::now();
+            let request = FitRequest {
+                metric: Metric::Appearance,
+                polish,
+                ..FitRequest::new(material, crate::resolve(name)?)
+            };
+            let report = request.run()?.into_report()?;
+            task.advance(1);
+            let chosen = report.candidates.iter().find(|c| c.chosen);
+            Ok(ImageChoice {
+                model: report.summary.model.clone(),
+                objective: chosen.map_or_else(String::new, |c| c.objective.clone()),
+                lobes: chosen.map_or_else(Vec::new, |c| c.lobes.clone()),
+                image: report
+                    .image_error
+                    .clone()
+                    .ok_or_else(|| FitError::NoImageError {
+                        data: material.name().to_string(),
+                    })?,
+                ngan_l2: report.summary.ngan_l2,
+                parameters: report.summary.parameters.len(),
+                seconds: t0.elapsed().as_secs_f64(),
+            })
+        })
+        .collect::<Result<Vec<_>, FitError>>()?;
+    let choice = (0..rows.len())
+        .min_by(|a, b| {
+            rows[*a]
+                .image
+                .mean_flip()
+                .total_cmp(&rows[*b].image.mean_flip())
+        })
+        .ok_or(FitError::NoModelToFit)?;
+    Ok((rows, choice))
+}

@@ -1,0 +1,41 @@
+//! Typed facts a catalogue entry ([`crate::ModelEntry`]) states about its
+//! model beside its constructors: how it colours its lobes, which lobes it
+//! may switch off, and how an all-linear model is solved by default. The
+//! fitting front ends ask the entry instead of matching model names.
+
+/// How a model colours its lobes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColourStructure {
+    /// Every lobe is white or the one base colour (`principled`: diffuse,
+    /// sheen, tinted and metallic Fresnel, clear coat; `gltf`: diffuse,
+    /// dielectric and metal Fresnel): under white light all its renders lie
+    /// in one plane of white and one colour.
+    Single,
+    /// Lobes have colours of their own (a diffuse and a specular colour
+    /// per channel, or a second colour such as `gltf-ext`'s specular).
+    PerLobe,
+}
+
+/// A lobe a model may switch off: the parameter that is its strength
+/// (held at 0, its lower bound, to switch it off) and its companions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OptionalLobe {
+    /// The lobe's strength parameter (its name is the lobe's).
+    pub name: &'static str,
+    /// The parameters of the lobe besides its strength: they act only
+    /// through the lobe, so while it is off they are held at their
+    /// defaults. Left free, such a parameter has no influence at all: the
+    /// solver then stops on a plateau with a singular Jacobian, and a saved
+    /// model carries whatever value a random start gave it.
+    pub companions: &'static [&'static str],
+}
+
+/// How an all-linear model is solved when no solver is asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinearSolver {
+    /// Direct least squares (NNLS where the box starts at 0).
+    Direct,
+    /// Robust IRLS with the bisquare weight (Kurt's procedure for his
+    /// polynomial).
+    RobustIrls,
+}
