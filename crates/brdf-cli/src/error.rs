@@ -25,6 +25,9 @@ pub enum CliError {
     /// A model could not be exported.
     #[error(transparent)]
     Export(#[from] brdf_export::ExportError),
+    /// A fit for a renderer failed.
+    #[error(transparent)]
+    ForRenderer(#[from] brdf_export::for_renderer::ForRendererError),
     /// An export job failed.
     #[error(transparent)]
     ExportFile(#[from] brdf_export::file::ExportFileError),

@@ -146,3 +146,35 @@ fn value_name<T: clap::ValueEnum>(v: T) -> String {
 pub fn solver(s: &str) -> Result<brdf_fit::Solver, String> {
     brdf_fit::Solver::parse(s).map_err(|e| e.to_string())
 }
+
+/// A renderer's material format (`--to` of `brdf export`, `--for` of
+/// `brdf fit`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum TargetArg {
+    /// Mitsuba 3 scene-description XML.
+    Mitsuba,
+    /// pbrt-v4 material statements.
+    Pbrt,
+    /// glTF 2.0 asset.
+    Gltf,
+    /// MaterialX document.
+    Materialx,
+    /// USD layer with a UsdPreviewSurface.
+    Usd,
+    /// Blender Python script building the material.
+    Blender,
+}
+
+impl TargetArg {
+    /// The exporter's target.
+    pub fn target(self) -> brdf_export::Target {
+        match self {
+            TargetArg::Mitsuba => brdf_export::Target::Mitsuba,
+            TargetArg::Pbrt => brdf_export::Target::Pbrt,
+            TargetArg::Gltf => brdf_export::Target::Gltf,
+            TargetArg::Materialx => brdf_export::Target::MaterialX,
+            TargetArg::Usd => brdf_export::Target::Usd,
+            TargetArg::Blender => brdf_export::Target::Blender,
+        }
+    }
+}

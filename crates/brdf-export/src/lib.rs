@@ -60,6 +60,7 @@ pub mod blender;
 pub mod convert;
 pub mod file;
 pub mod fitted;
+pub mod for_renderer;
 pub mod gltf;
 pub mod materialx;
 pub mod measured;

@@ -9,7 +9,7 @@ use brdf_render::ImageError;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::{FitError, FitRequest, Material, Metric};
+use crate::{FitError, FitReport, FitRequest, Material, Metric};
 
 /// One model of [`select_by_image`]: its appearance fit and image errors.
 #[derive(Clone, Debug, Serialize)]
@@ -41,11 +41,11 @@ pub fn select_by_image(
     material: &Material,
     polish: bool,
     task: &dyn Task,
-) -> Result<(Vec<ImageChoice>, usize), FitError> {
+) -> Result<(Vec<ImageChoice>, usize, FitReport), FitError> {
     // The judge first, so the parallel fits share it instead of racing to
     // make it.
     material.judge()?;
-    let rows = models
+    let fitted: Vec<(ImageChoice, FitReport)> = models
         .par_iter()
         .map(|name| {
             task.item(&format!("{name} on {}", material.name()));
@@ -58,7 +58,7 @@ pub fn select_by_image(
             let report = request.run()?.into_report()?;
             task.advance(1);
             let chosen = report.candidates.iter().find(|c| c.chosen);
-            Ok(ImageChoice {
+            let row = ImageChoice {
                 model: report.summary.model.clone(),
                 objective: chosen.map_or_else(String::new, |c| c.objective.clone()),
                 lobes: chosen.map_or_else(Vec::new, |c| c.lobes.clone()),
@@ -71,9 +71,11 @@ pub fn select_by_image(
                 ngan_l2: report.summary.ngan_l2,
                 parameters: report.summary.parameters.len(),
                 seconds: t0.elapsed().as_secs_f64(),
-            })
+            };
+            Ok((row, report))
         })
         .collect::<Result<Vec<_>, FitError>>()?;
+    let (rows, mut reports): (Vec<ImageChoice>, Vec<FitReport>) = fitted.into_iter().unzip();
     let choice = (0..rows.len())
         .min_by(|a, b| {
             rows[*a]
@@ -82,5 +84,6 @@ pub fn select_by_image(
                 .total_cmp(&rows[*b].image.mean_flip())
         })
         .ok_or(FitError::NoModelToFit)?;
-    Ok((rows, choice))
+    let report = reports.swap_remove(choice);
+    Ok((rows, choice, report))
 }

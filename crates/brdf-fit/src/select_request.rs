@@ -11,7 +11,7 @@ use brdf_render::ImageError;
 
 use crate::select::{Among, Search, SelectRow};
 use crate::select_by_image::{ImageChoice, select_by_image};
-use crate::{FitError, FitOptions, Material};
+use crate::{FitError, FitOptions, FitReport, Material};
 
 /// How the choice among candidates is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -76,6 +76,8 @@ pub enum SelectOutcome {
         rows: Vec<ImageChoice>,
         /// Index of the choice in `rows`.
         choice: usize,
+        /// The chosen model's fit.
+        chosen: Box<FitReport>,
     },
 }
 
@@ -91,9 +93,9 @@ impl SelectOutcome {
                 choice,
                 image,
             } => crate::select_json(data, *tolerance, *search, rows, *choice, image.as_ref()),
-            SelectOutcome::Image { data, rows, choice } => {
-                crate::select_by_image_json(data, rows, *choice)
-            }
+            SelectOutcome::Image {
+                data, rows, choice, ..
+            } => crate::select_by_image_json(data, rows, *choice),
         }
     }
 }
@@ -183,12 +185,14 @@ impl<'a> SelectRequest<'a> {
             names.len(),
             self.material.name()
         ));
-        let (rows, choice) = select_by_image(&names, self.material, self.polish, task.as_ref())?;
+        let (rows, choice, chosen) =
+            select_by_image(&names, self.material, self.polish, task.as_ref())?;
         task.finish();
         Ok(SelectOutcome::Image {
             data: self.material.samples().name.clone(),
             rows,
             choice,
+            chosen: Box::new(chosen),
         })
     }
 }

@@ -9,7 +9,7 @@ use brdf_fit::{FitRequest, Material, Solver};
 use brdf_models::ModelConfig;
 
 use crate::error::CliError;
-use crate::opts::{ChannelsArg, MetricArg};
+use crate::opts::{ChannelsArg, MetricArg, TargetArg};
 use crate::progress::Bars;
 
 /// Arguments of `brdf fit`.
@@ -19,8 +19,20 @@ pub struct FitArgs {
     #[arg(long)]
     pub data: String,
     /// Model name (see `brdf models`).
+    #[arg(
+        long,
+        required_unless_present = "for_renderer",
+        conflicts_with = "for_renderer"
+    )]
+    pub model: Option<String>,
+    /// Fit for this renderer: among the models it renders exactly, the one
+    /// whose render is closest to the data (fitted for appearance), written
+    /// as its material to --out.
+    #[arg(long = "for", value_enum, value_name = "RENDERER", requires = "out")]
+    pub for_renderer: Option<TargetArg>,
+    /// With --for: the material file to write.
     #[arg(long)]
-    pub model: String,
+    pub out: Option<PathBuf>,
     /// Objective and metric: auto (appearance for renderer models on data
     /// that can be rendered, else ngan), appearance (candidates chosen by
     /// image error, refined in the image objective), or one objective.
@@ -80,6 +92,9 @@ pub struct FitArgs {
 pub fn run(args: &FitArgs) -> Result<(), CliError> {
     let material = Arc::new(Material::load(&args.data)?);
     let bars = Bars::new(args.quiet);
+    let (Some(model), None) = (&args.model, args.for_renderer) else {
+        return fit_for(args, &material, &bars);
+    };
     let request = FitRequest {
         metric: args.metric.metric()?,
         channels: args.channels.mode()?,
@@ -95,12 +110,12 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
         },
         polish: args.polish,
         progress: &bars,
-        ..FitRequest::new(&material, brdf_fit::resolve(&args.model)?)
+        ..FitRequest::new(&material, brdf_fit::resolve(model)?)
     };
     if args.polish && !request.resolved_metric().0 {
         return Err(CliError::Usage(format!(
             "--polish refines a fit for appearance, which `{}` with --metric {} on {} is not: use a renderer model (principled, gltf, gltf-ext, ggx) or --metric appearance on RGL `.bsdf` or MERL `.binary` data",
-            args.model,
+            model,
             request.metric.name(),
             args.data
         )));
@@ -133,6 +148,43 @@ pub fn run(args: &FitArgs) -> Result<(), CliError> {
     say!(
         "wall time: {:.2} s (the whole command's fit, image errors included)",
         outcome.seconds
+    )
+}
+
+/// `brdf fit --for RENDERER --out FILE`: the renderer's exact models fitted
+/// for appearance, the closest written as its material.
+fn fit_for(args: &FitArgs, material: &Material, bars: &Bars) -> Result<(), CliError> {
+    let (Some(target), Some(out)) = (args.for_renderer, &args.out) else {
+        return Err(CliError::Usage(
+            "brdf fit needs --model NAME, or --for RENDERER --out FILE".into(),
+        ));
+    };
+    let write = brdf_export::WriteOptions {
+        name: brdf_export::identifier(
+            &std::path::Path::new(material.name())
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+        ),
+        ..brdf_export::WriteOptions::default()
+    };
+    let done = brdf_export::for_renderer::fit_for(material, target.target(), &write, bars)?;
+    std::fs::write(out, &done.text).map_err(|source| CliError::Io {
+        path: out.display().to_string(),
+        source,
+    })?;
+    if let Some(path) = &args.save {
+        done.report.saved_model(material.name())?.save(path)?;
+    }
+    if args.json {
+        let v = brdf_fit::select_by_image_json(material.name(), &done.rows, done.choice)?;
+        return say!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    crate::commands::select::print_by_image(&done.rows, done.choice)?;
+    say!(
+        "wrote {} ({}, exact in the renderer)",
+        out.display(),
+        done.rows[done.choice].model
     )
 }
 

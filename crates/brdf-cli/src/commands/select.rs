@@ -142,7 +142,7 @@ fn print_by_l2(
 }
 
 /// One line per renderer model, the choice starred.
-fn print_by_image(
+pub(crate) fn print_by_image(
     rows: &[brdf_fit::select_by_image::ImageChoice],
     choice: usize,
 ) -> Result<(), CliError> {

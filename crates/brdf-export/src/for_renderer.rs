@@ -1,0 +1,107 @@
+//! `brdf fit --for RENDERER`: among the models a renderer renders exactly,
+//! the one whose render is closest to the data, fitted for appearance and
+//! written as that renderer's material, in one step.
+//!
+//! The candidates are the catalogue's renderer models that the target's
+//! exporter writes without a conversion ([`exact_models`]): the exporter
+//! itself says which, so the list cannot drift from what is written. Each
+//! candidate is fitted for appearance as `brdf fit` fits it and judged at
+//! the report size by selection by image error
+//! ([`brdf_fit::SelectRequest`]); the least mean FLIP wins.
+
+use brdf_core::progress::Progress;
+use brdf_fit::select::Among;
+use brdf_fit::select_by_image::ImageChoice;
+use brdf_fit::{FitReport, Material, SelectBy, SelectOutcome, SelectRequest};
+use brdf_models::{ModelConfig, catalogue};
+
+use crate::{ExportError, Target, WriteOptions, export_with};
+
+/// What [`fit_for`] gives.
+pub struct ForRenderer {
+    /// Every candidate's fit for appearance and image errors.
+    pub rows: Vec<ImageChoice>,
+    /// Index of the choice in `rows`.
+    pub choice: usize,
+    /// The chosen model's fit.
+    pub report: FitReport,
+    /// The material file's text, exact for `target`.
+    pub text: String,
+}
+
+/// Why [`fit_for`] failed.
+#[derive(Debug, thiserror::Error)]
+pub enum ForRendererError {
+    /// The target renders no catalogue renderer model exactly.
+    #[error(
+        "--for {target}: no model of the catalogue renders exactly in it; export a fit with `brdf export --to {target}` instead (a conversion, its image error printed)"
+    )]
+    NoExactModel {
+        /// the target's name
+        target: String,
+    },
+    /// Fitting or judging failed.
+    #[error(transparent)]
+    Fit(#[from] brdf_fit::FitError),
+    /// Writing the material failed.
+    #[error(transparent)]
+    Export(#[from] ExportError),
+}
+
+/// The catalogue's renderer models that `target` renders exactly: those its
+/// exporter writes without a conversion.
+pub fn exact_models(target: Target) -> Vec<&'static str> {
+    catalogue()
+        .iter()
+        .filter(|e| e.renderer)
+        .filter(|e| {
+            (e.build)(&ModelConfig::default()).is_ok_and(|m| {
+                export_with(m.as_ref(), target, None, &WriteOptions::default()).is_ok()
+            })
+        })
+        .map(|e| e.name)
+        .collect()
+}
+
+/// Fit every model `target` renders exactly to `material` for appearance,
+/// keep the one of least image error and write it for `target`.
+pub fn fit_for(
+    material: &Material,
+    target: Target,
+    write: &WriteOptions,
+    progress: &dyn Progress,
+) -> Result<ForRenderer, ForRendererError> {
+    let models = exact_models(target);
+    if models.is_empty() {
+        return Err(ForRendererError::NoExactModel {
+            target: format!("{target:?}").to_lowercase(),
+        });
+    }
+    let request = SelectRequest {
+        by: SelectBy::Image,
+        among: Among {
+            models: models.iter().map(|m| m.to_string()).collect(),
+            max_parameters: None,
+        },
+        progress,
+        ..SelectRequest::new(material)
+    };
+    let SelectOutcome::Image {
+        rows,
+        choice,
+        chosen,
+        ..
+    } = request.run()?
+    else {
+        // A selection by image always answers with image rows.
+        return Err(brdf_fit::FitError::NoModelToFit.into());
+    };
+    let report = *chosen;
+    let text = export_with(report.model.as_ref(), target, None, write)?;
+    Ok(ForRenderer {
+        rows,
+        choice,
+        report,
+        text,
+    })
+}
