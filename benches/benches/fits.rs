@@ -1,4 +1,4 @@
-//! Whole fits on measured data (issue 16), each from the same inputs every
+//! Whole fits on measured data, each from the same inputs every
 //! run; they need `BRDF_DATA` and say so when it is unset.
 //!
 //! - `fits-full-grid`: RGL paper_white on the full MERL grid (every valid

@@ -1,4 +1,4 @@
-//! What every fit of renderable data pays besides its solves (issue 23):
+//! What every fit of renderable data pays besides its solves:
 //! the judge's quadrature of the standard light sets (`judge/setup/<px>`,
 //! independent of the data), the data rendered through it
 //! (`judge/render-data/<px>`, here a principled model standing in for a

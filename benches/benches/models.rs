@@ -78,7 +78,7 @@ fn kernels(c: &mut Criterion) {
     g.finish();
 }
 
-/// The renderer models' batch kernels (issue 28): value, and value and
+/// The renderer models' batch kernels: value, and value and
 /// Jacobian, RGB, at a non-trivial parameter vector (every lobe on), as
 /// the solvers call them every pass (`renderer_kernels/<model>/<path>`).
 fn renderer_kernels(c: &mut Criterion) {

@@ -1,4 +1,4 @@
-//! Samples per second of the renderer models' fitting kernels (issue 28):
+//! Samples per second of the renderer models' fitting kernels:
 //! `principled` and `gltf` with three channels, value only and value +
 //! derivatives over 10,000 fixed direction pairs, through the batch
 //! kernels the fits call (`renderer/<model>/value`,

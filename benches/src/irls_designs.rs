@@ -1,4 +1,4 @@
-//! The IRLS designs of issue 16, shared by the criterion bench
+//! The IRLS designs, shared by the criterion bench
 //! (`benches/irls.rs`) and the side-by-side binary `irls_peer`: Kurt's
 //! degree-7 polynomial designs of the isotropic CUReT materials, a
 //! fixed-seed synthetic tall design with gross outliers, and their export

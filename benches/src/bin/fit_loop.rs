@@ -1,6 +1,6 @@
 //! `fit_loop`: run one `brdf fit` (the library's [`Fit`] builder) many times
 //! in one process, for profiling (`perf record -- fit_loop ...`) and quick
-//! timing of the automatic multi-start fits (issue 16).
+//! timing of the automatic multi-start fits.
 //!
 //! ```text
 //! fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--metric M] [--json]

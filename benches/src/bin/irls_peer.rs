@@ -1,4 +1,4 @@
-//! `irls_peer`: the Rust side of the IRLS comparison of issue 16. Writes
+//! `irls_peer`: the Rust side of the IRLS comparison. Writes
 //! the IRLS designs (Kurt's degree-7 polynomial designs of the isotropic
 //! CUReT materials and the 900,000 x 10 synthetic design) where
 //! `benches/peers/irls_statsmodels.py` reads them, and times

@@ -1,4 +1,4 @@
-//! `peer_fits`: build the peer problems of issue 16, export them for the
+//! `peer_fits`: build the peer problems, export them for the
 //! Python side (`benches/peers/peers.py`) and fit them with every Rust
 //! solver of the comparison (ours: bounded, variable projection + polish;
 //! the `levenberg-marquardt` and `varpro` crates), writing each solver's

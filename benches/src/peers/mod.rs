@@ -1,4 +1,4 @@
-//! The side-by-side peer comparison of issue 16: the problems, their export
+//! The side-by-side peer comparison of the solvers: the problems, their export
 //! for the Python side (`benches/peers/peers.py`), and every Rust solver of
 //! the comparison behind one interface ([`Outcome`]).
 //!

@@ -1,4 +1,4 @@
-//! The peer problems of issue 16, built from the measured data exactly as
+//! The peer problems, built from the measured data exactly as
 //! `brdf fit` would see it but without a stride: RGL `paper_white` resampled
 //! onto the full MERL grid (`brdf resample --to merl`), written and read
 //! back as a MERL file, EVERY valid bin kept, Ngan's L2 rows
