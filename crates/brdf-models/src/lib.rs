@@ -99,7 +99,6 @@ pub use clear_coat::ClearCoat;
 #[cfg(feature = "microfacet")]
 pub use cook_torrance::CookTorrance;
 #[cfg(feature = "microfacet")]
-#[cfg(feature = "microfacet")]
 pub use dupuy::{Dupuy, TabulatedMicrofacet, TabulatedNdf};
 #[cfg(feature = "microfacet")]
 pub use fitted_lobes::FittedLobe;
