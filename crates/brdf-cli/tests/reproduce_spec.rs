@@ -156,6 +156,32 @@ fn reduced_spec(data: Data, tag: &str) {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A spec names a model as `brdf fit --model` does: `blinn_phong` is
+/// Blinn-Phong, and only it is fitted.
+#[test]
+fn a_spec_takes_the_model_names_brdf_fit_takes() {
+    let dir = temp("names");
+    let spec = dir.join("names.toml");
+    std::fs::write(
+        &spec,
+        "tables = [\"kurt_9_2\"]\nmaterials = [\"25\", \"1\", \"quarry\", \"felt (synthetic)\"]\nmodels = [\"blinn_phong\"]\n",
+    )
+    .unwrap();
+    let out = reproduce(
+        &dir.join("out"),
+        &["--spec", &spec.to_string_lossy()],
+        Data::Synthetic,
+    );
+    let t92 = std::fs::read_to_string(out.join("kurt_9_2.csv")).unwrap();
+    let models: Vec<&str> = t92
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').next())
+        .collect();
+    assert_eq!(models, ["Blinn-Phong"], "{t92}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn an_unknown_part_or_a_bad_spec_is_a_usage_error_naming_it() {
     let dir = temp("bad");

@@ -182,6 +182,8 @@ pub fn catalogue() -> Vec<ModelEntry> {
         polish_factor: 1,
         channel_model: None,
     }];
+    // Only the lobe families use it; a build without them has no use for it.
+    #[cfg(any(feature = "phong", feature = "ward", feature = "microfacet"))]
     macro_rules! lobe_model {
         ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
             v.push(ModelEntry {
