@@ -1,4 +1,4 @@
-//! End to end on measured data (runs when BRDF_DATA is set): `brdf fit`
+//! End to end on measured data (needs BRDF_DATA): `brdf fit`
 //! of `rgl/paper_white_rgb.bsdf` in GGX and in principled, then `brdf
 //! export` of each fit to Mitsuba 3, pbrt-v4, glTF and MaterialX. The fits
 //! must reproduce the committed ones in
@@ -36,6 +36,7 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
 
 // One test per model, so that the two fits run side by side.
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn paper_white_ggx_fit_exports_to_all_four_formats() {
     fit_and_export("ggx");
 }
