@@ -6,8 +6,11 @@ Usage: module_cycles.py CRATE_DIR...
 Each file under CRATE_DIR/src is a module (`a/b.rs` and `a/b/mod.rs` are
 `a::b`; `lib.rs`/`main.rs` are the crate root). A module depends on another
 when it names it through a `crate::` or `super::` path (in a `use` or in
-code), or when it declares it with `mod` (a parent knows its children, so a
-child naming its parent back is a circle too). A path goes to the deepest
+code), or when it declares it with `mod`. A child naming its parent's (or
+an ancestor's) items is not counted: the parent declares the child, so
+every child would close a circle with it, and items a parent shares with
+its children are the parent's to hold. Circles between siblings (or
+cousins) are what this looks for. A path goes to the deepest
 module it names (`crate::a::b::item` -> `a::b` when `a/b.rs` exists). The
 crate root is left out: it only declares the modules. Exits 1 and prints
 every circle found.
@@ -83,7 +86,7 @@ def targets_in(mods: dict, me: tuple, text: str, inline: bool) -> set:
             while rest and rest[0] == "super":
                 base, rest = base[:-1], rest[1:]
         t = deepest(mods, tuple(base + rest))
-        if t and t != me:
+        if t and me[: len(t)] != t:
             out.add(t)
     return out
 

@@ -80,7 +80,7 @@ def save_samples(data: Samples, path: StrPath) -> None:
 
 def fit(
     data: Union[StrPath, Samples],
-    model: str,
+    model: Optional[str] = None,
     *,
     channels: str = "rgb",
     metric: str = "auto",
@@ -93,8 +93,11 @@ def fit(
     degree: int = 7,
     save: Optional[StrPath] = None,
     polish: bool = False,
+    for_renderer: Optional[str] = None,
 ) -> Fit:
-    """Fit a model to measured data, as ``brdf fit``."""
+    """Fit a model to measured data, as ``brdf fit``; with ``for_renderer``
+    instead of ``model``, the renderer's exact model closest to the data,
+    as ``brdf fit --for``."""
 
 def select(
     data: Union[StrPath, Samples],

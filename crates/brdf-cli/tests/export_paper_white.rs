@@ -1,4 +1,4 @@
-//! End to end on measured data (runs when BRDF_DATA is set): `brdf fit`
+//! End to end on measured data (needs BRDF_DATA): `brdf fit`
 //! of `rgl/paper_white_rgb.bsdf` in GGX and in principled, then `brdf
 //! export` of each fit to Mitsuba 3, pbrt-v4, glTF and MaterialX. The fits
 //! must reproduce the committed ones in
@@ -36,19 +36,19 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
 
 // One test per model, so that the two fits run side by side.
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn paper_white_ggx_fit_exports_to_all_four_formats() {
     fit_and_export("ggx");
 }
 
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn paper_white_principled_fit_exports_to_all_four_formats() {
     fit_and_export("principled");
 }
 
 fn fit_and_export(m: &str) {
-    let Some(data) = data_file("rgl/paper_white_rgb.bsdf") else {
-        return;
-    };
+    let data = data_file("rgl/paper_white_rgb.bsdf");
     let dir = std::env::temp_dir().join(format!("brdf-export-pw-{}-{m}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let s = |p: &PathBuf| p.to_str().expect("utf-8 path").to_string();

@@ -50,10 +50,9 @@ fn usage_errors_name_the_fix() {
 }
 
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn fit_report_and_report_command_on_dense_data() {
-    let Some(paper) = data_file("rgl/paper_white_rgb.bsdf") else {
-        return;
-    };
+    let paper = data_file("rgl/paper_white_rgb.bsdf");
     let dir = tmp("dense");
     let (json, html) = (dir.join("fit.json"), dir.join("fit.html"));
     let p = paper.display().to_string();
@@ -110,10 +109,9 @@ fn fit_report_and_report_command_on_dense_data() {
 }
 
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn scattered_data_have_no_image_error() {
-    let Some(curet) = data_file("curet/abrdf.dat") else {
-        return;
-    };
+    let curet = data_file("curet/abrdf.dat");
     let dir = tmp("scattered");
     let html = dir.join("curet.html");
     let spec = format!("{}#25", curet.display());

@@ -1,5 +1,5 @@
 //! `brdf reproduce` on a data folder that holds only part of the measured
-//! data (issue 14): every part whose data are absent is skipped with a
+//! data: every part whose data are absent is skipped with a
 //! message naming the files it needs, the others run; a folder holding
 //! nothing a selected part needs is an error saying what is needed.
 
@@ -41,10 +41,9 @@ fn an_empty_data_folder_names_what_the_parts_need() {
 }
 
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn curet_alone_runs_its_parts_and_says_the_others_were_skipped() {
-    let Some(curet) = data_file("curet") else {
-        return;
-    };
+    let curet = data_file("curet");
     let data = scratch("curet");
     let out = scratch("curet-out");
     // A copy of the CUReT folder only (small: two text files).

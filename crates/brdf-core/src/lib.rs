@@ -15,6 +15,7 @@
 //! | module | what |
 //! | --- | --- |
 //! | [`direction`] | `Direction` (a unit vector), spherical <-> Cartesian |
+//! | [`format`](mod@format) | numbers with a fixed count of significant digits, as every table prints them |
 //! | [`frame`] | orthonormal frames, world <-> local |
 //! | [`trig`] | `cos_theta`, `tan2_theta`, `cos_phi`, ... as in pbrt |
 //! | [`half_diff`] | the half vector; Rusinkiewicz angles both ways |
@@ -44,6 +45,7 @@
 pub mod brdf;
 pub mod direction;
 pub mod error;
+pub mod format;
 pub mod frame;
 pub mod fresnel;
 pub mod fresnel_conductor;

@@ -82,7 +82,7 @@ fn quick() -> ConvertOptions {
 /// The paper_white GGX fit (height-correlated, no Mitsuba equivalent)
 /// converted to Mitsuba's principled for appearance renders close to the
 /// source (mean HDR-FLIP below 0.03, the colour kept) but changes the sky
-/// render by more than issue 23's 0.02 (the committed 128-pixel report:
+/// render by more than the 0.02 the appearance fits aim at (the committed 128-pixel report:
 /// 0.027; Burley's diffuse is not GGX's Lambert), so the export refuses it
 /// and names the better route.
 #[test]

@@ -1,4 +1,4 @@
-//! Exports of the fitted-data models of issue 24 (SGD, Löw's ABC and
+//! Exports of the fitted-data models (SGD, Löw's ABC and
 //! smooth-surface models, STD, Dupuy's tabulated model), none of which a
 //! renderer has: each, saved as `brdf fit --save` saves it, is exported
 //! through the appearance-keeping conversion, and the image error the file

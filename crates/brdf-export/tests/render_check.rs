@@ -1,4 +1,4 @@
-//! Checks by rendering (issue 25, item 6): every paper_white export
+//! Checks by rendering: every paper_white export
 //! rendered in its renderer beside `brdf-render`'s render of the model the
 //! file holds, answers written by `tests/reference/render_check.py` (run by
 //! `check_exports.sh`) into `paper_white/render_check.json`:

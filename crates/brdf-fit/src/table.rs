@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use brdf_render::fmt_sig;
+use brdf_core::format::number;
 
 use crate::FitError;
 
@@ -32,7 +32,7 @@ impl Cell {
     fn md(&self) -> String {
         match self {
             Cell::Text(s) => s.clone(),
-            Cell::Num(x, d) => fmt_sig(*x, *d),
+            Cell::Num(x, d) => number(*x, *d),
             Cell::Empty => String::new(),
         }
     }

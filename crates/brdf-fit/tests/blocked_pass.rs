@@ -1,4 +1,4 @@
-//! The blocked pass of `ModelProblem` on large sample sets (issue 16): its
+//! The blocked pass of `ModelProblem` on large sample sets: its
 //! residuals equal the model's own batch values, its normal equations equal
 //! `J^T J` and `J^T r` formed from the stored Jacobian, it gives the same
 //! bits for one and for two threads, and the bounded solver reaches the

@@ -1,4 +1,4 @@
-//! The appearance objectives (issue 23): cube root, relative and image.
+//! The appearance objectives: cube root, relative and image.
 //! Each recovers the parameters of data generated exactly from the model
 //! (zero residual at the truth), and the image objective's analytic
 //! Jacobian agrees with central finite differences of its residuals.

@@ -1,4 +1,4 @@
-//! Scale invariance (issue 14, item 2): data of magnitude 1e-300 fit like
+//! Scale invariance: data of magnitude 1e-300 fit like
 //! unit data — the same parameters up to the scale, the same iterations —
 //! bit for bit when the scale is a power of two; weights of 1e300 like
 //! unit weights; ordinary data are not touched.

@@ -1,4 +1,4 @@
-//! Quality of the per-channel SGD fit (issue 28): Bagher's SGD with its
+//! Quality of the per-channel SGD fit: Bagher's SGD with its
 //! own parameters in every channel, fitted by the default pipeline (its
 //! suggested starts, channel by channel, the channel's one-channel batch
 //! model, the shadowing parameters on a log scale, the starts ranked on a

@@ -46,11 +46,10 @@ fn fixture() -> Vec<Case> {
 const TOL: f64 = 1e-5;
 
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn rgl_evaluation_agrees_with_mitsuba_measured() {
-    let Some(root) = std::env::var_os("BRDF_DATA") else {
-        eprintln!("BRDF_DATA not set: skipped");
-        return;
-    };
+    let root = std::env::var_os("BRDF_DATA")
+        .expect("BRDF_DATA is not set: this test reads the measured data");
     let cases = fixture();
     assert_eq!(cases.len(), 300);
     let mut files: Vec<&str> = cases.iter().map(|c| c.0.as_str()).collect();

@@ -236,6 +236,8 @@ fn entries() -> Vec<ModelEntry> {
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
     }];
+    // Only the lobe families use it; a build without them has no use for it.
+    #[cfg(any(feature = "phong", feature = "ward", feature = "microfacet"))]
     macro_rules! lobe_model {
         ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
             v.push(ModelEntry {

@@ -561,7 +561,7 @@ fn every_model_has_an_energy_test() {
         "koenderink",
         "polynomial",
         "polynomial-aniso",
-        // Issue 24's models: their domains are tested in new_models.rs.
+        // SGD, ABC, STD and Dupuy: their domains are tested in new_models.rs.
         "sgd",
         "abc",
         "abc-smooth",

@@ -1,4 +1,4 @@
-//! The models of issue 24: SGD (Bagher 2012), Löw's smooth and ABC models
+//! The fitted-data models: SGD (Bagher 2012), Löw's smooth and ABC models
 //! (Löw 2012), STD (Ribardière 2017). The catalogue-wide property tests of
 //! `tests/properties.rs` (derivatives against finite differences,
 //! non-negativity and finiteness at the box corners, reciprocity) cover them

@@ -126,7 +126,7 @@ fn models_match_the_independent_script() {
     // family has its own independent reference (renderer_models.rs, which
     // asserts the same coverage for it).
     for e in brdf_models::catalogue() {
-        // The models of issue 24 have their own script (new_models.rs);
+        // SGD, ABC, smooth ABC and STD have their own script (new_models.rs);
         // Dupuy's is read off data, and its table is checked against the
         // GGX and Beckmann closed forms it must reproduce (tests/dupuy.rs).
         let own_script = ["sgd", "abc", "abc-smooth", "std", "dupuy"].contains(&e.name);

@@ -1,4 +1,4 @@
-//! Issue 14, item 3: every catalogue model, its value and its analytic
+//! Every catalogue model, its value and its analytic
 //! derivatives stay finite at the extremes of its box and of the
 //! directions. Parameters: the defaults, every exponent-like parameter
 //! (box reaching 1e3 or more) at its upper end (1e6 for the exponents) and

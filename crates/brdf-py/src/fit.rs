@@ -48,25 +48,32 @@ use crate::fitted::{PyFit, PyModel};
 ///     End the fit for appearance with a search on the judge's mean
 ///     HDR-FLIP (as ``brdf fit --polish``): a lower image error for a few
 ///     seconds more. Only for fits for appearance.
+/// for_renderer : str, optional
+///     Instead of ``model``: among the models this renderer (``"mitsuba"``,
+///     ``"blender"``, ``"gltf"``, ``"materialx"``, ``"usd"``, ``"pbrt"``)
+///     renders exactly, the one whose render is closest to the data, fitted
+///     for appearance (as ``brdf fit --for``); write it with
+///     ``fit.model.export(for_renderer, path)``.
 ///
 /// Returns
 /// -------
 /// Fit
 ///     ``.model`` (a ``Model``), ``.report`` (the dict ``brdf fit --json``
-///     prints), ``.image_error``.
+///     prints; with ``for_renderer``, that of ``brdf fit --for --json``),
+///     ``.image_error``.
 ///
 /// Raises
 /// ------
 /// BrdfError
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
-#[pyo3(signature = (data, model, *, channels="rgb", metric="auto", limit_deg=80.0,
+#[pyo3(signature = (data, model=None, *, channels="rgb", metric="auto", limit_deg=80.0,
     starts=12, irls_max_iterations=brdf_fit::options::IRLS_MAX_ITERATIONS, solver="auto",
-    lobes=1, order=8, degree=7, save=None, polish=false))]
+    lobes=1, order=8, degree=7, save=None, polish=false, for_renderer=None))]
 pub fn fit<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
-    model: &str,
+    model: Option<&str>,
     channels: &str,
     metric: &str,
     limit_deg: f64,
@@ -78,7 +85,17 @@ pub fn fit<'py>(
     degree: usize,
     save: Option<PathBuf>,
     polish: bool,
+    for_renderer: Option<&str>,
 ) -> PyResult<PyFit> {
+    let model = match (model, for_renderer) {
+        (Some(m), None) => m,
+        (None, Some(target)) => return fit_for(py, data, target, save),
+        _ => {
+            return Err(usage(
+                "fit: give model=NAME or for_renderer=RENDERER (one of them)".into(),
+            ));
+        }
+    };
     let channels = ChannelMode::parse(channels).map_err(|_| {
         usage(format!(
             "channels=\"{channels}\": expected grey, rgb or per-channel"
@@ -161,4 +178,39 @@ pub(crate) fn data_spec(data: &Bound<'_, PyAny>) -> PyResult<String> {
         )
     })?;
     Ok(path.display().to_string())
+}
+
+/// `fit(data, for_renderer=...)`: the renderer's exact models fitted for
+/// appearance, the closest kept (as `brdf fit --for`).
+fn fit_for(
+    py: Python<'_>,
+    data: &Bound<'_, PyAny>,
+    target: &str,
+    save: Option<PathBuf>,
+) -> PyResult<PyFit> {
+    let target: brdf_export::Target = target.parse().map_err(to_py)?;
+    let material = material(py, data)?;
+    let done = py
+        .detach(|| {
+            brdf_export::for_renderer::fit_for(
+                &material,
+                target,
+                &brdf_export::WriteOptions::default(),
+                &brdf_core::progress::Silent,
+            )
+        })
+        .map_err(|e| usage(e.to_string()))?;
+    let saved = done.report.saved_model(material.name()).map_err(to_py)?;
+    if let Some(path) = &save {
+        saved.save(path).map_err(to_py)?;
+    }
+    let report = brdf_fit::select_by_image_json(material.name(), &done.rows, done.choice)
+        .map_err(to_py)?;
+    Ok(PyFit {
+        models: vec![PyModel { saved }],
+        report: crate::json::to_py_object(py, &report)?.unbind(),
+        data: material.name().to_string(),
+        spec: path_spec(data),
+        errors: vec![done.report.summary.ngan_l2],
+    })
 }

@@ -283,7 +283,7 @@ impl PyFit {
                 return Ok(None);
             };
             let fitted = model.saved.build().map_err(|e| e.to_string())?;
-            brdf_render::Judge::new(128)
+            brdf_render::Judge::new(brdf_render::judge::REPORT_SIZE)
                 .errors(dense.as_ref(), fitted.as_ref())
                 .map(Some)
                 .map_err(|e| e.to_string())

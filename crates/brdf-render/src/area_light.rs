@@ -12,7 +12,7 @@
 
 use nalgebra::Vector3;
 
-use crate::environment::Incident;
+use crate::quadrature::Incident;
 
 /// A square emitter: centre, in-plane unit axes, emitting normal, side
 /// length, RGB radiance and the quadrature grid.

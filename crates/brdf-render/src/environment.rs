@@ -10,19 +10,8 @@
 
 use nalgebra::Vector3;
 
-use crate::quadrature::EnvironmentCells;
+use crate::quadrature::{EnvironmentCells, Incident};
 use crate::sky::SunSky;
-
-/// One incident direction (world, unit, pointing away from the surface
-/// towards the light) and the RGB irradiance it carries at normal incidence
-/// (radiance times solid angle; the receiver's cosine is applied later).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Incident {
-    /// unit world direction towards the light
-    pub dir: Vector3<f64>,
-    /// RGB weight `w_c` (irradiance at normal incidence)
-    pub weight: [f64; 3],
-}
 
 /// The radiance of a distant environment by direction.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -243,7 +243,12 @@ impl Grid {
                 _ => None,
             }) {
                 let x = LEFT + ncol * (cw + GAP) + 15;
-                text(&format!(">= {}", crate::fmt_sig(max, 2)), x, y - 4, 11)?;
+                text(
+                    &format!(">= {}", brdf_core::format::number(max, 2)),
+                    x,
+                    y - 4,
+                    11,
+                )?;
                 text("0", x, y + ch - 16, 11)?;
                 text("|diff|", x, y + ch / 2 - 6, 11)?;
             }

@@ -22,8 +22,9 @@ use nalgebra::Vector3;
 
 use crate::RenderError;
 use crate::area_light::SquareLight;
-use crate::environment::{EnvRadiance, Environment, Incident};
-use crate::sky::sky_lights;
+use crate::environment::{EnvRadiance, Environment};
+use crate::quadrature::Incident;
+use crate::sky::SunSky;
 
 /// The names [`LightSet::parse`] accepts.
 pub const LIGHT_SET_NAMES: [&str; 3] = ["directional", "sky", "studio"];
@@ -66,8 +67,11 @@ impl LightSet {
 
     /// The judge's sky set.
     pub fn sky() -> LightSet {
-        let (dome, sun) = sky_lights();
-        LightSet::Sky { dome, sun }
+        let sky = SunSky::judge();
+        LightSet::Sky {
+            dome: Environment::new(EnvRadiance::SunSky(sky)),
+            sun: sky.sun_light(),
+        }
     }
 
     /// The judge's studio set.

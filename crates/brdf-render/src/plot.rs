@@ -120,7 +120,7 @@ fn tick(v: f64, log: bool) -> String {
             return String::new();
         }
     }
-    crate::fmt_sig(v, 2)
+    brdf_core::format::number(v, 2)
 }
 
 /// A marker of shape `style / 10` (circle, triangle, square, cross).

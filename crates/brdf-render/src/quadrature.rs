@@ -65,7 +65,18 @@ use std::sync::OnceLock;
 
 use nalgebra::Vector3;
 
-use crate::environment::Incident;
+/// One incident direction (world, unit, pointing away from the surface
+/// towards the light) and the RGB irradiance it carries at normal incidence
+/// (radiance times solid angle; the receiver's cosine is applied later):
+/// a node of the lighting quadrature. Environments are cells of it, an area
+/// light its points, a directional light (the sun) a single node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Incident {
+    /// unit world direction towards the light
+    pub dir: Vector3<f64>,
+    /// RGB weight `w_c` (irradiance at normal incidence)
+    pub weight: [f64; 3],
+}
 
 /// Angular radius (radians, half-vector space) of the cap about the
 /// normal that is one cell: a third of the narrowest GGX width the

@@ -10,10 +10,11 @@
 use std::path::Path;
 
 use brdf_core::Brdf;
+use brdf_core::format::number;
 use nalgebra::Vector3;
 
 use crate::grid::{Grid, Tile, Tone, difference_scale, exposure_for};
-use crate::{Image, RenderError, fmt_sig, render_sphere};
+use crate::{Image, RenderError, render_sphere};
 
 /// One side: what to render and how to label it.
 pub struct Side<'a> {
@@ -111,7 +112,7 @@ impl SideBySide<'_> {
         Ok(Grid {
             title: title.join(" vs "),
             columns,
-            rows: vec![format!("light {}\nexposure x{}", self.light_label, fmt_sig(exposure, 3))],
+            rows: vec![format!("light {}\nexposure x{}", self.light_label, number(exposure, 3))],
             tiles: vec![row],
             footer: vec![
                 self.light.describe(&self.light_label, self.size),

@@ -38,7 +38,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use nalgebra::Vector3;
 
-use crate::environment::{EnvRadiance, Environment, Incident};
+use crate::quadrature::Incident;
 
 /// The table written by `data/make_sunsky.py` (generated; see the module
 /// doc). Measured values: some happen to be close to named constants.
@@ -115,13 +115,6 @@ impl SunSky {
     }
 }
 
-/// The sky set's environment (the dome, discretised by
-/// [`crate::quadrature`]) and sun, as described in the module doc.
-pub fn sky_lights() -> (Environment, Incident) {
-    let sky = SunSky::judge();
-    (Environment::new(EnvRadiance::SunSky(sky)), sky.sun_light())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -166,7 +159,7 @@ mod tests {
         // The sun's irradiance is its disc radiance times the disc's solid angle.
         let half = (table::SUN_APERTURE_DEG / 2.0).to_radians();
         let omega = 2.0 * PI * (1.0 - half.cos());
-        let (_, sun) = sky_lights();
+        let sun = SunSky::judge().sun_light();
         for c in 0..3 {
             let e = table::SUN_RADIANCE[c] * omega;
             assert!((sun.weight[c] / e - 1.0).abs() < 1e-5, "{c}");

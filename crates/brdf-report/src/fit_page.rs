@@ -172,7 +172,7 @@ struct ErrorRow {
 }
 
 fn sig(v: f64) -> String {
-    brdf_render::fmt_sig(v, 4)
+    brdf_core::format::number(v, 4)
 }
 
 fn params(saved: &SavedModel) -> Vec<ParamRow> {

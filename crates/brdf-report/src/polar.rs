@@ -218,7 +218,7 @@ fn grid(chart: &mut Chart, log: bool, peak: f64, rmax: f64) -> Result<(), String
         };
         chart
             .draw_series(std::iter::once(Text::new(
-                brdf_render::fmt_sig(value, 2),
+                brdf_core::format::number(value, 2),
                 (r, 0.0),
                 ("sans-serif", 9)
                     .into_font()

@@ -1,4 +1,4 @@
-//! Issue 14 (item 3) and issue 17 (item 5): the bounded solver never
+//! The bounded solver never
 //! evaluates the problem outside its feasible set — not only the final
 //! point, every point it asks for (trial steps included) — from starts on
 //! the corners of the box, with either damping schedule and with geodesic

@@ -143,7 +143,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
             t.rows.push(row);
             grid.rows.push(format!(
                 "{name}\nexposure x{}",
-                crate::report::fmt_sig(exposure, 3)
+                brdf_core::format::number(exposure, 3)
             ));
             grid.rows.push(format!("{name}\n|difference|"));
             grid.tiles.push(tiles);
@@ -306,8 +306,8 @@ fn lowest_l2(t: &Table, group: &[&str], skip: &[&str], what: &str) -> String {
         wins += usize::from(rv < tv);
         each.push(format!(
             "{name} {rl} {} against {tl} {}",
-            crate::report::fmt_sig(rv, 4),
-            crate::report::fmt_sig(tv, 4)
+            brdf_core::format::number(rv, 4),
+            brdf_core::format::number(tv, 4)
         ));
     }
     format!(

@@ -18,9 +18,6 @@ pub enum StudyError {
     /// A saved model could not be read, written or rebuilt.
     #[error(transparent)]
     SavedModel(#[from] brdf_models::saved_model::SavedModelError),
-    /// A model could not be exported.
-    #[error(transparent)]
-    Export(#[from] brdf_export::ExportError),
     /// Rendering or writing an image or plot failed.
     #[error(transparent)]
     Render(#[from] brdf_render::RenderError),

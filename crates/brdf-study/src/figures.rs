@@ -126,7 +126,7 @@ pub fn figure_9_1(study: &mut Study) -> Result<(), StudyError> {
         }
         grid.rows.push(format!(
             "{name}\nexposure x{}",
-            crate::report::fmt_sig(exposure, 3)
+            brdf_core::format::number(exposure, 3)
         ));
         grid.rows.push(format!("{name}\n|difference|"));
         grid.tiles.push(row);
@@ -171,7 +171,7 @@ pub fn figure_9_2(study: &mut Study) -> Result<(), StudyError> {
         grid.rows.push(format!(
             "{}\nexposure x{}",
             crate::kurt::common::TABLE_9_2_MATERIALS[*k].1,
-            crate::report::fmt_sig(exposure, 3)
+            brdf_core::format::number(exposure, 3)
         ));
         grid.tiles.push(
             images

@@ -7,8 +7,7 @@
 //! ## Layering
 //!
 //! `brdf-study` sits on top: it fits with `brdf-fit`, renders with
-//! `brdf-render`, exports with `brdf-export` and reads data with
-//! `brdf-io`; only the `brdf` command (`brdf-cli`) and the benchmarks
+//! `brdf-render` and reads data with `brdf-io`; only the `brdf` command (`brdf-cli`) and the benchmarks
 //! build on it. Inside, the modules import downwards only:
 //!
 //! - [`reproduce`] runs a selection and writes the README ([`readme`]);

@@ -60,7 +60,7 @@ impl RendererSpheres {
         }
         self.grid.rows.push(format!(
             "{name}\nexposure x{}",
-            crate::report::fmt_sig(exposure, 3)
+            brdf_core::format::number(exposure, 3)
         ));
         self.grid.tiles.push(row);
     }

@@ -4,20 +4,9 @@
 
 // The tables live in brdf-fit (the batch summary and `brdf select` write
 // them too); the study uses them under the names it always has.
+/// The workspace's one number formatter ([`brdf_core::format::number`]),
+/// by the name `new_models` imports it under.
+pub use brdf_core::format::number as fmt_sig;
 pub use brdf_fit::table::{Cell, Table};
-pub use brdf_render::fmt_sig;
 
 pub use brdf_fit::data_name;
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn significant_digits() {
-        assert_eq!(fmt_sig(0.0190, 3), "0.0190");
-        assert_eq!(fmt_sig(2.1987, 4), "2.199");
-        assert_eq!(fmt_sig(1234.6, 3), "1235");
-        assert_eq!(fmt_sig(1.5e-7, 2), "1.5e-7");
-    }
-}

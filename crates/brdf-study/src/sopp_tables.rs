@@ -310,7 +310,7 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
                 columns: vec!["measured".into(), "model".into(), "|difference|".into()],
                 rows: vec![format!(
                     "{name}\nexposure x{}",
-                    crate::report::fmt_sig(exposure, 3)
+                    brdf_core::format::number(exposure, 3)
                 )],
                 tiles: vec![vec![
                     Some(Tile {

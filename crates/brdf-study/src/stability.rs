@@ -13,13 +13,14 @@
 
 use std::path::Path;
 
+use brdf_core::format::number;
 use brdf_core::{Direction, SampleSet};
 use brdf_fit::{FitRequest, Material, Metric, Objective};
 use brdf_models::ModelConfig;
 use brdf_models::ModelEntry;
 
 use crate::StudyError;
-use crate::report::{Cell, Table, fmt_sig};
+use crate::report::{Cell, Table};
 
 /// `n` deterministic direction pairs, elevations in `[0, 75]` deg and
 /// azimuths over the circle (additive golden-ratio sequences).
@@ -174,7 +175,7 @@ pub fn fit_case(group: &'static str, case: &str, fit: CaseFit, data: &SampleSet)
                     format!(
                         "{} = {}{}",
                         p.name,
-                        fmt_sig(p.value, 6),
+                        number(p.value, 6),
                         p.at_bound
                             .as_ref()
                             .map(|b| format!(" ({b} bound)"))
@@ -216,7 +217,7 @@ fn exact_or_listed(case: CaseOutcome, scale: f64) -> CaseOutcome {
             ngan_l2: None,
             detail: format!(
                 "exact up to rounding: Ngan L2 below 1e-12 of the data ({}); the coefficients beside the constant are not determined beyond rounding and are not listed",
-                fmt_sig(scale, 6)
+                number(scale, 6)
             ),
             ..case
         },
@@ -641,7 +642,7 @@ pub fn table(cases: &[CaseOutcome]) -> Table {
             Cell::Text(c.termination.clone()),
             Cell::Text(c.iterations.map(|i| i.to_string()).unwrap_or_default()),
             c.ngan_l2
-                .map(|e| Cell::Text(fmt_sig(e, 6)))
+                .map(|e| Cell::Text(number(e, 6)))
                 .unwrap_or(Cell::Empty),
             Cell::Text(c.detail.replace('|', "/")),
         ]);

@@ -9,19 +9,26 @@ use std::path::PathBuf;
 use brdf_solve::LeastSquaresProblem;
 use brdf_solve::strd::{StrdModel, StrdProblem, lre};
 
-fn dir() -> Option<PathBuf> {
-    match std::env::var_os("BRDF_DATA") {
-        Some(d) => Some(PathBuf::from(d).join("nist_strd")),
-        None => {
-            eprintln!("skipped: BRDF_DATA is not set");
-            None
-        }
-    }
+/// `$BRDF_DATA/nist_strd`, failing loudly when the variable is unset or
+/// the folder is missing.
+fn dir() -> PathBuf {
+    let d = PathBuf::from(
+        std::env::var_os("BRDF_DATA")
+            .expect("BRDF_DATA is not set: this test reads $BRDF_DATA/nist_strd"),
+    )
+    .join("nist_strd");
+    assert!(
+        d.is_dir(),
+        "BRDF_DATA is set but {} is missing",
+        d.display()
+    );
+    d
 }
 
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn certified_values_give_the_certified_rss() {
-    let Some(dir) = dir() else { return };
+    let dir = dir();
     let sets = brdf_io::nist::read_dir(&dir).unwrap();
     assert_eq!(sets.len(), 22);
     for ds in &sets {
@@ -43,8 +50,9 @@ fn certified_values_give_the_certified_rss() {
 }
 
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn every_run_reaches_six_digits_and_the_mean_beats_9_4() {
-    let Some(dir) = dir() else { return };
+    let dir = dir();
     let runs = brdf_study::nist::run_dir(&dir, &brdf_study::nist::strategies()).unwrap();
     assert_eq!(runs.len(), 44);
     for r in &runs {

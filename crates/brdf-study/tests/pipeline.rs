@@ -329,10 +329,9 @@ fn impossible_requests_are_errors() {
 /// data), and the models rank as in Kurt's table (Lafortune and
 /// Cook-Torrance beat Blinn-Phong and Oren-Nayar).
 #[test]
+#[ignore = "needs BRDF_DATA"]
 fn real_curet_quarry_tile() {
-    let Some(path) = common::data_file("curet/abrdf.dat") else {
-        return;
-    };
+    let path = common::data_file("curet/abrdf.dat");
     let data = brdf_study::data::load(&format!("{}#25", path.display())).unwrap();
     let (data, _) = data.filter_angle_limit(80f64.to_radians());
     let mut err = std::collections::HashMap::new();

@@ -116,11 +116,16 @@ impl StudySpec {
                 .chain(super::models::renderer_models(1));
             if !known
                 .into_iter()
-                .any(|(label, name, _)| m.eq_ignore_ascii_case(label) || m == name)
+                .any(|(label, name, _)| names_model(m, label, name))
             {
-                return Err(format!(
-                    "models: `{m}` is none of Kurt's nine or the renderer models (catalogue names or labels)"
-                ));
+                // An unknown name gets the resolver's suggestions, as
+                // `brdf fit --model` gives them.
+                return Err(match brdf_fit::resolve(m) {
+                    Err(e) => format!("models: {e}"),
+                    Ok(_) => format!(
+                        "models: `{m}` is none of Kurt's nine or the renderer models (catalogue names or labels)"
+                    ),
+                });
             }
         }
         Ok(())
@@ -150,12 +155,17 @@ impl StudySpec {
 
     /// Whether a model (label and catalogue name) is selected.
     pub fn has_model(&self, label: &str, name: &str) -> bool {
-        self.models.is_empty()
-            || self
-                .models
-                .iter()
-                .any(|m| m.eq_ignore_ascii_case(label) || m == name)
+        self.models.is_empty() || self.models.iter().any(|m| names_model(m, label, name))
     }
+}
+
+/// Whether the user's model name `m` selects the study's model with table
+/// label `label` and catalogue name `name`: the label (any case), or any
+/// spelling of the name `brdf fit --model` accepts (`brdf_fit::resolve`:
+/// any case, `_` or a space for `-`), so the study and the fit take the
+/// same names.
+fn names_model(m: &str, label: &str, name: &str) -> bool {
+    m.eq_ignore_ascii_case(label) || brdf_fit::resolve(m).is_ok_and(|e| e.name == name)
 }
 
 #[cfg(test)]
@@ -205,6 +215,21 @@ mod tests {
         assert!(s.has_model("GGX", "ggx") && s.has_model("Principled", "principled"));
         assert!(!s.has_model("glTF", "gltf") && !s.has_model("Ward", "ward"));
         assert!(StudySpec::parse("models = [\"gltf-ext\"]\n", PARTS).is_ok());
+    }
+
+    #[test]
+    fn models_take_the_names_brdf_fit_takes() {
+        for spelling in ["blinn_phong", "Blinn Phong", "BLINN-PHONG", "blinn-phong"] {
+            let s = StudySpec::parse(&format!("models = [\"{spelling}\"]\n"), PARTS)
+                .unwrap_or_else(|e| panic!("{spelling}: {e}"));
+            assert!(s.has_model("Blinn-Phong", "blinn-phong"), "{spelling}");
+            assert!(!s.has_model("Phong", "phong"), "{spelling}");
+        }
+        let s = StudySpec::parse("models = [\"cook_torrance\", \"GLTF_EXT\"]\n", PARTS).unwrap();
+        assert!(s.has_model("glTF + KHR", "gltf-ext"));
+        assert!(!s.has_model("glTF", "gltf"));
+        let e = StudySpec::parse("models = [\"blinn_phongg\"]\n", PARTS).unwrap_err();
+        assert!(e.contains("models") && e.contains("`blinn-phong`"), "{e}");
     }
 
     #[test]

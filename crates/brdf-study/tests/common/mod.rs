@@ -4,19 +4,18 @@
 
 use std::path::PathBuf;
 
-/// The measured file `rel` under `BRDF_DATA`: `None` (said on stderr) when
-/// the variable is unset; a loud failure when it is set and the file is
-/// missing.
-pub fn data_file(rel: &str) -> Option<PathBuf> {
-    let Some(root) = std::env::var_os("BRDF_DATA") else {
-        eprintln!("skipped: BRDF_DATA is not set");
-        return None;
-    };
+/// The measured file `rel` under `BRDF_DATA`. The tests that call this are
+/// `#[ignore = "needs BRDF_DATA"]`; run with `--include-ignored`, they fail
+/// loudly when the variable is unset or the file is missing, rather than
+/// passing without having looked at the data.
+pub fn data_file(rel: &str) -> PathBuf {
+    let root = std::env::var_os("BRDF_DATA")
+        .unwrap_or_else(|| panic!("BRDF_DATA is not set: this test reads $BRDF_DATA/{rel}"));
     let path = PathBuf::from(root).join(rel);
     assert!(
         path.exists(),
         "BRDF_DATA is set but {} is missing",
         path.display()
     );
-    Some(path)
+    path
 }
