@@ -22,8 +22,8 @@
 //!
 //! [`crate::export_or_convert`] refuses a conversion whose FLIP under any
 //! light set exceeds [`FLIP_LIMIT`] (0.02) or whose largest mean-colour
-//! CIEDE2000 exceeds [`DELTA_E_LIMIT`] (3), unless `force`. 0.02 is issue
-//! 23's bound on what a conversion may change: both renders are
+//! CIEDE2000 exceeds [`DELTA_E_LIMIT`] (3), unless `force`. 0.02 bounds
+//! what a conversion may change: both renders are
 //! brdf-render's, deterministic quadratures without Monte Carlo noise, so
 //! 0.02 is a difference of the materials, not of the renders (two Mitsuba
 //! renders of one measurement differ by 0.016-0.05 from noise alone,
@@ -91,6 +91,14 @@ pub struct ConvertOptions {
 pub const FLIP_LIMIT: f64 = 0.02;
 /// Largest mean-colour CIEDE2000 above which a conversion is refused.
 pub const DELTA_E_LIMIT: f64 = 3.0;
+
+/// When a conversion is refused, in words for help texts and tables (from
+/// [`FLIP_LIMIT`] and [`DELTA_E_LIMIT`], so the texts follow the code).
+pub fn limits_text() -> String {
+    format!(
+        "HDR-FLIP above {FLIP_LIMIT} under any light set or mean-colour CIEDE2000 above {DELTA_E_LIMIT}"
+    )
+}
 
 impl Default for ConvertOptions {
     fn default() -> Self {
@@ -166,6 +174,7 @@ impl Conversion {
             via: self.model.name().to_string(),
             flip,
             delta_e,
+            front: crate::FrontEnd::Cli,
         })
     }
 }

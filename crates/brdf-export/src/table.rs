@@ -105,7 +105,10 @@ pub fn markdown() -> String {
         s += &format!(" converted ({}) |", default_via(t));
     }
     s += "\nMaterialX `--surface standard_surface` or `openpbr`: the glTF rows are mapped, not exact.\n";
-    s += "Conversions are fitted for appearance and refused above mean HDR-FLIP 0.05 or CIEDE2000 3 (`--force`).\n";
+    s += &format!(
+        "Conversions are fitted for appearance and refused above {} (`--force`).\n",
+        crate::convert::limits_text()
+    );
     s += "\n";
     s += &conversions_markdown();
     s += "\n";
