@@ -133,3 +133,38 @@ fn without_the_mesh_the_material_alone_is_written() {
     // The material itself is the same with and without the mesh.
     assert_eq!(a["materials"], asset(true)["materials"]);
 }
+
+/// `tests/reference/mesh/paper_white_rgb.gltf` (paper_white's `make.sh`:
+/// principled's glTF conversion with its preview sphere) is what the
+/// exporter writes, and the Khronos validator (`check_exports.sh`) found
+/// no error, warning or note in it as it is.
+#[test]
+fn khronos_validator_accepts_the_file_with_the_sphere() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference");
+    let read = |p: &str| std::fs::read_to_string(dir.join(p)).unwrap();
+    let saved = brdf_models::saved_model::SavedModel::load_model(
+        &dir.join("paper_white/principled.gltf.json"),
+    )
+    .unwrap();
+    let opts = WriteOptions {
+        name: "paper_white_rgb".into(),
+        ..WriteOptions::default()
+    };
+    let text = read("mesh/paper_white_rgb.gltf");
+    assert_eq!(
+        export_with(saved.as_ref(), Target::Gltf, None, &opts).unwrap(),
+        text
+    );
+    let v: Value = serde_json::from_str(&read("mesh/gltf_validation.json")).unwrap();
+    let v = v.as_array().unwrap();
+    assert_eq!(v.len(), 1);
+    assert_eq!(
+        v[0]["text"].as_str().unwrap(),
+        text,
+        "rerun check_exports.sh"
+    );
+    let issues = &v[0]["issues"];
+    assert_eq!(issues["numErrors"], 0, "{issues}");
+    assert_eq!(issues["numWarnings"], 0, "{issues}");
+    assert_eq!(issues["messages"], serde_json::json!([]), "{issues}");
+}
