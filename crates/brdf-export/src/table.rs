@@ -106,7 +106,7 @@ pub fn markdown() -> String {
     }
     s += "\nMaterialX `--surface standard_surface` or `openpbr`: the glTF rows are mapped, not exact.\n";
     s += &format!(
-        "Conversions are fitted for appearance and refused above {} (`--force`).\n",
+        "Conversions are fitted for appearance and refused at {} (`--force` exports them anyway).\n",
         crate::convert::limits_text()
     );
     s += "\n";
