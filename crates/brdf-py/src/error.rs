@@ -28,7 +28,6 @@ pub fn usage(message: String) -> PyErr {
 /// Python's default filter; `warnings.catch_warnings` captures it), for
 /// what the library did that the caller should know but that is no error.
 pub fn warn(py: pyo3::Python<'_>, message: &str) -> pyo3::PyResult<()> {
-    use pyo3::types::PyAnyMethods;
     // Messages are the library's one-line texts; a NUL would only cut it.
     let text = std::ffi::CString::new(message.replace('\0', " "))
         .map_err(|e| usage(format!("warning text: {e}")))?;
