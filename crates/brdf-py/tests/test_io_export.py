@@ -80,7 +80,7 @@ def _accessor(asset, raw, k, fmt, width):
 
 
 def test_gltf_carries_a_preview_sphere_unless_mesh_is_false():
-    asset = json.loads(brdf.export("lambert", "gltf", params={"kd": 0.5}, channels=3))
+    asset = json.loads(brdf.export("lambert", "gltf", params={"kd_r": 0.5, "kd_g": 0.4, "kd_b": 0.3}, channels=3))
     (mesh,) = asset["meshes"]
     (prim,) = mesh["primitives"]
     assert prim["material"] == 0 and len(asset["materials"]) == 1
@@ -94,7 +94,7 @@ def test_gltf_carries_a_preview_sphere_unless_mesh_is_false():
     assert len(pos) == len(nor) > 0
     assert np.allclose(np.linalg.norm(nor, axis=1), 1.0, atol=1e-6)
     assert idx.max() < len(pos) and len(idx) % 3 == 0
-    library = json.loads(brdf.export("lambert", "gltf", params={"kd": 0.5}, channels=3, mesh=False))
+    library = json.loads(brdf.export("lambert", "gltf", params={"kd_r": 0.5, "kd_g": 0.4, "kd_b": 0.3}, channels=3, mesh=False))
     assert "meshes" not in library and "buffers" not in library
     assert library["materials"] == asset["materials"]
     m = brdf.Model.load(SAVED)
