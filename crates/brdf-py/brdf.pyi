@@ -44,6 +44,7 @@ class Model:
         surface: str = "gltf_pbr",
         convert: bool = False,
         force: bool = False,
+        mesh: bool = True,
     ) -> str:
         """The model as a mitsuba, pbrt, gltf, materialx, usd or blender material."""
     def tabulate(self, grid: StrPath) -> bytes:
@@ -144,6 +145,7 @@ def export(
     surface: str = "gltf_pbr",
     convert: bool = False,
     force: bool = False,
+    mesh: bool = True,
 ) -> str:
     """A model as a renderer's material, as ``brdf export`` writes it."""
 

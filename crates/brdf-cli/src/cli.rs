@@ -32,7 +32,7 @@ pub enum Command {
     Info(crate::commands::info::InfoArgs),
     /// Convert data or a saved model to MERL, Sopp's grid or CSV samples.
     Resample(crate::commands::resample::ResampleArgs),
-    /// Write a saved model as a Mitsuba 3, pbrt-v4, glTF or MaterialX material.
+    /// Write a saved model as a renderer's material (`--to` lists the targets).
     Export(crate::commands::export::ExportArgs),
     /// Render a labelled sphere of a saved model, dense data, or both side by side.
     Render(crate::commands::render::RenderArgs),

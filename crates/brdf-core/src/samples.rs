@@ -166,6 +166,10 @@ pub struct SampleSet {
     pub provenance: String,
     /// Channel names (`["grey"]`, `["r", "g", "b"]`, `["Y"]`).
     pub channel_names: Vec<String>,
+    /// What a reader assumed that the caller should tell the user, one line
+    /// each, naming the file (e.g. a CSV file without a weight column read
+    /// with unit weights). Empty when the file said everything.
+    pub notes: Vec<String>,
     pairs: DirPairs,
     values: Vec<Vec<f64>>,
     weights: Vec<f64>,
@@ -183,6 +187,7 @@ impl SampleSet {
             name: name.into(),
             provenance: provenance.into(),
             channel_names,
+            notes: Vec::new(),
             pairs: DirPairs::default(),
             values: vec![Vec::new(); nc],
             weights: Vec::new(),
@@ -303,6 +308,7 @@ impl SampleSet {
             name: self.name.clone(),
             provenance: self.provenance.clone(),
             channel_names: self.channel_names.clone(),
+            notes: self.notes.clone(),
             pairs: self.pairs.select(keep),
             values: self
                 .values
@@ -378,6 +384,7 @@ impl SampleSet {
             name: self.name.clone(),
             provenance: format!("{} (mean of {} channels)", self.provenance, self.channels()),
             channel_names: vec!["grey".to_string()],
+            notes: self.notes.clone(),
             pairs: self.pairs.clone(),
             values: vec![mean],
             weights: self.weights.clone(),
@@ -390,6 +397,7 @@ impl SampleSet {
             name: format!("{}[{}]", self.name, self.channel_names[c]),
             provenance: self.provenance.clone(),
             channel_names: vec![self.channel_names[c].clone()],
+            notes: self.notes.clone(),
             pairs: self.pairs.clone(),
             values: vec![self.values[c].clone()],
             weights: self.weights.clone(),

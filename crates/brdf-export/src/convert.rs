@@ -92,6 +92,14 @@ pub const FLIP_LIMIT: f64 = 0.02;
 /// Largest mean-colour CIEDE2000 above which a conversion is refused.
 pub const DELTA_E_LIMIT: f64 = 3.0;
 
+/// When a conversion is refused, in words for help texts and tables (from
+/// [`FLIP_LIMIT`] and [`DELTA_E_LIMIT`], so the texts follow the code).
+pub fn limits_text() -> String {
+    format!(
+        "HDR-FLIP above {FLIP_LIMIT} under any light set or mean-colour CIEDE2000 above {DELTA_E_LIMIT}"
+    )
+}
+
 impl Default for ConvertOptions {
     fn default() -> Self {
         ConvertOptions {
@@ -166,6 +174,7 @@ impl Conversion {
             via: self.model.name().to_string(),
             flip,
             delta_e,
+            front: crate::FrontEnd::Cli,
         })
     }
 }

@@ -109,6 +109,7 @@ pub fn run(job: &ExportJob) -> Result<ExportDone, ExportFileError> {
         Exported {
             text: export_with(model.as_ref(), job.target, None, &write)?,
             conversion: None,
+            warnings: crate::warnings(model.as_ref(), job.target, crate::FrontEnd::Cli),
         }
     } else {
         export_or_convert_with(model.as_ref(), job.target, &job.convert, &write)?

@@ -182,6 +182,9 @@ pub struct WriteOptions {
     pub light: Light,
     /// MaterialX: the surface shader.
     pub surface: Surface,
+    /// glTF: a preview sphere using the material in the default scene
+    /// (`false`: the material alone, a material library).
+    pub mesh: bool,
 }
 
 impl Default for WriteOptions {
@@ -191,6 +194,7 @@ impl Default for WriteOptions {
             scene: false,
             light: Light::Studio,
             surface: Surface::GltfPbr,
+            mesh: true,
         }
     }
 }
@@ -283,9 +287,11 @@ pub enum ExportError {
     /// The converted material renders unlike the source (see
     /// [`convert::FLIP_LIMIT`], [`convert::DELTA_E_LIMIT`]).
     #[error(
-        "converting `{model}` to {target} as `{via}` changes its look (HDR-FLIP {flip:.3} under one light set, limit {flip_limit}; CIEDE2000 {delta_e:.2}, limit {de_limit}): fit the target's model directly: `brdf fit --model {via} ...` and export that, or pass --force to export the conversion anyway",
+        "converting `{model}` to {target} as `{via}` changes its look (HDR-FLIP {flip:.3} under one light set, limit {flip_limit}; CIEDE2000 {delta_e:.2}, limit {de_limit}): fit the target's model directly: {fit} and export that, or pass {force} to export the conversion anyway",
         flip_limit = convert::FLIP_LIMIT,
-        de_limit = convert::DELTA_E_LIMIT
+        de_limit = convert::DELTA_E_LIMIT,
+        fit = .front.fit_hint(via),
+        force = .front.force_option()
     )]
     LooksDifferent {
         /// the source's catalogue name
@@ -298,6 +304,8 @@ pub enum ExportError {
         flip: f64,
         /// largest mean-colour CIEDE2000
         delta_e: f64,
+        /// whose options the message names (see [`ExportError::for_front_end`])
+        front: FrontEnd,
     },
     /// Conversion by fitting failed.
     #[error("converting `{model}` to {target} by fitting `{via}`: {reason}")]
@@ -313,12 +321,93 @@ pub enum ExportError {
     },
 }
 
+/// The front end an error's advice is written for: the options to name
+/// differ (`--force` on the command line, `force=True` in Python).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FrontEnd {
+    /// The `brdf` command.
+    #[default]
+    Cli,
+    /// The Python module.
+    Python,
+}
+
+impl FrontEnd {
+    /// The option that exports a conversion beyond the limits.
+    pub fn force_option(self) -> &'static str {
+        match self {
+            FrontEnd::Cli => "--force",
+            FrontEnd::Python => "force=True",
+        }
+    }
+
+    /// How to fit RGB data (the option that fits colour).
+    pub fn rgb_option(self) -> &'static str {
+        match self {
+            FrontEnd::Cli => "`--channels rgb`",
+            FrontEnd::Python => "`channels=\"rgb\"`",
+        }
+    }
+
+    /// How to fit the model `via` to the data directly.
+    pub fn fit_hint(self, via: &str) -> String {
+        match self {
+            FrontEnd::Cli => format!("`brdf fit --model {via} ...`"),
+            FrontEnd::Python => format!("`brdf.fit(data, \"{via}\")`"),
+        }
+    }
+}
+
+impl ExportError {
+    /// The error with its advice naming `front`'s options (errors are
+    /// made with the command line's).
+    pub fn for_front_end(self, front: FrontEnd) -> Self {
+        match self {
+            ExportError::LooksDifferent {
+                model,
+                target,
+                via,
+                flip,
+                delta_e,
+                ..
+            } => ExportError::LooksDifferent {
+                model,
+                target,
+                via,
+                flip,
+                delta_e,
+                front,
+            },
+            e => e,
+        }
+    }
+}
+
 /// A material in a target's format, and the conversion it took (if any).
 pub struct Exported {
     /// The file's text.
     pub text: String,
     /// `None` when the material equals the model exactly.
     pub conversion: Option<Conversion>,
+    /// What the material does not say that the user should know (see
+    /// [`warnings`]), one line each, for the front end to print.
+    pub warnings: Vec<String>,
+}
+
+/// Warnings for writing `model` as a `target` material, with the fix in
+/// `front`'s options. Every target writes colours (RGB), so a one-channel
+/// (grey) fit becomes a grey material whose colour was never fitted: a
+/// grey metal or a grey plastic where the data may have been coloured.
+pub fn warnings(model: &dyn Parametric, target: Target, front: FrontEnd) -> Vec<String> {
+    let mut w = Vec::new();
+    if model.channels() == 1 {
+        w.push(format!(
+            "`{}` has one channel: its colour was never fitted, so the {target} material is grey; fit RGB data with {} for a coloured material",
+            model.name(),
+            front.rgb_option()
+        ));
+    }
+    w
 }
 
 /// Write `model` (its catalogue name, parameter names and current values)
@@ -384,10 +473,12 @@ pub fn export_or_convert_with(
     opts: &ConvertOptions,
     write: &WriteOptions,
 ) -> Result<Exported, ExportError> {
+    let warnings = warnings(model, target, FrontEnd::Cli);
     match export_with(model, target, None, write) {
         Ok(text) => Ok(Exported {
             text,
             conversion: None,
+            warnings,
         }),
         Err(ExportError::NoEquivalent { .. }) => {
             let c = convert(model, target, opts)?;
@@ -398,6 +489,7 @@ pub fn export_or_convert_with(
             Ok(Exported {
                 text,
                 conversion: Some(c),
+                warnings,
             })
         }
         Err(e) => Err(e),

@@ -45,9 +45,11 @@ pub fn snippet(file: &Path) -> String {
         .to_document(false, None)
 }
 
-/// The saved model tabulated on the grid of the RGL file `grid`: the
-/// bytes of an RGL `.bsdf` file (what [`run`] writes).
+/// The saved model tabulated on the grid of the RGL file `grid` (a
+/// relative path not found here is looked up under `BRDF_DATA`, as data
+/// paths are): the bytes of an RGL `.bsdf` file (what [`run`] writes).
 pub fn tabulate(saved: &SavedModel, grid: &Path) -> Result<Tabulated, ExportFileError> {
+    let grid = &brdf_io::load::resolve_path(grid)?;
     let model = saved.build().map_err(|e| ExportFileError::Model {
         path: saved.model.clone(),
         reason: e.to_string(),

@@ -106,9 +106,8 @@ pub fn markdown() -> String {
     }
     s += "\nMaterialX `--surface standard_surface` or `openpbr`: the glTF rows are mapped, not exact.\n";
     s += &format!(
-        "Conversions are fitted for appearance and refused above HDR-FLIP {} under either light set or CIEDE2000 {} in mean colour (`--force`).\n",
-        crate::convert::FLIP_LIMIT,
-        crate::convert::DELTA_E_LIMIT
+        "Conversions are fitted for appearance and refused at {} (`--force` exports them anyway).\n",
+        crate::convert::limits_text()
     );
     s += "\n";
     s += &conversions_markdown();

@@ -27,10 +27,13 @@ fn dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference/paper_white")
 }
 
-/// The files are named after the data, `rgl/paper_white_rgb.bsdf`.
+/// The files are named after the data, `rgl/paper_white_rgb.bsdf`; the
+/// glTF files are material libraries (`--no-mesh`: Cycles renders each
+/// material on the judge's sphere; `gltf_mesh.rs` checks the preview mesh).
 fn opts_named() -> WriteOptions {
     WriteOptions {
         name: "paper_white_rgb".into(),
+        mesh: false,
         ..WriteOptions::default()
     }
 }

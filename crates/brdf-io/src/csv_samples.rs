@@ -4,7 +4,10 @@
 //! are read when the header says so (`theta_i_deg,phi_i_deg,theta_o_deg,
 //! phi_o_deg,...`); a radian column holding a polar angle above pi or an
 //! azimuth beyond +-2 pi (degrees, most likely) is an error naming the
-//! line, never read as radians. Written with the
+//! line, never read as radians. The `weight` column may be left out:
+//! every sample then weighs 1 (scattered samples carry no cell sizes), and
+//! the set's [`SampleSet::notes`] says so for the caller to print. Written
+//! with the
 //! shortest representation that reads back to the same `f64`, so a
 //! write/read round trip is exact.
 
@@ -40,25 +43,31 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
         .collect();
     let n = header.len();
     let degrees = n >= 4 && header[..4] == ["theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"];
-    if n < 6
-        || !(degrees || header[..4] == ["theta_i", "phi_i", "theta_o", "phi_o"])
-        || header[n - 1] != "weight"
-    {
+    let weighted = n >= 1 && header[n - 1] == "weight";
+    // Columns holding values: the channels end before `weight` when there is one.
+    let end = if weighted { n - 1 } else { n };
+    if end < 5 || !(degrees || header[..4] == ["theta_i", "phi_i", "theta_o", "phi_o"]) {
         return Err(IoError::Format {
             path: path.to_path_buf(),
             line: 1,
             reason: format!(
-                "header must be theta_i,phi_i,theta_o,phi_o,<channels...>,weight (radians) or theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,<channels...>,weight; found {}",
+                "header must be theta_i,phi_i,theta_o,phi_o,<channels...>[,weight] (radians) or theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,<channels...>[,weight]; found {}",
                 header.join(",")
             ),
         });
     }
-    let channels: Vec<String> = header[4..n - 1].to_vec();
+    let channels: Vec<String> = header[4..end].to_vec();
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
     let mut set = SampleSet::new(format!("csv#{name}"), path.display().to_string(), channels);
+    if !weighted {
+        set.notes.push(format!(
+            "{}: no weight column; every sample weighted 1",
+            path.display()
+        ));
+    }
     for (i, rec) in rdr.records().enumerate() {
         let line = i + 2;
         let rec = rec.map_err(|e| IoError::Format {
@@ -84,7 +93,7 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             })?;
             // NaN values are data to be counted and filtered; NaN angles
             // and weights are errors.
-            if !x.is_finite() && (k < 4 || k == n - 1) {
+            if !x.is_finite() && (k < 4 || (weighted && k == n - 1)) {
                 return Err(IoError::NotFinite {
                     path: path.to_path_buf(),
                     line,
@@ -109,7 +118,8 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             .map_err(|e| bad("incident direction", e.to_string()))?;
         let o = Direction::from_spherical(v[2], v[3])
             .map_err(|e| bad("outgoing direction", e.to_string()))?;
-        set.push(&l, &o, &v[4..n - 1], v[n - 1])
+        let weight = if weighted { v[n - 1] } else { 1.0 };
+        set.push(&l, &o, &v[4..end], weight)
             .map_err(|e| bad("sample", e.to_string()))?;
     }
     if set.is_empty() {

@@ -48,7 +48,7 @@ pub fn resolve_path(path: &Path) -> Result<PathBuf, IoError> {
     if let Some(p) = under.as_ref().filter(|p| p.exists()) {
         return Ok(p.clone());
     }
-    let reason = match under {
+    let mut reason = match &under {
         Some(p) => format!(
             "does not exist (looked in the working directory and at {} under BRDF_DATA)",
             p.display()
@@ -58,10 +58,98 @@ pub fn resolve_path(path: &Path) -> Result<PathBuf, IoError> {
         }
         None => "does not exist".into(),
     };
+    let near = near_names(path, under.as_deref());
+    if !near.is_empty() {
+        reason += &format!("; did you mean {}?", near.join(" or "));
+    }
     Err(IoError::Unsupported {
         path: path.to_path_buf(),
         reason,
     })
+}
+
+/// At most this many names are suggested for a missing file.
+const SUGGESTIONS: usize = 3;
+
+/// Existing files beside a missing `path` (in its folder as given, and in
+/// the same folder under `BRDF_DATA` when `under` is that place) whose
+/// names are near its name: within a few edits, or one's stem a prefix of
+/// the other's (`paper_white.bsdf` for `paper_white_rgb.bsdf`). Each is
+/// written as `path` was, with its folder, so it can be pasted back; the
+/// nearest first.
+fn near_names(path: &Path, under: Option<&Path>) -> Vec<String> {
+    let Some(want) = path.file_name().and_then(|f| f.to_str()) else {
+        return Vec::new();
+    };
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let mut found: Vec<(usize, String)> = Vec::new();
+    let dirs = [
+        Some(folder.to_path_buf()),
+        under.and_then(|u| u.parent()).map(Path::to_path_buf),
+    ];
+    for dir in dirs.into_iter().flatten() {
+        let listing = if dir.as_os_str().is_empty() {
+            Path::new(".").read_dir()
+        } else {
+            dir.read_dir()
+        };
+        let Ok(listing) = listing else { continue };
+        for entry in listing.flatten() {
+            let name = entry.file_name();
+            let Some(name) = name.to_str() else { continue };
+            if let Some(d) = nearness(want, name) {
+                let shown = folder.join(name).display().to_string();
+                if !found.iter().any(|(_, s)| *s == shown) {
+                    found.push((d, shown));
+                }
+            }
+        }
+    }
+    found.sort();
+    found
+        .into_iter()
+        .take(SUGGESTIONS)
+        .map(|(_, s)| s)
+        .collect()
+}
+
+/// How far the name `have` is from the wanted `want` (edits, ignoring
+/// case), when near enough to suggest: within a third of the name's length
+/// (at least 2), or either stem a prefix of the other.
+fn nearness(want: &str, have: &str) -> Option<usize> {
+    let (w, h) = (want.to_lowercase(), have.to_lowercase());
+    if w == h {
+        return None;
+    }
+    let d = edit_distance(&w, &h);
+    let stem = |s: &str| {
+        Path::new(s)
+            .file_stem()
+            .and_then(|f| f.to_str())
+            .unwrap_or("")
+            .to_string()
+    };
+    let (sw, sh) = (stem(&w), stem(&h));
+    let prefix = sw.len() >= 3 && sh.len() >= 3 && (sh.starts_with(&sw) || sw.starts_with(&sh));
+    (prefix || d <= (w.chars().count() / 3).max(2)).then_some(d)
+}
+
+/// Levenshtein distance in characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diag = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let next = (row[j + 1] + 1)
+                .min(row[j] + 1)
+                .min(diag + usize::from(ca != *cb));
+            diag = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
 }
 
 /// [`split_sample`] with the path found by [`resolve_path`]; a `#` that is

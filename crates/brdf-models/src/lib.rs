@@ -32,6 +32,7 @@
 //! Features only subtract: the default build has every family. A renderer
 //! that needs only some families turns the default off and names them.
 
+pub mod aliases;
 #[cfg(feature = "microfacet")]
 pub mod ashikhmin_shirley;
 #[cfg(feature = "phong")]

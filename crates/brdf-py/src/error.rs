@@ -23,3 +23,14 @@ pub fn to_py<E: std::fmt::Display>(e: E) -> PyErr {
 pub fn usage(message: String) -> PyErr {
     BrdfError::new_err(message)
 }
+
+/// Issue `message` as a Python `UserWarning` (shown once per call site by
+/// Python's default filter; `warnings.catch_warnings` captures it), for
+/// what the library did that the caller should know but that is no error.
+pub fn warn(py: pyo3::Python<'_>, message: &str) -> pyo3::PyResult<()> {
+    // Messages are the library's one-line texts; a NUL would only cut it.
+    let text = std::ffi::CString::new(message.replace('\0', " "))
+        .map_err(|e| usage(format!("warning text: {e}")))?;
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    PyErr::warn(py, category.as_any(), &text, 1)
+}

@@ -104,7 +104,7 @@ impl PyModel {
     /// to : str
     ///     ``"mitsuba"``, ``"pbrt"``, ``"gltf"``, ``"materialx"``, ``"usd"``
     ///     or ``"blender"``.
-    /// name, scene, light, surface, convert, force
+    /// name, scene, light, surface, convert, force, mesh
     ///     As for ``brdf.export``.
     ///
     /// Returns
@@ -112,10 +112,16 @@ impl PyModel {
     /// str
     ///     The material's text; a ``BrdfError`` when there is no exact
     ///     equivalent and ``convert`` is false.
+    ///
+    /// Warns
+    /// -----
+    /// UserWarning
+    ///     For a one-channel (grey) model, whose colour was never fitted.
     #[pyo3(signature = (*, to, name="fitted", scene=false, light="studio", surface="gltf_pbr",
-                        convert=false, force=false))]
+                        convert=false, force=false, mesh=true))]
     pub fn export(
         &self,
+        py: Python<'_>,
         to: &str,
         name: &str,
         scene: bool,
@@ -123,6 +129,7 @@ impl PyModel {
         surface: &str,
         convert: bool,
         force: bool,
+        mesh: bool,
     ) -> PyResult<String> {
         let m = self.saved.build().map_err(to_py)?;
         let opts = crate::model::ExportOptions {
@@ -132,8 +139,9 @@ impl PyModel {
             name,
             convert,
             force,
+            mesh,
         };
-        crate::model::export_text(m.as_ref(), to, &opts)
+        crate::model::export_text(py, m.as_ref(), to, &opts)
     }
 
     /// The model tabulated on the grid of an RGL measurement, as ``brdf
@@ -145,13 +153,15 @@ impl PyModel {
     /// Parameters
     /// ----------
     /// grid : str or os.PathLike
-    ///     An RGL ``.bsdf`` measurement (isotropic, RGB).
+    ///     An RGL ``.bsdf`` measurement (isotropic, RGB); a relative path
+    ///     is also looked up under ``BRDF_DATA``, as ``fit`` and ``load``
+    ///     do.
     ///
     /// Returns
     /// -------
     /// bytes
     ///     The file's bytes; a ``BrdfError`` for an anisotropic model or
-    ///     an unreadable measurement.
+    ///     an unreadable or missing measurement.
     pub fn tabulate<'py>(&self, py: Python<'py>, grid: PathBuf) -> PyResult<Bound<'py, PyBytes>> {
         let t = brdf_export::measured::tabulate(&self.saved, &grid).map_err(to_py)?;
         Ok(PyBytes::new(py, &t.bytes))

@@ -186,12 +186,24 @@ pub struct ExportOptions<'a> {
     pub convert: bool,
     /// Write a conversion even when it renders unlike the model.
     pub force: bool,
+    /// glTF: the preview sphere (false: the material alone).
+    pub mesh: bool,
 }
 
 /// `m` in `to`'s format as `brdf export` writes it: exact, or (with
 /// `opts.convert`) converted for appearance with the conversion's error in
 /// the file.
-pub fn export_text(m: &dyn Parametric, to: &str, opts: &ExportOptions<'_>) -> PyResult<String> {
+/// What the material does not say (a grey fit's colour never fitted) is
+/// issued as a Python `UserWarning`.
+pub fn export_text(
+    py: Python<'_>,
+    m: &dyn Parametric,
+    to: &str,
+    opts: &ExportOptions<'_>,
+) -> PyResult<String> {
+    use brdf_export::FrontEnd;
+    // The library's advice names the command line's options; here, Python's.
+    let to_py = |e: brdf_export::ExportError| to_py(e.for_front_end(FrontEnd::Python));
     let target: brdf_export::Target = to.parse().map_err(to_py)?;
     if opts.scene && target != brdf_export::Target::Mitsuba {
         return Err(usage(format!(
@@ -203,17 +215,23 @@ pub fn export_text(m: &dyn Parametric, to: &str, opts: &ExportOptions<'_>) -> Py
         scene: opts.scene,
         light: opts.light.parse().map_err(to_py)?,
         surface: opts.surface.parse().map_err(to_py)?,
+        mesh: opts.mesh,
     };
-    if !opts.convert {
-        return brdf_export::export_with(m, target, None, &write).map_err(to_py);
+    let text = if opts.convert {
+        let convert = brdf_export::ConvertOptions {
+            force: opts.force,
+            ..brdf_export::ConvertOptions::default()
+        };
+        brdf_export::export_or_convert_with(m, target, &convert, &write)
+            .map(|e| e.text)
+            .map_err(to_py)?
+    } else {
+        brdf_export::export_with(m, target, None, &write).map_err(to_py)?
+    };
+    for w in brdf_export::warnings(m, target, FrontEnd::Python) {
+        crate::error::warn(py, &w)?;
     }
-    let convert = brdf_export::ConvertOptions {
-        force: opts.force,
-        ..brdf_export::ConvertOptions::default()
-    };
-    brdf_export::export_or_convert_with(m, target, &convert, &write)
-        .map(|e| e.text)
-        .map_err(to_py)
+    Ok(text)
 }
 
 /// A model as a renderer's material, as ``brdf export`` writes it.
@@ -244,6 +262,9 @@ pub fn export_text(m: &dyn Parametric, to: &str, opts: &ExportOptions<'_>) -> Py
 ///     by default such a model is refused (``--exact``).
 /// force : bool
 ///     With ``convert``: write a conversion that renders unlike the model.
+/// mesh : bool
+///     glTF: a preview sphere using the material in the default scene, so
+///     a viewer shows it (``False``: the material alone, ``--no-mesh``).
 ///
 /// Returns
 /// -------
@@ -251,11 +272,18 @@ pub fn export_text(m: &dyn Parametric, to: &str, opts: &ExportOptions<'_>) -> Py
 ///     The material (for ``"blender"``, a Python script for Blender); a
 ///     ``BrdfError`` says why when there is no exact equivalent and
 ///     ``convert`` is false.
+///
+/// Warns
+/// -----
+/// UserWarning
+///     For a one-channel (grey) model: its colour was never fitted, so the
+///     material is grey (fit with ``channels="rgb"`` for a coloured one).
 #[pyfunction]
 #[pyo3(signature = (model, to, *, params=None, channels=1, lobes=1, order=8, degree=7,
                     name="fitted", scene=false, light="studio", surface="gltf_pbr",
-                    convert=false, force=false))]
+                    convert=false, force=false, mesh=true))]
 pub fn export(
+    py: Python<'_>,
     model: &Bound<'_, PyAny>,
     to: &str,
     params: Option<BTreeMap<String, f64>>,
@@ -269,6 +297,7 @@ pub fn export(
     surface: &str,
     convert: bool,
     force: bool,
+    mesh: bool,
 ) -> PyResult<String> {
     let structure = Structure {
         channels,
@@ -284,6 +313,7 @@ pub fn export(
         name,
         convert,
         force,
+        mesh,
     };
-    export_text(m.as_ref(), to, &opts)
+    export_text(py, m.as_ref(), to, &opts)
 }

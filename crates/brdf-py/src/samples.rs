@@ -32,11 +32,21 @@ use crate::error::{to_py, usage};
 /// Raises
 /// ------
 /// BrdfError
-///     Naming the file (and line) at fault.
+///     Naming the file (and line) at fault; for a missing file, the
+///     nearest names in its folder.
+///
+/// Warns
+/// -----
+/// UserWarning
+///     For what the file left to an assumption, e.g. a CSV file without a
+///     weight column (every sample weighted 1).
 #[pyfunction]
 pub fn load<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyDict>> {
     let spec = path.display().to_string();
     let set = py.detach(|| brdf_io::load(&spec)).map_err(to_py)?;
+    for note in &set.notes {
+        crate::error::warn(py, note)?;
+    }
     to_dict(py, &set)
 }
 

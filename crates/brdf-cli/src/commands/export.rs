@@ -11,9 +11,110 @@
 use std::path::PathBuf;
 
 use brdf_export::file::ExportJob;
-use brdf_export::{ConvertOptions, Exported, Target, WriteOptions, identifier};
+use brdf_export::{ConvertOptions, Exported, Light, Surface, Target, WriteOptions, identifier};
 
 use crate::error::CliError;
+
+/// `--to`: one value per [`Target`] (the two conversions below are
+/// exhaustive matches, so a target added to the library fails to compile
+/// here until it has its help line).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ToArg {
+    /// Mitsuba 3 `<bsdf>` snippet (or a judge scene with --scene)
+    Mitsuba,
+    /// pbrt-v4 material statements
+    Pbrt,
+    /// glTF 2.0 asset with a preview sphere (--no-mesh: the material alone)
+    Gltf,
+    /// MaterialX document (--surface picks the shader)
+    #[value(alias = "mtlx")]
+    Materialx,
+    /// USD layer (.usda) with a UsdPreviewSurface
+    #[value(alias = "usda")]
+    Usd,
+    /// Blender Python script building a Principled BSDF
+    Blender,
+}
+
+impl From<ToArg> for Target {
+    fn from(t: ToArg) -> Target {
+        match t {
+            ToArg::Mitsuba => Target::Mitsuba,
+            ToArg::Pbrt => Target::Pbrt,
+            ToArg::Gltf => Target::Gltf,
+            ToArg::Materialx => Target::MaterialX,
+            ToArg::Usd => Target::Usd,
+            ToArg::Blender => Target::Blender,
+        }
+    }
+}
+
+impl From<Target> for ToArg {
+    fn from(t: Target) -> ToArg {
+        match t {
+            Target::Mitsuba => ToArg::Mitsuba,
+            Target::Pbrt => ToArg::Pbrt,
+            Target::Gltf => ToArg::Gltf,
+            Target::MaterialX => ToArg::Materialx,
+            Target::Usd => ToArg::Usd,
+            Target::Blender => ToArg::Blender,
+        }
+    }
+}
+
+/// `--light`: the Mitsuba scene's light set ([`Light`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum LightArg {
+    /// a dim constant surround and a square key light
+    Studio,
+    /// Mitsuba's sunsky
+    Sky,
+}
+
+impl From<LightArg> for Light {
+    fn from(l: LightArg) -> Light {
+        match l {
+            LightArg::Studio => Light::Studio,
+            LightArg::Sky => Light::Sky,
+        }
+    }
+}
+
+/// `--surface`: the MaterialX surface shader ([`Surface`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SurfaceArg {
+    /// Khronos's gltf_pbr (the glTF material itself)
+    #[value(name = "gltf_pbr", alias = "gltf-pbr", alias = "gltf")]
+    GltfPbr,
+    /// Autodesk Standard Surface
+    #[value(
+        name = "standard_surface",
+        alias = "standard-surface",
+        alias = "standard"
+    )]
+    StandardSurface,
+    /// OpenPBR Surface (MaterialX 1.39)
+    #[value(name = "openpbr", alias = "open_pbr_surface", alias = "open-pbr")]
+    Openpbr,
+}
+
+impl From<SurfaceArg> for Surface {
+    fn from(s: SurfaceArg) -> Surface {
+        match s {
+            SurfaceArg::GltfPbr => Surface::GltfPbr,
+            SurfaceArg::StandardSurface => Surface::StandardSurface,
+            SurfaceArg::Openpbr => Surface::OpenPbr,
+        }
+    }
+}
+
+/// The `--force` help, with the limits the code applies.
+fn force_help() -> String {
+    format!(
+        "Export a conversion even when it renders unlike the model ({})",
+        brdf_export::convert::limits_text()
+    )
+}
 
 /// Arguments of `brdf export`.
 #[derive(Debug, clap::Args)]
@@ -21,9 +122,9 @@ pub struct ExportArgs {
     /// A model saved by `brdf fit --save` (`.json`).
     #[arg(long, required_unless_present = "list")]
     pub from: Option<PathBuf>,
-    /// Target: mitsuba, pbrt, gltf, materialx, usd or blender.
-    #[arg(long, required_unless_present = "list")]
-    pub to: Option<String>,
+    /// Target format.
+    #[arg(long, value_enum, required_unless_present = "list")]
+    pub to: Option<ToArg>,
     /// Output file.
     #[arg(required_unless_present = "list")]
     pub out: Option<PathBuf>,
@@ -40,12 +141,16 @@ pub struct ExportArgs {
     /// instead of a `<bsdf>` snippet.
     #[arg(long)]
     pub scene: bool,
-    /// Mitsuba scene: the light set, studio or sky.
-    #[arg(long, default_value = "studio")]
-    pub light: String,
-    /// MaterialX: the surface shader, gltf_pbr, standard_surface or openpbr.
-    #[arg(long, default_value = "gltf_pbr")]
-    pub surface: String,
+    /// Mitsuba scene: the light set.
+    #[arg(long, value_enum, default_value = "studio")]
+    pub light: LightArg,
+    /// MaterialX: the surface shader.
+    #[arg(long, value_enum, default_value = "gltf_pbr")]
+    pub surface: SurfaceArg,
+    /// glTF: write the material alone (a material library), without the
+    /// preview sphere that shows it in a viewer.
+    #[arg(long)]
+    pub no_mesh: bool,
     /// The material's name (default: the data's file name).
     #[arg(long)]
     pub name: Option<String>,
@@ -65,9 +170,7 @@ pub struct ExportArgs {
     /// Multi-start count of the conversion fit.
     #[arg(long, default_value_t = 12)]
     pub starts: usize,
-    /// Export a conversion even when it renders unlike the model (mean
-    /// HDR-FLIP above 0.05 or CIEDE2000 above 3).
-    #[arg(long)]
+    #[arg(long, help = force_help())]
     pub force: bool,
     /// Convert by BRDF-space fitting only (faster; no image objective).
     #[arg(long)]
@@ -85,7 +188,7 @@ pub fn run(args: &ExportArgs) -> Result<(), CliError> {
     let (Some(to), Some(out), false) = (&args.to, &args.out, args.list) else {
         return say!("{}", brdf_export::table::markdown());
     };
-    let target: Target = to.parse()?;
+    let target = Target::from(*to);
     if args.scene && target != Target::Mitsuba {
         return Err(brdf_export::ExportError::UnknownOption {
             option: "--scene",
@@ -122,11 +225,17 @@ pub fn run(args: &ExportArgs) -> Result<(), CliError> {
         write: WriteOptions {
             name: args.name.as_deref().map(identifier).unwrap_or_default(),
             scene: args.scene,
-            light: args.light.parse()?,
-            surface: args.surface.parse()?,
+            light: args.light.into(),
+            surface: args.surface.into(),
+            mesh: !args.no_mesh,
         },
     };
     let done = brdf_export::file::run(&job)?;
+    if !args.json {
+        for w in &done.exported.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
     report(args, out, &done.model, job.target, &done.exported)
 }
 
@@ -202,7 +311,7 @@ fn report(
         let v = serde_json::json!({
             "model": model, "target": target.to_string(), "out": out.to_string(),
             "exact": exported.conversion.is_none(), "mapped": mapped(args, target),
-            "conversion": conversion,
+            "conversion": conversion, "warnings": exported.warnings,
         });
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
@@ -219,6 +328,54 @@ fn report(
 /// the renderer's own BRDF (see `brdf_export::table`).
 fn mapped(args: &ExportArgs, target: Target) -> bool {
     matches!(target, Target::Usd | Target::Blender)
-        || (target == Target::MaterialX
-            && args.surface.parse() != Ok(brdf_export::Surface::GltfPbr))
+        || (target == Target::MaterialX && args.surface != SurfaceArg::GltfPbr)
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::ValueEnum;
+
+    use super::*;
+
+    #[test]
+    fn every_target_has_one_to_value_that_the_library_parses_back() {
+        assert_eq!(ToArg::value_variants().len(), Target::ALL.len());
+        for t in Target::ALL {
+            let arg = ToArg::from(t);
+            assert_eq!(Target::from(arg), t);
+            let name = arg.to_possible_value().map(|v| v.get_name().to_string());
+            assert_eq!(name.as_deref().map(str::parse::<Target>), Some(Ok(t)));
+        }
+    }
+
+    #[test]
+    fn light_and_surface_values_are_the_library_s() {
+        for l in LightArg::value_variants() {
+            let name = l.to_possible_value().map(|v| v.get_name().to_string());
+            assert_eq!(
+                name.as_deref().map(str::parse::<Light>),
+                Some(Ok((*l).into()))
+            );
+        }
+        for s in SurfaceArg::value_variants() {
+            let name = s.to_possible_value().map(|v| v.get_name().to_string());
+            assert_eq!(
+                name.as_deref().map(str::parse::<Surface>),
+                Some(Ok((*s).into()))
+            );
+        }
+    }
+
+    #[test]
+    fn the_force_help_states_the_code_s_limits() {
+        let h = force_help();
+        assert!(
+            h.contains(&format!(
+                "HDR-FLIP above {}",
+                brdf_export::convert::FLIP_LIMIT
+            )),
+            "{h}"
+        );
+        assert!(h.contains("0.02") && !h.contains("0.05"), "{h}");
+    }
 }

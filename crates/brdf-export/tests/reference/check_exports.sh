@@ -4,7 +4,8 @@
 #   mitsuba_check.py        Mitsuba 3 evaluates tests/cases.rs and paper_white/*.xml
 #                           (snippets pasted into a scene, as a user does)
 #   mitsuba_scene_check.py  Mitsuba 3 loads and renders paper_white/*.scene.xml
-#   gltf_validate.js        the Khronos glTF validator on paper_white/*.gltf
+#   gltf_validate.js        the Khronos glTF validator on paper_white/*.gltf (material
+#                           libraries) and mesh/*.gltf (with the preview sphere)
 #   materialx_check.py      MaterialX's validate() on paper_white/*.mtlx
 #   usd_check.py            USD opens paper_white/*.usda (UsdShade, UsdPreviewSurface inputs)
 #   blender_check.py        Blender's bpy runs paper_white/*.py, saves and rereads a .blend
@@ -41,6 +42,7 @@ PY
 rm paper_white/mitsuba_cases.json
 "$py" mitsuba_scene_check.py paper_white/*.scene.xml >paper_white/mitsuba_scenes.json
 node gltf_validate.js paper_white/*.gltf >paper_white/gltf_validation.json
+node gltf_validate.js mesh/*.gltf >mesh/gltf_validation.json
 "$py" materialx_check.py paper_white/*.mtlx >paper_white/materialx_validation.json
 "$py" usd_check.py paper_white/*.usda >paper_white/usd_validation.json
 if [ -n "${BLENDER_PYTHON:-}" ]; then

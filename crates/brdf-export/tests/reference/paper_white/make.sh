@@ -7,6 +7,8 @@
 #   M.xml M.pbrt M.gltf M.mtlx M.usda M.py   --to mitsuba|pbrt|gltf|materialx|usd|blender
 #   M.openpbr.mtlx                           --to materialx --surface openpbr
 #   M.scene.xml                              --to mitsuba --scene (studio light)
+#   (the .gltf files are written with --no-mesh: the material alone)
+#   ../mesh/paper_white_rgb.gltf             principled's glTF conversion with its preview sphere
 #   M.KIND.json, M.KIND.report.json          the conversion, where there is one
 # Takes several minutes (the principled fit, the conversions).
 #   BRDF_DATA=... BRDF=target/release/brdf bash make.sh
@@ -31,9 +33,12 @@ for m in ggx principled; do
     "$brdf" fit --data "$BRDF_DATA/rgl/paper_white_rgb.bsdf" --model "$m" --metric ngan --starts 4 --save "$m.json" >/dev/null
     for t in mitsuba pbrt gltf materialx usd blender; do
         ext=$(case $t in mitsuba) echo xml;; pbrt) echo pbrt;; gltf) echo gltf;; materialx) echo mtlx;; usd) echo usda;; blender) echo py;; esac)
-        export_one "$m" "$t" "$m.$ext" --to "$t"
+        # glTF: the material alone (Cycles renders it on the judge's sphere).
+        export_one "$m" "$t" "$m.$ext" --to "$t" $([ "$t" = gltf ] && echo --no-mesh)
     done
     export_one "$m" openpbr "$m.openpbr.mtlx" --to materialx --surface openpbr
     export_one "$m" scene "$m.scene.xml" --to mitsuba --scene
 done
+# A glTF file with its preview sphere (the default), for the validator.
+"$brdf" export --from principled.gltf.json --to gltf --exact ../mesh/paper_white_rgb.gltf >/dev/null
 bash ../check_exports.sh
