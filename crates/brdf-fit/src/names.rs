@@ -47,12 +47,17 @@ pub fn resolve(name: &str) -> Result<ModelEntry, FitError> {
         .map(|e| (distance(&want, e.name), e.name))
         .collect();
     near.sort();
-    let suggest: Vec<&str> = near
+    let mut suggest: Vec<&str> = near
         .iter()
         .filter(|(d, n)| *d <= 3.max(want.len() / 3) || n.starts_with(&want))
         .take(3)
         .map(|(_, n)| *n)
         .collect();
+    // Another name of a catalogue model ("disney") is the best suggestion.
+    if let Some(a) = brdf_models::aliases::alias(name) {
+        suggest.retain(|s| *s != a);
+        suggest.insert(0, a);
+    }
     Err(FitError::UnknownModel {
         name: name.to_string(),
         suggestions: suggest.iter().map(|s| s.to_string()).collect(),

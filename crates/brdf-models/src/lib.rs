@@ -70,6 +70,7 @@ pub mod lambert;
 pub mod low;
 #[cfg(feature = "microfacet")]
 pub mod microfacet;
+pub mod model_entry;
 #[cfg(feature = "oren-nayar")]
 pub mod oren_nayar;
 #[cfg(feature = "sopp")]

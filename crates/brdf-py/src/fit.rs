@@ -158,7 +158,11 @@ pub(crate) fn material(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Mate
         return Ok(Material::new(&name, set, None));
     }
     let spec = data_spec(data)?;
-    py.detach(|| Material::load(&spec)).map_err(to_py)
+    let material = py.detach(|| Material::load(&spec)).map_err(to_py)?;
+    for n in &material.samples().notes {
+        crate::error::warn(py, n)?;
+    }
+    Ok(material)
 }
 
 /// The data spec of `data` when given as a path.
@@ -204,8 +208,8 @@ fn fit_for(
     if let Some(path) = &save {
         saved.save(path).map_err(to_py)?;
     }
-    let report = brdf_fit::select_by_image_json(material.name(), &done.rows, done.choice)
-        .map_err(to_py)?;
+    let report =
+        brdf_fit::select_by_image_json(material.name(), &done.rows, done.choice).map_err(to_py)?;
     Ok(PyFit {
         models: vec![PyModel { saved }],
         report: crate::json::to_py_object(py, &report)?.unbind(),

@@ -27,12 +27,13 @@
 //! studio light is the judge's faithful one; the sky light of brdf-render
 //! is being matched to Mitsuba's, so its FLIP is printed but not judged.
 
+use brdf_core::format::number as fmt_sig;
 use brdf_fit::{FitOutcome, FitReport, FitRequest, Material, Metric, Objective};
 use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::context::{Study, progress};
-use crate::report::{Cell, Table, fmt_sig};
+use crate::report::{Cell, Table};
 
 /// The relative reduction of the mean errors the goal asks for.
 pub const GOAL_REDUCTION: f64 = 0.2;

@@ -6,7 +6,6 @@
 // them too); the study uses them under the names it always has.
 /// The workspace's one number formatter ([`brdf_core::format::number`]),
 /// by the name `new_models` imports it under.
-pub use brdf_core::format::number as fmt_sig;
 pub use brdf_fit::table::{Cell, Table};
 
 pub use brdf_fit::data_name;

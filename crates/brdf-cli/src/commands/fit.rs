@@ -91,6 +91,9 @@ pub struct FitArgs {
 /// outcome printed, saved and reported.
 pub fn run(args: &FitArgs) -> Result<(), CliError> {
     let material = Arc::new(Material::load(&args.data)?);
+    for n in &material.samples().notes {
+        eprintln!("note: {n}");
+    }
     let bars = Bars::new(args.quiet);
     let (Some(model), None) = (&args.model, args.for_renderer) else {
         return fit_for(args, &material, &bars);

@@ -64,6 +64,9 @@ pub struct SelectArgs {
 /// outcome printed.
 pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     let material = Material::load(&args.data)?;
+    for n in &material.samples().notes {
+        eprintln!("note: {n}");
+    }
     if args.polish && (args.by_l2 || !material.is_renderable()) {
         return Err(CliError::Usage(
             "--polish refines fits for appearance: use it with --by-image (renderer models on RGL `.bsdf` or MERL `.binary` data)".into(),

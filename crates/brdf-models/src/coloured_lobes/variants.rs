@@ -6,8 +6,8 @@
 use brdf_core::{ParamError, Parametric};
 
 use super::model::{ColouredLobes, LobeFresnel, MAX_LOBES};
-use crate::catalogue::{ModelConfig, ModelEntry};
 use crate::ggx::Masking;
+use crate::model_entry::{ModelConfig, ModelEntry};
 
 /// One named configuration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
