@@ -627,6 +627,8 @@ pub fn catalogue() -> Vec<ModelEntry> {
             channel_model: None,
         });
     }
+    #[cfg(feature = "renderer")]
+    v.extend(crate::coloured_lobes::entries());
     v
 }
 
