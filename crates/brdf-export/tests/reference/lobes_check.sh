@@ -6,7 +6,9 @@
 #   lobes/mitsuba_values.json  mitsuba_check.py: Mitsuba's eval of each M.xml
 #                              at 300 direction pairs and at the normal
 #   lobes/render_check.json    render_check.py: Mitsuba's render of each M.xml
-#                              on the judge sphere (studio and sky) beside
+#                              on the judge sphere (studio and sky), and with
+#                              BLENDER_PYTHON (a python with bpy) Cycles' render
+#                              of each M.py (cycles_render.py, studio), beside
 #                              brdf-render's (examples/judge_exr.rs) of M.json,
 #                              by HDR-FLIP
 # Needs PYTHON with mitsuba, numpy, flip-evaluator. JUDGE_EXR: the judge_exr
@@ -23,9 +25,9 @@ PY
 rm lobes/mitsuba_cases.json
 exr_dir="$(mktemp -d)"
 trap 'rm -rf "$exr_dir"' EXIT
-for x in lobes/*.xml; do
-    m="${x%.xml}.json"
-    b=$(basename "$x" .xml)
+for m in lobes/*.json; do
+    b=$(basename "$m" .json)
+    case $b in render_check | mitsuba_values) continue ;; esac
     if [ -n "${JUDGE_EXR:-}" ]; then
         "$JUDGE_EXR" "$m" "$exr_dir/brdf-render/$b"
     else
@@ -33,5 +35,12 @@ for x in lobes/*.xml; do
             "$here/$m" "$exr_dir/brdf-render/$b")
     fi
 done
-"$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio,sky}" --spp 1024 lobes/*.xml >lobes/render_check.json.new
+render_files=(lobes/*.xml)
+if [ -n "${BLENDER_PYTHON:-}" ]; then
+    "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 lobes/*.py >&2
+    render_files+=(lobes/*.py)
+else
+    echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy"
+fi
+"$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio,sky}" --spp 1024 "${render_files[@]}" >lobes/render_check.json.new
 mv lobes/render_check.json.new lobes/render_check.json
