@@ -17,6 +17,10 @@
 //! - `Coat Weight`, `Coat Roughness` are the clear coat (IOR 1.5).
 //! - `lambert` is the base colour with `Specular IOR Level = 0`.
 //!
+//! The coloured-lobe models with height-correlated masking
+//! (`lobes*-cycles`) are written exactly as sums of Cycles BSDFs instead:
+//! [`crate::lobes_blender`].
+//!
 //! Blender's Principled BSDF layers its lobes by albedo and its diffuse is
 //! Lambert: close to glTF's `1 - F` mix, not identical. Every other model
 //! is converted by fitting `gltf`.
@@ -109,6 +113,9 @@ if __name__ == "__main__":
 
 /// The Blender script for `fit`, with `note` in its docstring.
 pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+    if let Some(lobes) = fit.lobes()? {
+        return crate::lobes_blender::write(fit, &lobes, note, opts);
+    }
     let inputs = inputs(fit)?;
     let mut s =
         String::from("\"\"\"Principled BSDF material written by `brdf export --to blender`.\n\n");

@@ -13,12 +13,12 @@
 //!
 //! | target | module | models written |
 //! | --- | --- | --- |
-//! | Mitsuba 3 | [`mitsuba`] | `principled`; `lambert`; `ggx*-separable` (blend of `diffuse`, `roughconductor`, metallic `principled`) |
+//! | Mitsuba 3 | [`mitsuba`] | `principled`; `lambert`; `ggx*-separable` (blend of `diffuse`, `roughconductor`, metallic `principled`); `lobes*-mitsuba` ([`lobes_mitsuba`]) |
 //! | pbrt-v4 | [`pbrt`] | `lambert`; `ggx-conductor*` / `ggx-dielectric*` (height-correlated; `mix` of `diffuse` and `conductor`) |
 //! | glTF 2.0 | [`gltf`] | `gltf`, `gltf-ext` (with `KHR_materials_ior`, `_specular`, `_clearcoat`); `lambert` |
 //! | MaterialX | [`materialx`] | `gltf`, `gltf-ext`, `lambert` as `gltf_pbr` (mapped as `standard_surface`, `open_pbr_surface`) |
 //! | USD | [`usd`] | `gltf`, `gltf-ext`, `lambert` mapped to `UsdPreviewSurface` |
-//! | Blender | [`blender`] | `gltf`, `gltf-ext`, `lambert` mapped to the Principled BSDF |
+//! | Blender | [`blender`] | `gltf`, `gltf-ext`, `lambert` mapped to the Principled BSDF; `lobes*-cycles` exact ([`lobes_blender`]: Diffuse, Glossy, Metallic BSDFs summed) |
 //!
 //! *Mapped* ([`table`]): the renderer's material takes the model's
 //! parameters under the same meaning, but its BRDF is the renderer's own.
@@ -62,6 +62,9 @@ pub mod file;
 pub mod fitted;
 pub mod for_renderer;
 pub mod gltf;
+pub mod lobes_blender;
+pub mod lobes_fit;
+pub mod lobes_mitsuba;
 pub mod materialx;
 pub mod measured;
 pub mod mitsuba;

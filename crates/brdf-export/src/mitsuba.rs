@@ -22,6 +22,9 @@
 //!   A Schlick lobe cannot be scaled per channel (its strength is its blend
 //!   weight), so it needs a grey `ks`.
 //!
+//! - The coloured-lobe models with separable masking (`lobes*-mitsuba`):
+//!   [`crate::lobes_mitsuba`].
+//!
 //! No exact equivalent (an error): the height-correlated GGX models
 //! (Mitsuba's microfacet `G` is separable), glTF (Mitsuba has no glTF
 //! material: `principled` uses Burley's diffuse and the exact dielectric
@@ -50,7 +53,15 @@ fn bsdf(kind: &str) -> Node {
 /// The Mitsuba snippet (or scene) for `fit`, with `note` as a comment
 /// before it.
 pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
-    let node = bsdf_node(fit)?;
+    let (node, own) = match fit.lobes()? {
+        Some(lobes) => crate::lobes_mitsuba::bsdf(fit, &lobes)?,
+        None => (bsdf_node(fit)?, None),
+    };
+    let joined = match (note, own) {
+        (Some(n), Some(o)) => Some(format!("{n} {o}")),
+        (n, o) => n.map(str::to_string).or(o),
+    };
+    let note = joined.as_deref();
     let root = Node::new("bsdf").attr("id", &opts.name).attr_from(&node);
     if opts.scene {
         return Ok(scene(root, &opts.name, opts.light).to_document(false, note));

@@ -1,0 +1,207 @@
+//! Blender Python scripts of the coloured-lobe models with
+//! height-correlated masking (the `lobes*-cycles` configurations of
+//! `brdf_models::coloured_lobes`), exact in Cycles: each term is a Cycles
+//! BSDF node with the same formula and Add Shader nodes sum them.
+//!
+//! - the Lambert term is a Diffuse BSDF (Roughness 0: Lambert);
+//! - a lobe of Fresnel law none is a Glossy BSDF with distribution `GGX`
+//!   (single scattering, height-correlated Smith `G`, no Fresnel), Color
+//!   the lobe's colour;
+//! - a conductor lobe is a Metallic BSDF, `GGX`, Fresnel type
+//!   `PHYSICAL_CONDUCTOR`, IOR `eta`, Extinction `kappa` (per channel);
+//! - an F82-tint lobe is a Metallic BSDF, `GGX`, Fresnel type `F82`, Base
+//!   Color `f0`, Edge Tint `tint` (Cycles' F82 law is the model's: the
+//!   value at `cos = 1/7` is the tint times Schlick's);
+//! - the coat is a Metallic BSDF, `PHYSICAL_CONDUCTOR`, IOR `coat_ior`,
+//!   Extinction 0: the conductor Fresnel at zero extinction is the
+//!   dielectric's.
+//!
+//! Cycles' Roughness `r` is the GGX width's square root (`alpha = r^2`), so
+//! each node gets `sqrt(alpha)`. `MULTI_GGX` is never used: it adds the
+//! energy of multiple scattering, which the model does not have.
+//!
+//! The script runs in Blender (`blender -b -P material.py`) or with the
+//! `bpy` module (`python material.py`), as [`crate::blender`]'s; it reads
+//! the material's node tree where Blender made one and switches nodes on
+//! (`use_nodes`, deprecated in Blender 5) only where it did not.
+//!
+//! The separable (`-mitsuba`) configurations have no Cycles equivalent
+//! (Cycles' GGX is height-correlated): an error naming the `-cycles`
+//! configuration to fit.
+
+use crate::fitted::Fitted;
+use crate::lobes_fit::{LobeColour, LobesFit};
+use crate::{ExportError, Target, WriteOptions};
+
+/// One BSDF node of the sum: its Blender type, enum properties and inputs
+/// (Python values).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShaderTerm {
+    /// Node type identifier (`ShaderNodeBsdfDiffuse`, ...).
+    pub node: &'static str,
+    /// Enum properties, `(name, value)`.
+    pub props: Vec<(&'static str, &'static str)>,
+    /// Socket inputs, `(name, Python value)`.
+    pub inputs: Vec<(&'static str, String)>,
+}
+
+fn rgba(c: &[f64; 3]) -> String {
+    format!("({:?}, {:?}, {:?}, 1.0)", c[0], c[1], c[2])
+}
+
+fn vec3(c: &[f64; 3]) -> String {
+    format!("({:?}, {:?}, {:?})", c[0], c[1], c[2])
+}
+
+fn roughness(alpha: f64) -> (&'static str, String) {
+    ("Roughness", format!("{:?}", alpha.sqrt()))
+}
+
+fn metallic(fresnel: &'static str, inputs: Vec<(&'static str, String)>) -> ShaderTerm {
+    ShaderTerm {
+        node: "ShaderNodeBsdfMetallic",
+        props: vec![("distribution", "GGX"), ("fresnel_type", fresnel)],
+        inputs,
+    }
+}
+
+/// The BSDF nodes of `lobes`, in the model's order; an error for a
+/// configuration Cycles lacks.
+pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<ShaderTerm>, ExportError> {
+    if lobes.separable() {
+        let twin = lobes.variant.name.replace("-mitsuba", "-cycles");
+        return Err(fit.no_equivalent(
+            Target::Blender,
+            format!(
+                "Cycles' GGX uses the height-correlated Smith G, this configuration the separable one; fit `{twin}` for an exact Blender export"
+            ),
+        ));
+    }
+    let mut v = vec![ShaderTerm {
+        node: "ShaderNodeBsdfDiffuse",
+        props: vec![],
+        inputs: vec![("Color", rgba(&lobes.kd)), ("Roughness", "0.0".to_string())],
+    }];
+    for lobe in &lobes.lobes {
+        let r = roughness(lobe.alpha);
+        v.push(match lobe.colour {
+            LobeColour::Plain(ks) => ShaderTerm {
+                node: "ShaderNodeBsdfAnisotropic",
+                props: vec![("distribution", "GGX")],
+                inputs: vec![("Color", rgba(&ks)), r, ("Anisotropy", "0.0".into())],
+            },
+            LobeColour::Conductor { eta, kappa } => metallic(
+                "PHYSICAL_CONDUCTOR",
+                vec![("IOR", vec3(&eta)), ("Extinction", vec3(&kappa)), r],
+            ),
+            LobeColour::F82 { f0, tint } => metallic(
+                "F82",
+                vec![("Base Color", rgba(&f0)), ("Edge Tint", rgba(&tint)), r],
+            ),
+        });
+    }
+    if let Some(c) = lobes.coat {
+        v.push(metallic(
+            "PHYSICAL_CONDUCTOR",
+            vec![
+                ("IOR", vec3(&[c.ior; 3])),
+                ("Extinction", vec3(&[0.0; 3])),
+                roughness(c.alpha),
+            ],
+        ));
+    }
+    Ok(v)
+}
+
+/// A Python string literal.
+fn py_str(s: &str) -> String {
+    format!("{s:?}")
+}
+
+const BODY: &str = r#"
+
+
+def build(name=NAME):
+    mat = bpy.data.materials.get(name) or bpy.data.materials.new(name)
+    # Kept in a saved .blend without an object using it (a library material).
+    mat.use_fake_user = True
+    if mat.node_tree is None:
+        # Blender before 5 makes a material's node tree only on request.
+        mat.use_nodes = True
+    tree = mat.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    out.location = (300 * (len(TERMS) + 1), 0)
+    total = None
+    for i, (kind, props, inputs) in enumerate(TERMS):
+        node = tree.nodes.new(kind)
+        node.location = (300 * i, -250)
+        for key, value in props.items():
+            setattr(node, key, value)
+        for key, value in inputs.items():
+            node.inputs[key].default_value = value
+        if total is None:
+            total = node.outputs["BSDF"]
+            continue
+        # Add Shader sums its two closures exactly.
+        add = tree.nodes.new("ShaderNodeAddShader")
+        add.location = (300 * i + 150, 0)
+        tree.links.new(total, add.inputs[0])
+        tree.links.new(node.outputs["BSDF"], add.inputs[1])
+        total = add.outputs["Shader"]
+    tree.links.new(total, out.inputs["Surface"])
+    return mat
+
+
+if __name__ == "__main__":
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
+    build()
+    if "--blend" in argv:
+        i = argv.index("--blend")
+        if i + 1 >= len(argv):
+            sys.exit("--blend needs a file name: --blend OUT.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(argv[i + 1]))
+"#;
+
+/// The Blender script of `lobes`, with `note` in its docstring.
+pub(crate) fn write(
+    fit: &Fitted,
+    lobes: &LobesFit,
+    note: Option<&str>,
+    opts: &WriteOptions,
+) -> Result<String, ExportError> {
+    let terms = terms(fit, lobes)?;
+    let mut s = format!(
+        "\"\"\"Cycles material of `{}` written by `brdf export --to blender`: the model's terms as Diffuse, Glossy (GGX) and Metallic (GGX) BSDFs joined by Add Shader nodes, exact in Cycles.\n\n",
+        fit.name
+    );
+    s += "Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.\n";
+    if let Some(n) = note {
+        s += &format!("\n{}\n", n.replace('\\', "/").replace("\"\"\"", "'''"));
+    }
+    s += "\"\"\"\n\nimport os\nimport sys\n\nimport bpy\n\n";
+    s += &format!(
+        "NAME = {}\n# (node type, properties, inputs) of each term of the sum.\nTERMS = [\n",
+        py_str(&opts.name)
+    );
+    for t in &terms {
+        s += &format!("    (\n        {},\n        {{", py_str(t.node));
+        s += &t
+            .props
+            .iter()
+            .map(|(k, v)| format!("{}: {}", py_str(k), py_str(v)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        s += "},\n        {";
+        s += &t
+            .inputs
+            .iter()
+            .map(|(k, v)| format!("{}: {v}", py_str(k)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        s += "},\n    ),\n";
+    }
+    s += "]";
+    s += BODY;
+    Ok(s)
+}

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Check the coloured-lobe Mitsuba fixtures (lobes/M.xml, the exports of the
+# hand-chosen models lobes/M.json, written by
+# `LOBES_WRITE=1 cargo test --release -p brdf-export --test lobes`) with
+# Mitsuba 3 itself, writing what it said beside them (tests/lobes.rs reads it):
+#   lobes/mitsuba_values.json  mitsuba_check.py: Mitsuba's eval of each M.xml
+#                              at 300 direction pairs and at the normal
+#   lobes/render_check.json    render_check.py: Mitsuba's render of each M.xml
+#                              on the judge sphere (studio and sky), and with
+#                              BLENDER_PYTHON (a python with bpy) Cycles' render
+#                              of each M.py (cycles_render.py, studio), beside
+#                              brdf-render's (examples/judge_exr.rs) of M.json,
+#                              by HDR-FLIP
+# Needs PYTHON with mitsuba, numpy, flip-evaluator. JUDGE_EXR: the judge_exr
+# example's binary (default: cargo run --release). A few minutes.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+py="${PYTHON:-python3}"
+cd "$here"
+"$py" - <<'PY' >lobes/mitsuba_cases.json
+import glob, json
+print(json.dumps([{"file": f, "xml": open(f).read()} for f in sorted(glob.glob("lobes/*.xml"))]))
+PY
+"$py" mitsuba_check.py lobes/mitsuba_cases.json >lobes/mitsuba_values.json
+rm lobes/mitsuba_cases.json
+exr_dir="$(mktemp -d)"
+trap 'rm -rf "$exr_dir"' EXIT
+for m in lobes/*.json; do
+    b=$(basename "$m" .json)
+    case $b in render_check | mitsuba_values) continue ;; esac
+    if [ -n "${JUDGE_EXR:-}" ]; then
+        "$JUDGE_EXR" "$m" "$exr_dir/brdf-render/$b"
+    else
+        (cd "$here/../../../.." && cargo run --release -q -p brdf-export --example judge_exr -- \
+            "$here/$m" "$exr_dir/brdf-render/$b")
+    fi
+done
+render_files=(lobes/*.xml)
+if [ -n "${BLENDER_PYTHON:-}" ]; then
+    "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 lobes/*.py >&2
+    render_files+=(lobes/*.py)
+else
+    echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy"
+fi
+"$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio,sky}" --spp 1024 "${render_files[@]}" >lobes/render_check.json.new
+mv lobes/render_check.json.new lobes/render_check.json
