@@ -75,7 +75,7 @@ pub struct FitReport {
     /// bound of their box), for the report.
     pub notes: Vec<String>,
     /// Image errors against the data under the standard light sets, for
-    /// data that can be rendered ([`crate::judged::fit_judged`]).
+    /// data that can be rendered ([`crate::FitRequest`]).
     pub image_error: Option<brdf_render::ImageError>,
     /// Why there is no image error (scattered data), when there is none.
     pub image_note: Option<String>,
@@ -137,7 +137,7 @@ impl Fit {
     }
 
     /// Whether the fit is in the image objective without a target yet (a
-    /// front end's `--metric image`: [`crate::judged::fit_judged`]
+    /// front end's `--metric image`: [`crate::FitRequest`]
     /// makes the target and its start).
     pub(crate) fn needs_image_target(&self) -> bool {
         self.options.objective == Objective::Image && self.options.image.is_none()

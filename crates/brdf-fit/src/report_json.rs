@@ -35,7 +35,7 @@ pub fn fit_json(reports: &[FitReport], data: &SampleSet) -> Result<serde_json::V
 /// The JSON report of a selection (`brdf select --json`): every
 /// candidate's row, the choice's, and the choice's image errors (`null`
 /// on scattered data, with the note why; `image` as
-/// [`crate::judged::select_judged`] returns it).
+/// a [`crate::SelectRequest`] gives it).
 pub fn select_json(
     data: &SampleSet,
     tolerance: f64,

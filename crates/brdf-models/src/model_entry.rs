@@ -94,7 +94,7 @@ pub struct ModelEntry {
     pub renderer: bool,
     /// The model's place among those selection by image error (`brdf
     /// select --by-image`) chooses among, one per kind of renderer model
-    /// (the order of its rows; [`by_image_models`]); `None`: not among
+    /// (the order of its rows; [`crate::catalogue::by_image_models`]); `None`: not among
     /// them.
     pub by_image_rank: Option<u8>,
     /// How the model colours its lobes.

@@ -222,7 +222,7 @@ pub fn fit_page(input: &FitInput) -> Result<String, ReportError> {
 }
 
 /// [`fit_page`] analysed by `analyser` (one holding the data's renders,
-/// [`Analyser::with_judge`]).
+/// [`Analyser::with_material`]).
 pub fn fit_page_with(input: &FitInput, analyser: &mut Analyser) -> Result<String, ReportError> {
     let a = analyser.analyse(input)?;
     render(input, &a, None)
