@@ -66,8 +66,8 @@ pub struct FitOptions {
     /// the multi-start search (default 1e-7): the starts only have to find
     /// and rank the basins; the best one is then polished to `lm`'s
     /// tolerances, so the result is the same optimum at a fraction of the
-    /// iterations (issue 16: stop at the data's noise level, not at 1e-15,
-    /// for every start).
+    /// iterations (each start stops at the data's noise level, not at
+    /// 1e-15).
     pub search_tolerance: f64,
     /// What the image objective fits to ([`Objective::Image`] only).
     pub image: Option<std::sync::Arc<crate::image_objective::ImageTarget>>,

@@ -4,7 +4,7 @@
 //! `nv-flip` crate, the Rust bindings to NVIDIA's own C++ FLIP.
 //!
 //! The metric itself is never computed here: [`ldr_flip`] tone maps both
-//! images with the spec's exposure and gamma 2.2, quantises to 8-bit sRGB
+//! images with the judge's exposure and gamma 2.2, quantises to 8-bit sRGB
 //! (what `nv-flip` takes) and calls `nv_flip::flip` at 67 pixels per degree
 //! (FLIP's default: a 0.7 m wide 4K monitor seen from 0.7 m).
 //!

@@ -13,7 +13,7 @@
 //!   written beside them, difference tiles on a colour bar);
 //! - [`plot`]: line and scatter plots (SVG and PNG) with the bundled font.
 //!
-//! The appearance judge (`shared/spec/appearance.md`): a unit sphere seen by
+//! The appearance judge (`docs/appearance.md`): a unit sphere seen by
 //! a perspective camera under named light sets, compared by image metrics.
 //!
 //! - [`camera`], [`scene`]: the judge camera and the pixels that see the

@@ -47,7 +47,7 @@ pub mod table {
     include!("../data/sunsky_table.rs");
 }
 
-/// The judge's sun direction (world, unnormalised as in the spec).
+/// The judge's sun direction (world, unnormalised as `docs/appearance.md` gives it).
 pub const SUN_DIRECTION: [f64; 3] = [0.5, 0.64, 0.58];
 
 /// Mitsuba's sky (sun excluded) for the judge's sun, from [`table`].

@@ -1,4 +1,4 @@
-//! Tone mapping with the exposure stated: the spec's display transform
+//! Tone mapping with the exposure stated: the judge's display transform (`docs/appearance.md`)
 //! `v -> clip(exposure v, 0, 1)^(1 / 2.2)` and the exposure
 //! `1 / p99(reference sphere pixels)`.
 //!

@@ -8,8 +8,8 @@
 //! slowly as `Lambda` grows and `c` shrinks, until `Lambda` meets its upper
 //! bound). In `(Lambda, c)` the valley floor is a hyperbola: a linearised
 //! step along it leaves it quadratically, so the damping holds the steps
-//! small and the solver crept for thousands of iterations (issue 28: the
-//! polish of each channel hit its cap of 3000). In `(ln Lambda, ln c)` the
+//! small and the solver creeps for thousands of iterations (the polish of
+//! each channel reaches its cap of 3000). In `(ln Lambda, ln c)` the
 //! floor is a straight line and the Gauss-Newton step follows it.
 //!
 //! The problem's residuals are unchanged (the cost is the same function);
