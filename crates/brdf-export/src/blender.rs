@@ -76,7 +76,7 @@ pub fn inputs(fit: &Fitted) -> Result<Vec<Input>, ExportError> {
 }
 
 /// A Python string literal.
-fn py_str(s: &str) -> String {
+pub(crate) fn py_str(s: &str) -> String {
     format!("{s:?}")
 }
 

@@ -29,6 +29,7 @@
 //! (Cycles' GGX is height-correlated): an error naming the `-cycles`
 //! configuration to fit.
 
+use crate::blender::py_str;
 use crate::fitted::Fitted;
 use crate::lobes_fit::{LobeColour, LobesFit};
 use crate::{ExportError, Target, WriteOptions};
@@ -111,11 +112,6 @@ pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<ShaderTerm>, ExportEr
         ));
     }
     Ok(v)
-}
-
-/// A Python string literal.
-fn py_str(s: &str) -> String {
-    format!("{s:?}")
 }
 
 const BODY: &str = r#"

@@ -31,8 +31,9 @@
 //! conversion by fitting through [`crate::export_or_convert`]); nor has
 //! the F82 tint, which Mitsuba's BSDFs do not implement.
 
-use crate::fitted::{Fitted, rgb_string};
+use crate::fitted::Fitted;
 use crate::lobes_fit::{LobeColour, LobesFit};
+use crate::mitsuba::{float, rgb};
 use crate::xml::Node;
 use crate::{ExportError, Target};
 
@@ -144,16 +145,6 @@ pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<Term>, ExportError> {
             }
         })
         .collect())
-}
-
-fn float(name: &str, v: f64) -> Node {
-    Node::new("float").attr("name", name).attr("value", v)
-}
-
-fn rgb(name: &str, c: &[f64; 3]) -> Node {
-    Node::new("rgb")
-        .attr("name", name)
-        .attr("value", rgb_string(c))
 }
 
 /// A reflectance: `<rgb>` within `[0, 1]`, else an unbounded `srgb`

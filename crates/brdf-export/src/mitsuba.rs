@@ -36,11 +36,11 @@ use crate::{ExportError, Light, Target, WriteOptions};
 
 const T: Target = Target::Mitsuba;
 
-fn float(name: &str, v: f64) -> Node {
+pub(crate) fn float(name: &str, v: f64) -> Node {
     Node::new("float").attr("name", name).attr("value", v)
 }
 
-fn rgb(name: &str, c: &[f64; 3]) -> Node {
+pub(crate) fn rgb(name: &str, c: &[f64; 3]) -> Node {
     Node::new("rgb")
         .attr("name", name)
         .attr("value", rgb_string(c))

@@ -2,23 +2,10 @@
 //! display names ("Blinn-Phong", "Cook Torrance") accepted; an unknown name
 //! gets the nearest catalogue names as a suggestion.
 
+use brdf_models::aliases::normalise;
 use brdf_models::{ModelEntry, catalogue};
 
 use crate::FitError;
-
-fn normalise(name: &str) -> String {
-    name.trim()
-        .to_lowercase()
-        .chars()
-        .map(|c| {
-            if c == '_' || c.is_whitespace() {
-                '-'
-            } else {
-                c
-            }
-        })
-        .collect()
-}
 
 /// Levenshtein distance (for suggestions).
 fn distance(a: &str, b: &str) -> usize {

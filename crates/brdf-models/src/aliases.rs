@@ -22,11 +22,10 @@ pub const ALIASES: &[(&str, &str)] = &[
     ("blinn", "blinn-phong"),
 ];
 
-/// The catalogue name `name` is another name for, if it is one (case,
-/// spaces and `_` ignored: `"Disney Principled"` gives `principled`).
-pub fn alias(name: &str) -> Option<&'static str> {
-    let key: String = name
-        .trim()
+/// A model name as the catalogue spells names: trimmed, lower case, `_`
+/// and spaces as `-` (`"Disney Principled"` gives `disney-principled`).
+pub fn normalise(name: &str) -> String {
+    name.trim()
         .to_lowercase()
         .chars()
         .map(|c| {
@@ -36,6 +35,12 @@ pub fn alias(name: &str) -> Option<&'static str> {
                 c
             }
         })
-        .collect();
+        .collect()
+}
+
+/// The catalogue name `name` is another name for, if it is one (case,
+/// spaces and `_` ignored: `"Disney Principled"` gives `principled`).
+pub fn alias(name: &str) -> Option<&'static str> {
+    let key = normalise(name);
     ALIASES.iter().find(|(a, _)| *a == key).map(|(_, m)| *m)
 }
