@@ -102,3 +102,25 @@ fn another_name_of_a_model_suggests_the_catalogue_name() {
     assert!(!ok);
     assert!(err.contains("principled"), "{err}");
 }
+
+#[test]
+fn a_selection_on_huge_values_prints_no_nan() {
+    // Values near 1e300: several candidates cannot be fitted (their costs
+    // overflow); their rows say why, and no figure is printed as NaN.
+    let dir = std::env::temp_dir().join(format!("brdf-first-hour-big-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let mut text = String::from("theta_i,phi_i,theta_o,phi_o,grey\n");
+    for i in 0..6 {
+        for o in 0..6 {
+            let (ti, to) = (0.1 + 0.2 * i as f64, 0.1 + 0.2 * o as f64);
+            let f = 1e300 * (0.5 / std::f64::consts::PI + 0.3 * ti.cos().powi(20));
+            text += &format!("{ti},0,{to},{},{f:e}\n", 0.5 * o as f64);
+        }
+    }
+    let path = dir.join("big.csv");
+    std::fs::write(&path, text).expect("csv written");
+    let (ok, out, err) = brdf(&["select", "--data", &path.display().to_string(), "--quiet"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("Chosen:"), "{out}");
+    assert!(!out.contains("NaN") && !out.contains("inf |"), "{out}");
+}

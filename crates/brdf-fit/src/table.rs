@@ -15,7 +15,7 @@ pub enum Cell {
     /// Text.
     Text(String),
     /// A number, printed with the given significant digits in Markdown and
-    /// in full in CSV.
+    /// in full in CSV; a non-finite one (a failed fit's) as `-` and empty.
     Num(f64, usize),
     /// Nothing.
     Empty,
@@ -25,6 +25,7 @@ impl Cell {
     fn csv(&self) -> String {
         match self {
             Cell::Text(s) => s.clone(),
+            Cell::Num(x, _) if !x.is_finite() => String::new(),
             Cell::Num(x, _) => format!("{x}"),
             Cell::Empty => String::new(),
         }
@@ -32,6 +33,7 @@ impl Cell {
     fn md(&self) -> String {
         match self {
             Cell::Text(s) => s.clone(),
+            Cell::Num(x, _) if !x.is_finite() => "-".into(),
             Cell::Num(x, d) => number(*x, *d),
             Cell::Empty => String::new(),
         }
@@ -102,6 +104,20 @@ impl Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn non_finite_numbers_are_never_printed() {
+        let mut t = Table::new("t", &["a", "b", "c"]);
+        t.rows.push(vec![
+            Cell::Num(f64::NAN, 3),
+            Cell::Num(f64::INFINITY, 3),
+            Cell::Num(0.25, 2),
+        ]);
+        let md = t.markdown();
+        assert!(!md.contains("NaN") && !md.contains("inf"), "{md}");
+        assert!(md.contains("| - | - | 0.25 |"), "{md}");
+        assert_eq!(t.rows[0][0].csv(), "");
+    }
 
     #[test]
     fn markdown_layout() {
