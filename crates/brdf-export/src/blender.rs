@@ -26,6 +26,7 @@
 //! is converted by fitting `gltf`.
 
 use crate::fitted::Fitted;
+use crate::python_literal::py_str;
 use crate::{ExportError, Target, WriteOptions};
 
 /// A Principled BSDF input: its Blender name and Python value.
@@ -73,11 +74,6 @@ pub fn inputs(fit: &Fitted) -> Result<Vec<Input>, ExportError> {
         }
     };
     Ok(v)
-}
-
-/// A Python string literal.
-pub(crate) fn py_str(s: &str) -> String {
-    format!("{s:?}")
 }
 
 const BODY: &str = r#"

@@ -29,9 +29,9 @@
 //! (Cycles' GGX is height-correlated): an error naming the `-cycles`
 //! configuration to fit.
 
-use crate::blender::py_str;
 use crate::fitted::Fitted;
 use crate::lobes_fit::{LobeColour, LobesFit};
+use crate::python_literal::py_str;
 use crate::{ExportError, Target, WriteOptions};
 
 /// One BSDF node of the sum: its Blender type, enum properties and inputs

@@ -33,7 +33,7 @@
 
 use crate::fitted::Fitted;
 use crate::lobes_fit::{LobeColour, LobesFit};
-use crate::mitsuba::{float, rgb};
+use crate::mitsuba_nodes::{float, rgb};
 use crate::xml::Node;
 use crate::{ExportError, Target};
 

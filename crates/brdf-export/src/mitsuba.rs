@@ -30,21 +30,12 @@
 //! material: `principled` uses Burley's diffuse and the exact dielectric
 //! Fresnel), and the other catalogue models.
 
-use crate::fitted::{Fitted, GgxFit, LobeFit, LobeFresnel, rgb_string};
+use crate::fitted::{Fitted, GgxFit, LobeFit, LobeFresnel};
+use crate::mitsuba_nodes::{float, rgb};
 use crate::xml::Node;
 use crate::{ExportError, Light, Target, WriteOptions};
 
 const T: Target = Target::Mitsuba;
-
-pub(crate) fn float(name: &str, v: f64) -> Node {
-    Node::new("float").attr("name", name).attr("value", v)
-}
-
-pub(crate) fn rgb(name: &str, c: &[f64; 3]) -> Node {
-    Node::new("rgb")
-        .attr("name", name)
-        .attr("value", rgb_string(c))
-}
 
 fn bsdf(kind: &str) -> Node {
     Node::new("bsdf").attr("type", kind)
