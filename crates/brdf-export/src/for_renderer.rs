@@ -3,8 +3,9 @@
 //! written as that renderer's material, in one step.
 //!
 //! The candidates are the catalogue's renderer models that the target's
-//! exporter writes without a conversion ([`exact_models`]): the exporter
-//! itself says which, so the list cannot drift from what is written. Each
+//! exporter writes exactly, neither converted nor mapped ([`exact_models`],
+//! the same judgement as `brdf export --list`), so the list cannot drift
+//! from what is written. Each
 //! candidate is fitted for appearance as `brdf fit` fits it and judged at
 //! the report size by selection by image error
 //! ([`brdf_fit::SelectRequest`]); the least mean FLIP wins.
@@ -13,8 +14,9 @@ use brdf_core::progress::Progress;
 use brdf_fit::select::Among;
 use brdf_fit::select_by_image::ImageChoice;
 use brdf_fit::{FitReport, Material, SelectBy, SelectOutcome, SelectRequest};
-use brdf_models::{ModelConfig, catalogue};
+use brdf_models::catalogue;
 
+use crate::table::{Support, support};
 use crate::{ExportError, Target, WriteOptions, export_with};
 
 /// What [`fit_for`] gives.
@@ -49,16 +51,12 @@ pub enum ForRendererError {
 }
 
 /// The catalogue's renderer models that `target` renders exactly: those its
-/// exporter writes without a conversion.
+/// exporter writes neither converted nor mapped onto a material of its own
+/// ([`Support::Exact`], as `brdf export --list` says).
 pub fn exact_models(target: Target) -> Vec<&'static str> {
     catalogue()
         .iter()
-        .filter(|e| e.renderer)
-        .filter(|e| {
-            (e.build)(&ModelConfig::default()).is_ok_and(|m| {
-                export_with(m.as_ref(), target, None, &WriteOptions::default()).is_ok()
-            })
-        })
+        .filter(|e| e.renderer && support(e.name, target) == Support::Exact)
         .map(|e| e.name)
         .collect()
 }

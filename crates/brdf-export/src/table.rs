@@ -46,9 +46,16 @@ impl std::fmt::Display for Support {
     }
 }
 
-/// Whether `target`'s exact writes are renderer mappings.
-fn maps(target: Target) -> bool {
-    matches!(target, Target::Usd | Target::Blender)
+/// Whether `target` writes `model` as a mapping onto its own material
+/// rather than exactly: USD's and Blender's principled materials take the
+/// glTF parameters but evaluate their own BRDF; Blender's sums of closures
+/// for the coloured-lobe models are exact.
+fn maps(model: &str, target: Target) -> bool {
+    match target {
+        Target::Usd => true,
+        Target::Blender => brdf_models::coloured_lobes::variant_named(model).is_none(),
+        _ => false,
+    }
 }
 
 /// How `target` writes catalogue model `model` (at its default
@@ -63,7 +70,7 @@ pub fn support(model: &str, target: Target) -> Support {
         Err(e) => return Support::No(e.to_string()),
     };
     match export(m.as_ref(), target) {
-        Ok(_) if maps(target) => Support::Mapped,
+        Ok(_) if maps(model, target) => Support::Mapped,
         Ok(_) => Support::Exact,
         Err(ExportError::NoEquivalent { .. }) => Support::Converted(default_via(target).into()),
         Err(e) => Support::No(e.to_string()),
