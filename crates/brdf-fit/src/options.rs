@@ -13,7 +13,9 @@ use crate::objective::Objective;
 pub enum Solver {
     /// The default for the model: Kurt's robust IRLS (bisquare) for his
     /// polynomial, direct least squares (NNLS where the box starts at 0) for
-    /// the other all-linear models, [`Solver::Sqp`] for the rest.
+    /// the other all-linear models, [`Solver::Lm`] where the model's entry
+    /// asks for a search on all parameters (coloured lobes with a Fresnel
+    /// law), [`Solver::Sqp`] for the rest.
     Auto,
     /// Variable projection + bounded SQP-style solver + multi-start (default).
     Sqp,

@@ -34,7 +34,7 @@
 use std::time::Instant;
 
 use brdf_core::{Parametric, SampleSet};
-use brdf_models::LinearSolver;
+use brdf_models::{LinearSolver, NonlinearSearch};
 use brdf_solve::robust_weights::RobustWeight;
 use brdf_solve::{LmOptions, ModelProblem, VarPro, bounded_least_squares};
 
@@ -83,6 +83,12 @@ pub fn fit(
             Solver::Irls(RobustWeight::Bisquare)
         }
         Solver::Auto if all_linear => Solver::Ols,
+        Solver::Auto
+            if brdf_models::entry(model.name())
+                .is_some_and(|e| e.nonlinear_search == NonlinearSearch::AllParameters) =>
+        {
+            Solver::Lm
+        }
         Solver::Auto => Solver::Sqp,
         s => s,
     };

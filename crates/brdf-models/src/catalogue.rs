@@ -11,7 +11,7 @@ use std::sync::OnceLock;
 use brdf_core::{DirPairs, ParamError, Parametric, SampleSet};
 
 use crate::Lambert;
-use crate::entry_facts::{ColourStructure, LinearSolver, OptionalLobe};
+use crate::entry_facts::{ColourStructure, LinearSolver, NonlinearSearch, OptionalLobe};
 pub use crate::model_entry::{
     BuildForData, BuildFromSamples, ChannelModel, ModelConfig, ModelEntry, SuggestStarts,
 };
@@ -92,6 +92,7 @@ fn entries() -> Vec<ModelEntry> {
         colour: ColourStructure::PerLobe,
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
+        nonlinear_search: NonlinearSearch::Projected,
     }];
     // Only the lobe families use it; a build without them has no use for it.
     #[cfg(any(feature = "phong", feature = "ward", feature = "microfacet"))]
@@ -114,6 +115,7 @@ fn entries() -> Vec<ModelEntry> {
                 colour: ColourStructure::PerLobe,
                 optional_lobes: &[],
                 linear_solver: LinearSolver::Direct,
+                nonlinear_search: NonlinearSearch::Projected,
             })
         };
     }
@@ -214,6 +216,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: <crate::sgd::SgdShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -232,6 +235,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: <crate::low::LowAbcShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -250,6 +254,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: <crate::low::LowSmoothShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -268,6 +273,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: crate::dupuy::NAME,
@@ -286,6 +292,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
     }
     #[cfg(feature = "lafortune")]
@@ -307,6 +314,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: crate::Lafortune::NAME_ANISO,
@@ -325,6 +333,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
     }
     #[cfg(feature = "oren-nayar")]
@@ -345,6 +354,7 @@ fn entries() -> Vec<ModelEntry> {
         colour: ColourStructure::PerLobe,
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
+        nonlinear_search: NonlinearSearch::Projected,
     });
     #[cfg(feature = "oren-nayar")]
     v.push(ModelEntry {
@@ -364,6 +374,7 @@ fn entries() -> Vec<ModelEntry> {
         colour: ColourStructure::PerLobe,
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
+        nonlinear_search: NonlinearSearch::Projected,
     });
     #[cfg(feature = "sopp")]
     {
@@ -401,6 +412,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
     }
     #[cfg(feature = "koenderink")]
@@ -421,6 +433,7 @@ fn entries() -> Vec<ModelEntry> {
         colour: ColourStructure::PerLobe,
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
+        nonlinear_search: NonlinearSearch::Projected,
     });
     #[cfg(feature = "polynomial")]
     {
@@ -452,6 +465,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::RobustIrls,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: KurtPolynomial::NAME_ANISO,
@@ -480,6 +494,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::RobustIrls,
+            nonlinear_search: NonlinearSearch::Projected,
         });
     }
     #[cfg(feature = "renderer")]
@@ -501,6 +516,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: <crate::ggx::GgxSeparableLobe as crate::combinators::Lobe>::NAME,
@@ -519,6 +535,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         lobe_model!(
             crate::GgxAniso,
@@ -597,6 +614,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::Single,
             optional_lobes: PRINCIPLED_LOBES,
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfFormula as crate::dual_model::DualFormula>::NAME,
@@ -615,6 +633,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::Single,
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfExtFormula as crate::dual_model::DualFormula>::NAME,
@@ -633,6 +652,7 @@ fn entries() -> Vec<ModelEntry> {
             colour: ColourStructure::PerLobe,
             optional_lobes: GLTF_EXT_LOBES,
             linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
         });
     }
     #[cfg(feature = "renderer")]

@@ -30,6 +30,21 @@ pub struct OptionalLobe {
     pub companions: &'static [&'static str],
 }
 
+/// How the non-linear parameters of a model with some are searched when
+/// no solver is asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NonlinearSearch {
+    /// The linear parameters projected out (variable projection), the
+    /// search on the non-linear ones alone.
+    Projected,
+    /// Levenberg-Marquardt on every parameter at once. For models whose
+    /// few linear parameters share their rows with a Fresnel law (a
+    /// coloured lobe's complex index or F82 tint): there the projected
+    /// search ends in false minima with the lobes' widths swapped, even
+    /// from starts near the truth, where the full search does not.
+    AllParameters,
+}
+
 /// How an all-linear model is solved when no solver is asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LinearSolver {

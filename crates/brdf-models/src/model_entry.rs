@@ -5,7 +5,7 @@
 
 use brdf_core::{DirPairs, ParamError, Parametric, SampleSet};
 
-use crate::entry_facts::{ColourStructure, LinearSolver, OptionalLobe};
+use crate::entry_facts::{ColourStructure, LinearSolver, NonlinearSearch, OptionalLobe};
 
 /// Structural options of a model (not parameters: they fix the parameter
 /// vector's length).
@@ -104,6 +104,8 @@ pub struct ModelEntry {
     /// How the model is solved by default when all its parameters are
     /// linear.
     pub linear_solver: LinearSolver,
+    /// How its non-linear parameters are searched by default.
+    pub nonlinear_search: NonlinearSearch,
 }
 
 impl ModelEntry {

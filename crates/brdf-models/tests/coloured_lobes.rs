@@ -420,8 +420,14 @@ fn suggested_starts_lie_in_the_box_with_the_widths_apart() {
             };
             let mut m = (e.build)(&c).expect("builds");
             let starts = starts_fn(m.as_ref());
-            assert_eq!(starts.len(), 4, "{}", e.name);
-            for p in starts {
+            let conductor = e.name.contains("conductor");
+            // Four width sets, reversed too when lobe 1 has a Fresnel law
+            // and others follow, for a conductor once per index class.
+            let fresnel = conductor || e.name.contains("f82");
+            let sets = if fresnel && lobes > 1 { 8 } else { 4 };
+            let classes = if conductor { 3 } else { 1 };
+            assert_eq!(starts.len(), sets * classes, "{}", e.name);
+            for (i, p) in starts.into_iter().enumerate() {
                 m.set_params(&p).expect("a start lies in the box");
                 let alphas: Vec<f64> = m
                     .param_specs()
@@ -431,13 +437,32 @@ fn suggested_starts_lie_in_the_box_with_the_widths_apart() {
                     .map(|(_, &x)| x)
                     .collect();
                 assert_eq!(alphas.len(), lobes);
-                // Ascending by a factor of 2 at least: lobes start apart.
-                assert!(alphas.windows(2).all(|w| w[1] >= 2.0 * w[0]), "{alphas:?}");
-                // Everything else at its default.
+                // Ascending (descending in a reversed set) by a factor of 2
+                // at least: lobes start apart.
+                let apart = |w: &[f64]| w[1] >= 2.0 * w[0];
+                let reversed = i % sets >= 4;
+                assert!(
+                    alphas.windows(2).all(|w| if reversed {
+                        apart(&[w[1], w[0]])
+                    } else {
+                        apart(w)
+                    }),
+                    "{alphas:?}"
+                );
+                // A conductor's index is its class's, everything else at
+                // its default.
+                let (eta, kappa) = coloured_lobes::CONDUCTOR_INDICES[i / sets];
                 for (s, &x) in m.param_specs().iter().zip(&p) {
-                    if !s.name.contains("alpha") {
-                        assert_eq!(x, s.default, "{} {}", e.name, s.name);
-                    }
+                    let want = if conductor && s.name.starts_with("eta") {
+                        eta
+                    } else if conductor && s.name.starts_with("kappa") {
+                        kappa
+                    } else if s.name.contains("alpha") {
+                        continue;
+                    } else {
+                        s.default
+                    };
+                    assert_eq!(x, want, "{} {}", e.name, s.name);
                 }
             }
         }

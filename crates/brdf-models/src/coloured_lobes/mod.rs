@@ -110,5 +110,5 @@ pub mod variants;
 
 pub use crate::ggx::Masking;
 pub use model::{ALPHA_MIN, ColouredLobes, LobeFresnel, MAX_LOBES};
-pub use starts::suggested_starts;
+pub use starts::{CONDUCTOR_INDICES, suggested_starts};
 pub use variants::{VARIANTS, Variant, build, entries, variant_named};

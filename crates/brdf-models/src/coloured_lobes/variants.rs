@@ -216,6 +216,11 @@ pub fn entries() -> Vec<ModelEntry> {
             colour: crate::ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: crate::LinearSolver::Direct,
+            nonlinear_search: if v.first == Plain {
+                crate::NonlinearSearch::Projected
+            } else {
+                crate::NonlinearSearch::AllParameters
+            },
         })
         .collect()
 }
