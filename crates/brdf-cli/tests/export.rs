@@ -261,18 +261,20 @@ fn bad_input_is_an_error_naming_it() {
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
 
-fn glossy() -> PathBuf {
+/// A dark base under a bright, sharp metal highlight: no Lambert looks
+/// like it.
+fn bright_metal() -> PathBuf {
     saved(
-        "glossy.json",
+        "bright_metal.json",
         "ggx",
         1,
-        &[("kd", 0.2), ("ks1", 0.5), ("alpha1", 0.08), ("f0_1", 0.04)],
+        &[("kd", 0.05), ("ks1", 1.0), ("alpha1", 0.05), ("f0_1", 1.0)],
     )
 }
 
 #[test]
 fn a_conversion_that_changes_the_look_is_refused_unless_forced() {
-    let (from, out) = (glossy(), tmp("glossy.gltf"));
+    let (from, out) = (bright_metal(), tmp("bright_metal.gltf"));
     let args = [
         "export",
         "--from",

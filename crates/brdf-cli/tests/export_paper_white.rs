@@ -111,6 +111,16 @@ fn fit_and_export(m: &str) {
             .exists();
         assert_eq!(report["exact"], !converted, "{m} -> {t}");
         if converted {
+            // Written with a warning beyond the warning limits, which
+            // names the renderer's own route.
+            let warned = report["conversion"]["warned"].as_bool().expect("warned");
+            let says = report["warnings"]
+                .as_array()
+                .expect("warnings")
+                .iter()
+                .filter_map(|w| w.as_str())
+                .any(|w| w.contains("renders differently") && w.contains("--for"));
+            assert_eq!(warned, says, "{m} -> {t}: {report}");
             let want = reference(&conv_file)["conversion"]["relative_l2"]
                 .as_f64()
                 .expect("number");

@@ -18,21 +18,24 @@
 //! ([`brdf_render::Judge`] at `judge_size` pixels: HDR-FLIP per
 //! light set and the CIEDE2000 difference of the mean sphere colours).
 //!
-//! ## When a conversion is refused
+//! ## When a conversion warns, and when it is refused
 //!
-//! [`crate::export_or_convert`] refuses a conversion whose FLIP under any
-//! light set exceeds [`FLIP_LIMIT`] (0.02) or whose largest mean-colour
-//! CIEDE2000 exceeds [`DELTA_E_LIMIT`] (3), unless `force`. 0.02 bounds
-//! what a conversion may change: both renders are
-//! brdf-render's, deterministic quadratures without Monte Carlo noise, so
-//! 0.02 is a difference of the materials, not of the renders (two Mitsuba
-//! renders of one measurement differ by about as much from noise alone,
-//! `docs/appearance.md`); 3 is just above the just-noticeable
-//! colour difference (2.3), below the "visibly different" warning of fits
-//! (5). A conversion beyond either is a different-looking material;
-//! fitting the target's model to the measurement directly is then the
-//! better route (on paper_white, principled to glTF changes the sky render
-//! by 0.034: Burley's diffuse has a grazing rise Lambert's lacks).
+//! A conversion is written, never silently: [`crate::export_or_convert`]
+//! warns when its FLIP under any light set exceeds [`FLIP_WARN`] (0.02) or
+//! its largest mean-colour CIEDE2000 exceeds [`DELTA_E_WARN`] (3), the
+//! warning stating the image error and the `--for` route that renders the
+//! data exactly; it refuses only a conversion beyond [`FLIP_REFUSE`] (0.1)
+//! or [`DELTA_E_REFUSE`] (10), unless `force` (and `--exact` refuses every
+//! conversion). 0.02 bounds what a conversion may change unnoticed: both
+//! renders are brdf-render's, deterministic quadratures without Monte
+//! Carlo noise, so 0.02 is a difference of the materials, not of the
+//! renders (two Mitsuba renders of one measurement differ by about as
+//! much from noise alone, `docs/appearance.md`); 3 is just above the
+//! just-noticeable colour difference (2.3). A conversion between the two
+//! tiers is a slightly different look, usable (on paper_white, principled
+//! to glTF changes the sky render by 0.034: Burley's diffuse has a grazing
+//! rise Lambert's lacks); 0.1 or a colour difference of 10 is another
+//! material, which a user exports only on purpose.
 //!
 //! pbrt-v4's `mix` (below) is not a catalogue model: its BRDF-space fit
 //! (Ngan's objective) is refined in the image objective and the
@@ -81,22 +84,29 @@ pub struct ConvertOptions {
     /// Pixels per side of the images the conversion is judged on
     /// (default [`REPORT_SIZE`], the judge's film).
     pub judge_size: usize,
-    /// Export even when the conversion exceeds [`FLIP_LIMIT`] or
-    /// [`DELTA_E_LIMIT`].
+    /// Export even when the conversion exceeds [`FLIP_REFUSE`] or
+    /// [`DELTA_E_REFUSE`].
     pub force: bool,
 }
 
-/// FLIP under any light set above which a conversion is refused (see the
-/// module doc).
-pub const FLIP_LIMIT: f64 = 0.02;
-/// Largest mean-colour CIEDE2000 above which a conversion is refused.
-pub const DELTA_E_LIMIT: f64 = 3.0;
+/// FLIP under any light set above which a conversion is written with a
+/// warning (see the module doc).
+pub const FLIP_WARN: f64 = 0.02;
+/// Largest mean-colour CIEDE2000 above which a conversion is written with
+/// a warning.
+pub const DELTA_E_WARN: f64 = 3.0;
+/// FLIP under any light set above which a conversion is refused unless
+/// forced: another material, not a conversion.
+pub const FLIP_REFUSE: f64 = 0.1;
+/// Largest mean-colour CIEDE2000 above which a conversion is refused
+/// unless forced.
+pub const DELTA_E_REFUSE: f64 = 10.0;
 
-/// When a conversion is refused, in words for help texts and tables (from
-/// [`FLIP_LIMIT`] and [`DELTA_E_LIMIT`], so the texts follow the code).
+/// When a conversion warns and when it is refused, in words for help
+/// texts and tables (from the constants, so the texts follow the code).
 pub fn limits_text() -> String {
     format!(
-        "HDR-FLIP above {FLIP_LIMIT} under any light set or mean-colour CIEDE2000 above {DELTA_E_LIMIT}"
+        "written with a warning above HDR-FLIP {FLIP_WARN} under any light set or mean-colour CIEDE2000 {DELTA_E_WARN}, refused above HDR-FLIP {FLIP_REFUSE} or CIEDE2000 {DELTA_E_REFUSE}"
     )
 }
 
@@ -161,11 +171,11 @@ impl Conversion {
         )
     }
 
-    /// Whether the conversion keeps the look: `Err` naming the better
-    /// route when it exceeds [`FLIP_LIMIT`] or [`DELTA_E_LIMIT`].
+    /// Whether the conversion may be written: `Err` naming the better
+    /// route when it exceeds [`FLIP_REFUSE`] or [`DELTA_E_REFUSE`].
     pub fn check(&self, target: Target) -> Result<(), ExportError> {
         let (flip, delta_e) = (self.image.max_flip(), self.image.max_delta_e());
-        if flip <= FLIP_LIMIT && delta_e <= DELTA_E_LIMIT {
+        if flip <= FLIP_REFUSE && delta_e <= DELTA_E_REFUSE {
             return Ok(());
         }
         Err(ExportError::LooksDifferent {

@@ -16,8 +16,9 @@ use brdf_fit::select_by_image::ImageChoice;
 use brdf_fit::{FitReport, Material, SelectBy, SelectOutcome, SelectRequest};
 use brdf_models::catalogue;
 
+use crate::convert::{Conversion, DELTA_E_WARN, FLIP_WARN};
 use crate::table::{Support, support};
-use crate::{ExportError, Target, WriteOptions, export_with};
+use crate::{ExportError, FrontEnd, Target, WriteOptions, export_with};
 
 /// What [`fit_for`] gives.
 pub struct ForRenderer {
@@ -102,4 +103,31 @@ pub fn fit_for(
         report,
         text,
     })
+}
+
+/// The warning written with a conversion `c` to `target` beyond
+/// [`FLIP_WARN`] or [`DELTA_E_WARN`]: its image error and the route that
+/// renders the data exactly (`--for`, where the target has models it
+/// renders exactly; the target's own model otherwise), in `front`'s words.
+pub fn conversion_warning(c: &Conversion, target: Target, front: FrontEnd) -> Option<String> {
+    let (flip, delta_e) = (c.image.max_flip(), c.image.max_delta_e());
+    if flip <= FLIP_WARN && delta_e <= DELTA_E_WARN {
+        return None;
+    }
+    let route = if exact_models(target).is_empty() {
+        format!(
+            "fit {} to the data directly for a closer material",
+            front.fit_hint(c.model.name())
+        )
+    } else {
+        format!(
+            "fit the data for {target} instead: {} renders exactly what it fits",
+            front.for_hint(target)
+        )
+    };
+    Some(format!(
+        "`{}` has no exact {target} equivalent; the `{}` written renders differently (HDR-FLIP {flip:.3} under one light set, CIEDE2000 {delta_e:.2}; warned above {FLIP_WARN} or {DELTA_E_WARN}): {route}",
+        c.source,
+        c.model.name(),
+    ))
 }

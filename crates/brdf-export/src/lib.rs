@@ -289,12 +289,12 @@ pub enum ExportError {
         /// its choices
         expected: &'static str,
     },
-    /// The converted material renders unlike the source (see
-    /// [`convert::FLIP_LIMIT`], [`convert::DELTA_E_LIMIT`]).
+    /// The converted material renders as another material (see
+    /// [`convert::FLIP_REFUSE`], [`convert::DELTA_E_REFUSE`]).
     #[error(
-        "converting `{model}` to {target} as `{via}` changes its look (HDR-FLIP {flip:.3} under one light set, limit {flip_limit}; CIEDE2000 {delta_e:.2}, limit {de_limit}): fit the target's model directly: {fit} and export that, or pass {force} to export the conversion anyway",
-        flip_limit = convert::FLIP_LIMIT,
-        de_limit = convert::DELTA_E_LIMIT,
+        "converting `{model}` to {target} as `{via}` makes another material (HDR-FLIP {flip:.3} under one light set, refused above {flip_limit}; CIEDE2000 {delta_e:.2}, refused above {de_limit}): fit the target's model directly: {fit} and export that, or pass {force} to export the conversion anyway",
+        flip_limit = convert::FLIP_REFUSE,
+        de_limit = convert::DELTA_E_REFUSE,
         fit = .front.fit_hint(via),
         force = .front.force_option()
     )]
@@ -351,6 +351,14 @@ impl FrontEnd {
         match self {
             FrontEnd::Cli => "`--channels rgb`",
             FrontEnd::Python => "`channels=\"rgb\"`",
+        }
+    }
+
+    /// How to fit the data for `target` (`--for`).
+    pub fn for_hint(self, target: Target) -> String {
+        match self {
+            FrontEnd::Cli => format!("`brdf fit --data DATA --for {target} --out FILE`"),
+            FrontEnd::Python => format!("`brdf.fit(data, for_renderer=\"{target}\")`"),
         }
     }
 
@@ -451,8 +459,9 @@ pub fn export_with(
 
 /// Write `model` exactly where `target` has its equivalent, otherwise
 /// convert it by fitting ([`convert()`]) and write the conversion with its
-/// error noted in the file; a conversion that renders unlike the source
-/// is refused ([`ExportError::LooksDifferent`]) unless `opts.force`. Errors
+/// error noted in the file and a warning where it renders differently; a
+/// conversion that renders as another material is refused
+/// ([`ExportError::LooksDifferent`]) unless `opts.force`. Errors
 /// other than
 /// [`ExportError::NoEquivalent`] are not converted around.
 ///
@@ -490,6 +499,8 @@ pub fn export_or_convert_with(
             if !opts.force {
                 c.check(target)?;
             }
+            let mut warnings = warnings;
+            warnings.extend(for_renderer::conversion_warning(&c, target, FrontEnd::Cli));
             let text = export_with(c.model.as_ref(), target, Some(&c.note()), write)?;
             Ok(Exported {
                 text,

@@ -113,7 +113,7 @@ pub fn markdown() -> String {
     }
     s += "\nMaterialX `--surface standard_surface` or `openpbr`: the glTF rows are mapped, not exact.\n";
     s += &format!(
-        "Conversions are fitted for appearance and refused at {} (`--force` exports them anyway).\n",
+        "Conversions are fitted for appearance, {} (`--force` exports them anyway; `--exact` refuses every conversion).\n",
         crate::convert::limits_text()
     );
     s += "\n";

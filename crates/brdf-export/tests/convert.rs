@@ -87,23 +87,31 @@ fn quick() -> ConvertOptions {
 /// and names the better route.
 #[test]
 fn ggx_to_principled_is_close_but_beyond_the_bound() {
+    use brdf_export::convert::{DELTA_E_WARN, FLIP_REFUSE, FLIP_WARN};
     let src = paper_white_ggx();
     let c = convert(src.as_ref(), Target::Mitsuba, &quick()).unwrap();
     assert_eq!(c.model.name(), "principled");
     assert!(c.appearance);
     eprintln!("{}", brdf_export::convert::image_note(&c.image));
     assert!(c.image.mean_flip() < 0.03, "{:?}", c.image);
+    assert!(c.image.max_flip() > FLIP_WARN, "{:?}", c.image);
+    assert!(c.image.max_flip() < FLIP_REFUSE, "{:?}", c.image);
+    assert!(c.image.max_delta_e() < DELTA_E_WARN);
+    // Written, with a warning naming the renderer's own route.
+    c.check(Target::Mitsuba).expect("below the refusal limits");
+    use brdf_export::for_renderer::conversion_warning;
+    let warning =
+        conversion_warning(&c, Target::Mitsuba, brdf_export::FrontEnd::Cli).expect("beyond 0.02");
     assert!(
-        c.image.max_flip() > brdf_export::convert::FLIP_LIMIT,
-        "{:?}",
-        c.image
+        warning.contains("`brdf fit --data DATA --for mitsuba --out FILE`"),
+        "{warning}"
     );
-    assert!(c.image.max_delta_e() < brdf_export::convert::DELTA_E_LIMIT);
-    let refused = c
-        .check(Target::Mitsuba)
-        .expect_err("beyond 0.02")
-        .to_string();
-    assert!(refused.contains("brdf fit --model principled"), "{refused}");
+    let py = conversion_warning(&c, Target::Mitsuba, brdf_export::FrontEnd::Python)
+        .expect("beyond 0.02");
+    assert!(
+        py.contains("for_renderer=\"mitsuba\"") && !py.contains("--"),
+        "{py}"
+    );
     assert!(c.note().contains("HDR-FLIP"), "{}", c.note());
 }
 
@@ -112,8 +120,8 @@ fn ggx_to_principled_is_close_but_beyond_the_bound() {
 /// with `force`, its image error in the file.
 #[test]
 fn a_conversion_that_changes_the_look_is_refused_unless_forced() {
-    // kd, ks, alpha, f0
-    let src = model("ggx", &[0.2, 0.5, 0.08, 0.04]);
+    // kd, ks, alpha, f0: a dark base under a bright sharp highlight
+    let src = model("ggx", &[0.05, 1.0, 0.05, 1.0]);
     let opts = ConvertOptions {
         via: Some("lambert".into()),
         ..quick()
@@ -137,6 +145,13 @@ fn a_conversion_that_changes_the_look_is_refused_unless_forced() {
     };
     let done = brdf_export::export_or_convert(src.as_ref(), Target::Gltf, &forced).unwrap();
     let c = done.conversion.expect("converted");
-    assert!(c.image.max_flip() > brdf_export::convert::FLIP_LIMIT);
+    assert!(c.image.max_flip() > brdf_export::convert::FLIP_REFUSE);
     assert!(done.text.contains("HDR-FLIP"), "{}", done.text);
+    assert!(
+        done.warnings
+            .iter()
+            .any(|w| w.contains("renders differently")),
+        "{:?}",
+        done.warnings
+    );
 }

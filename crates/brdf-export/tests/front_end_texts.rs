@@ -2,21 +2,28 @@
 //! in `--list`, the options a refused conversion's advice names (the
 //! command line's or Python's), the warning for a grey fit.
 
-use brdf_export::convert::{DELTA_E_LIMIT, FLIP_LIMIT};
+use brdf_export::convert::{DELTA_E_REFUSE, DELTA_E_WARN, FLIP_REFUSE, FLIP_WARN};
 use brdf_export::{ExportError, FrontEnd, Target, warnings};
 
 #[test]
 fn the_list_states_the_limits_the_code_applies() {
     let t = brdf_export::table::markdown();
     assert!(
-        t.contains(&format!("HDR-FLIP above {FLIP_LIMIT} under any light set")),
+        t.contains(&format!(
+            "with a warning above HDR-FLIP {FLIP_WARN} under any light set or mean-colour CIEDE2000 {DELTA_E_WARN}"
+        )),
         "{t}"
     );
     assert!(
-        t.contains(&format!("CIEDE2000 above {DELTA_E_LIMIT}")),
+        t.contains(&format!(
+            "refused above HDR-FLIP {FLIP_REFUSE} or CIEDE2000 {DELTA_E_REFUSE}"
+        )),
         "{t}"
     );
-    assert!(FLIP_LIMIT == 0.02 && !t.contains("0.05 or"), "{t}");
+    assert!(
+        FLIP_WARN == 0.02 && FLIP_REFUSE == 0.1 && !t.contains("0.05 or"),
+        "{t}"
+    );
 }
 
 fn refused() -> ExportError {

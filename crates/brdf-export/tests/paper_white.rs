@@ -101,13 +101,19 @@ fn files_are_what_the_exporter_writes_with_the_conversion_error_noted() {
             assert_eq!(c["via"].as_str().unwrap(), model.name());
             // The note written is the report's, with the recomputed L2; the
             // conversion was forced exactly when its image error is beyond
-            // the limits.
+            // the refusal limits, warned about beyond the warning limits.
             let note = c["note"].as_str().unwrap();
             assert!(note.contains(&format!("relative L2 {:.4e}", e.relative_l2)));
             assert!(note.contains("HDR-FLIP"), "{note}");
-            let within = c["max_flip"].as_f64().unwrap() <= brdf_export::convert::FLIP_LIMIT
-                && c["max_delta_e"].as_f64().unwrap() <= brdf_export::convert::DELTA_E_LIMIT;
+            let (flip, delta_e) = (
+                c["max_flip"].as_f64().unwrap(),
+                c["max_delta_e"].as_f64().unwrap(),
+            );
+            use brdf_export::convert::{DELTA_E_REFUSE, DELTA_E_WARN, FLIP_REFUSE, FLIP_WARN};
+            let within = flip <= FLIP_REFUSE && delta_e <= DELTA_E_REFUSE;
             assert_eq!(c["forced"].as_bool().unwrap(), !within, "{m} -> {t}");
+            let quiet = flip <= FLIP_WARN && delta_e <= DELTA_E_WARN;
+            assert_eq!(c["warned"].as_bool().unwrap(), !quiet, "{m} -> {t}");
             assert_eq!(
                 export_with(model.as_ref(), t, Some(note), &opts_named()).unwrap(),
                 text,

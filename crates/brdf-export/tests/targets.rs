@@ -40,7 +40,7 @@ fn assert_written(m: &str, kind: &str, file: &str, target: Target, opts: &WriteO
     let text = if dir().join(&conv).exists() {
         let report = json(&format!("{m}.{kind}.report.json"));
         let c = &report["conversion"];
-        let within = c["max_flip"].as_f64().unwrap() <= brdf_export::convert::FLIP_LIMIT;
+        let within = c["max_flip"].as_f64().unwrap() <= brdf_export::convert::FLIP_REFUSE;
         assert!(within || c["forced"].as_bool().unwrap(), "{m}.{kind}");
         let note = c["note"].as_str().unwrap();
         export_with(load(&conv).as_ref(), target, Some(note), opts).unwrap()

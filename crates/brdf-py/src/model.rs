@@ -217,18 +217,23 @@ pub fn export_text(
         surface: opts.surface.parse().map_err(to_py)?,
         mesh: opts.mesh,
     };
-    let text = if opts.convert {
+    let (text, conversion) = if opts.convert {
         let convert = brdf_export::ConvertOptions {
             force: opts.force,
             ..brdf_export::ConvertOptions::default()
         };
-        brdf_export::export_or_convert_with(m, target, &convert, &write)
-            .map(|e| e.text)
-            .map_err(to_py)?
+        let e = brdf_export::export_or_convert_with(m, target, &convert, &write).map_err(to_py)?;
+        (e.text, e.conversion)
     } else {
-        brdf_export::export_with(m, target, None, &write).map_err(to_py)?
+        let text = brdf_export::export_with(m, target, None, &write).map_err(to_py)?;
+        (text, None)
     };
-    for w in brdf_export::warnings(m, target, FrontEnd::Python) {
+    let converted = conversion
+        .and_then(|c| brdf_export::for_renderer::conversion_warning(&c, target, FrontEnd::Python));
+    for w in brdf_export::warnings(m, target, FrontEnd::Python)
+        .into_iter()
+        .chain(converted)
+    {
         crate::error::warn(py, &w)?;
     }
     Ok(text)
@@ -261,7 +266,9 @@ pub fn export_text(
 ///     appearance (the error noted in the file), as ``brdf export`` does;
 ///     by default such a model is refused (``--exact``).
 /// force : bool
-///     With ``convert``: write a conversion that renders unlike the model.
+///     With ``convert``: write a conversion even when it renders as another
+///     material (beyond HDR-FLIP 0.1; between 0.02 and 0.1 it is written
+///     with a warning).
 /// mesh : bool
 ///     glTF: a preview sphere using the material in the default scene, so
 ///     a viewer shows it (``False``: the material alone, ``--no-mesh``).
@@ -277,7 +284,9 @@ pub fn export_text(
 /// -----
 /// UserWarning
 ///     For a one-channel (grey) model: its colour was never fitted, so the
-///     material is grey (fit with ``channels="rgb"`` for a coloured one).
+///     material is grey (fit with ``channels="rgb"`` for a coloured one);
+///     for a conversion that renders differently (HDR-FLIP above 0.02):
+///     its image error and the route to an exact material.
 #[pyfunction]
 #[pyo3(signature = (model, to, *, params=None, channels=1, lobes=1, order=8, degree=7,
                     name="fitted", scene=false, light="studio", surface="gltf_pbr",

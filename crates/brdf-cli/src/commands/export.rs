@@ -4,8 +4,9 @@
 //! [`brdf_export`]. Exact where the target has the model's equivalent;
 //! otherwise converted by fitting a model the target has (`--via` names
 //! it), with the conversion error printed and written into the file;
-//! `--exact` refuses conversions, and a conversion that renders unlike
-//! the model is refused unless `--force`. `--list` prints the table of
+//! `--exact` refuses conversions; one that renders differently is written
+//! with a warning, and one that renders as another material is refused
+//! unless `--force`. `--list` prints the table of
 //! what each target writes exactly, maps or converts.
 
 use std::path::PathBuf;
@@ -111,7 +112,7 @@ impl From<SurfaceArg> for Surface {
 /// The `--force` help, with the limits the code applies.
 fn force_help() -> String {
     format!(
-        "Export a conversion even when it renders unlike the model ({})",
+        "Export a conversion even when it renders as another material (conversions are {})",
         brdf_export::convert::limits_text()
     )
 }
@@ -304,8 +305,10 @@ fn report(
                 "mean_flip": c.image.mean_flip(),
                 "max_flip": c.image.max_flip(),
                 "max_delta_e": c.image.max_delta_e(),
-                // Beyond the limits, so written only because of --force.
+                // Beyond the refusal limits, so written only because of
+                // --force; beyond the warning limits, written with a warning.
                 "forced": c.check(target).is_err(),
+                "warned": brdf_export::for_renderer::conversion_warning(c, target, brdf_export::FrontEnd::Cli).is_some(),
             })
         });
         let v = serde_json::json!({
@@ -371,11 +374,14 @@ mod tests {
         let h = force_help();
         assert!(
             h.contains(&format!(
-                "HDR-FLIP above {}",
-                brdf_export::convert::FLIP_LIMIT
+                "refused above HDR-FLIP {}",
+                brdf_export::convert::FLIP_REFUSE
             )),
             "{h}"
         );
-        assert!(h.contains("0.02") && !h.contains("0.05"), "{h}");
+        assert!(
+            h.contains("0.02") && h.contains("0.1") && !h.contains("0.05"),
+            "{h}"
+        );
     }
 }

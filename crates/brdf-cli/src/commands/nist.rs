@@ -7,6 +7,24 @@ use brdf_solve::{Damping, LmOptions, Scaling};
 
 use crate::error::CliError;
 
+/// `--damping`: the damping schedule of Levenberg-Marquardt.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum DampingArg {
+    /// Nielsen's gain-ratio schedule
+    Nielsen,
+    /// Sopp's schedule (multiply or divide by a fixed factor)
+    Sopp,
+}
+
+/// `--scaling`: the scaling of the damping term.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ScalingArg {
+    /// Marquardt's: the diagonal of J^T J
+    Marquardt,
+    /// Levenberg's: the identity
+    Identity,
+}
+
 /// Arguments of `brdf nist`.
 #[derive(Debug, clap::Args)]
 pub struct NistArgs {
@@ -20,9 +38,9 @@ pub struct NistArgs {
     /// solver options apply only with this flag.
     #[arg(long)]
     pub single: bool,
-    /// Damping schedule: nielsen (default) or sopp.
-    #[arg(long, default_value = "nielsen")]
-    pub damping: String,
+    /// Damping schedule.
+    #[arg(long, value_enum, default_value = "nielsen")]
+    pub damping: DampingArg,
     /// Use geodesic acceleration.
     #[arg(long)]
     pub geodesic: bool,
@@ -33,9 +51,9 @@ pub struct NistArgs {
     /// a cost test certifies only half the digits of the parameters).
     #[arg(long, default_value_t = 0.0)]
     pub ftol: f64,
-    /// Scaling of the damping term: marquardt (default) or identity.
-    #[arg(long, default_value = "marquardt")]
-    pub scaling: String,
+    /// Scaling of the damping term.
+    #[arg(long, value_enum, default_value = "marquardt")]
+    pub scaling: ScalingArg,
     /// Initial damping (default: 1e-3).
     #[arg(long)]
     pub initial_damping: Option<f64>,
@@ -52,23 +70,13 @@ pub fn run(args: &NistArgs) -> Result<(), CliError> {
             .map(|d| PathBuf::from(d).join("nist_strd"))
             .ok_or_else(|| CliError::Usage("give --dir DIR or set BRDF_DATA".into()))?,
     };
-    let damping = match args.damping.as_str() {
-        "nielsen" => Damping::Nielsen,
-        "sopp" => Damping::Sopp,
-        other => {
-            return Err(CliError::Usage(format!(
-                "--damping {other}: expected nielsen or sopp"
-            )));
-        }
+    let damping = match args.damping {
+        DampingArg::Nielsen => Damping::Nielsen,
+        DampingArg::Sopp => Damping::Sopp,
     };
-    let scaling = match args.scaling.as_str() {
-        "marquardt" => Scaling::Marquardt,
-        "identity" => Scaling::Identity,
-        other => {
-            return Err(CliError::Usage(format!(
-                "--scaling {other}: expected marquardt or identity"
-            )));
-        }
+    let scaling = match args.scaling {
+        ScalingArg::Marquardt => Scaling::Marquardt,
+        ScalingArg::Identity => Scaling::Identity,
     };
     let options = LmOptions {
         scaling,

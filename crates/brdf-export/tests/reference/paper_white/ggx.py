@@ -24,7 +24,10 @@ def build(name=NAME):
     mat = bpy.data.materials.get(name) or bpy.data.materials.new(name)
     # Kept in a saved .blend without an object using it (a library material).
     mat.use_fake_user = True
-    mat.use_nodes = True
+    if mat.node_tree is None:
+        # Blender before 5 makes a material's node tree only on request
+        # (`use_nodes`, deprecated in Blender 5, where every material has one).
+        mat.use_nodes = True
     nodes = mat.node_tree.nodes
     nodes.clear()
     bsdf = nodes.new("ShaderNodeBsdfPrincipled")
