@@ -62,18 +62,28 @@ pub fn exact_models(target: Target) -> Vec<&'static str> {
         .collect()
 }
 
-/// Fit every model `target` renders exactly to `material` for appearance,
-/// keep the one of least image error and write it for `target`.
-pub fn fit_for(
+/// What [`select_for`] gives: the choice among the models a renderer
+/// renders exactly, before anything is written.
+pub struct ForSelection {
+    /// Every candidate's fit for appearance and image errors.
+    pub rows: Vec<ImageChoice>,
+    /// Index of the choice in `rows`.
+    pub choice: usize,
+    /// The chosen model's fit.
+    pub report: FitReport,
+}
+
+/// Fit every model `target` renders exactly to `material` for appearance
+/// and keep the one of least image error (`brdf select --for`).
+pub fn select_for(
     material: &Material,
     target: Target,
-    write: &WriteOptions,
     progress: &dyn Progress,
-) -> Result<ForRenderer, ForRendererError> {
+) -> Result<ForSelection, ForRendererError> {
     let models = exact_models(target);
     if models.is_empty() {
         return Err(ForRendererError::NoExactModel {
-            target: format!("{target:?}").to_lowercase(),
+            target: target.to_string(),
         });
     }
     let request = SelectRequest {
@@ -95,12 +105,27 @@ pub fn fit_for(
         // A selection by image always answers with image rows.
         return Err(brdf_fit::FitError::NoModelToFit.into());
     };
-    let report = *chosen;
-    let text = export_with(report.model.as_ref(), target, None, write)?;
-    Ok(ForRenderer {
+    Ok(ForSelection {
         rows,
         choice,
-        report,
+        report: *chosen,
+    })
+}
+
+/// [`select_for`], the choice written as `target`'s material (`brdf fit
+/// --for`).
+pub fn fit_for(
+    material: &Material,
+    target: Target,
+    write: &WriteOptions,
+    progress: &dyn Progress,
+) -> Result<ForRenderer, ForRendererError> {
+    let s = select_for(material, target, progress)?;
+    let text = export_with(s.report.model.as_ref(), target, None, write)?;
+    Ok(ForRenderer {
+        rows: s.rows,
+        choice: s.choice,
+        report: s.report,
         text,
     })
 }

@@ -1,7 +1,8 @@
 //! `brdf select --data PATH [--tolerance REL] [--models A,B] [--max-parameters N] [--exhaustive] [--json]`:
 //! fit the candidate models (coarse to fine, or every one to all samples
 //! with `--exhaustive`) and choose the smallest one within the tolerance
-//! of the best.
+//! of the best; on data that can be rendered, choose by image error
+//! (`--for RENDERER`: among the models that renderer renders exactly).
 
 use brdf_fit::judged::SCATTERED_NOTE;
 use brdf_fit::report_text::image_error_lines;
@@ -9,6 +10,7 @@ use brdf_fit::select::{Among, Search};
 use brdf_fit::{Material, SelectBy, SelectOutcome, SelectRequest};
 
 use crate::error::CliError;
+use crate::opts::TargetArg;
 use crate::progress::Bars;
 
 /// Arguments of `brdf select`.
@@ -55,6 +57,10 @@ pub struct SelectArgs {
     /// mean HDR-FLIP of its renders, as `brdf fit --polish`.
     #[arg(long)]
     pub polish: bool,
+    /// Choose among the models RENDERER renders exactly, by image error
+    /// (what `brdf fit --for RENDERER` fits and writes).
+    #[arg(long = "for", value_enum, value_name = "RENDERER", conflicts_with_all = ["by_l2", "models", "max_parameters"])]
+    pub for_renderer: Option<TargetArg>,
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
@@ -79,6 +85,9 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
         )));
     }
     let bars = Bars::new(args.quiet);
+    if let Some(target) = args.for_renderer {
+        return select_for(args, &material, target, &bars);
+    }
     let request = SelectRequest {
         by: match (args.by_image, args.by_l2) {
             (true, _) => SelectBy::Image,
@@ -116,6 +125,35 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
         } => print_by_l2(&data.name, rows, *choice, *tolerance, image.as_ref()),
         SelectOutcome::Image { rows, choice, .. } => print_by_image(rows, *choice),
     }
+}
+
+/// `brdf select --for RENDERER`: the models the renderer renders exactly,
+/// fitted for appearance, the closest chosen.
+fn select_for(
+    args: &SelectArgs,
+    material: &Material,
+    target: TargetArg,
+    bars: &Bars,
+) -> Result<(), CliError> {
+    if !material.is_renderable() {
+        return Err(CliError::Usage(format!(
+            "--for: `{}` holds scattered samples that cannot be rendered, so no choice by image error can be made; use RGL `.bsdf` or MERL `.binary` data",
+            args.data
+        )));
+    }
+    let s = brdf_export::for_renderer::select_for(material, target.target(), bars)?;
+    if args.json {
+        let v = brdf_fit::select_by_image_json(material.name(), &s.rows, s.choice)?;
+        return say!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    print_by_image(&s.rows, s.choice)?;
+    say!(
+        "`{}` renders exactly in {}: write it with `brdf fit --data {} --for {} --out FILE`",
+        s.rows[s.choice].model,
+        target.target(),
+        args.data,
+        target.target()
+    )
 }
 
 /// The table of candidates and the choice's image errors.
