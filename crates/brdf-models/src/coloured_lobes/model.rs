@@ -73,6 +73,60 @@ fn alpha_spec(k: usize, default: f64) -> ParamSpec {
     )
 }
 
+/// The per-channel parameters of lobe `k` under its Fresnel law: its
+/// colour `ks{k}` (none), `f0{k}` and `tint{k}` (F82 tint) or `eta{k}` and
+/// `kappa{k}` (conductor).
+fn fresnel_specs(k: usize, fresnel: LobeFresnel, nc: usize) -> Vec<ParamSpec> {
+    let mut out = Vec::with_capacity(2 * nc);
+    match fresnel {
+        LobeFresnel::None => out.extend(per_channel_specs(
+            &format!("ks{k}"),
+            &format!("colour of lobe {k}"),
+            nc,
+            0.0,
+            1.0,
+            0.1,
+        )),
+        LobeFresnel::F82Tint => {
+            out.extend(non_linear(per_channel_specs(
+                &format!("f0{k}"),
+                &format!("lobe {k} reflectance at normal incidence"),
+                nc,
+                0.0,
+                1.0,
+                0.9,
+            )));
+            out.extend(non_linear(per_channel_specs(
+                &format!("tint{k}"),
+                &format!("lobe {k} tint at 82 deg (times Schlick's value)"),
+                nc,
+                F82_TINT_MIN,
+                1.0,
+                1.0,
+            )));
+        }
+        LobeFresnel::Conductor => {
+            out.extend(non_linear(per_channel_specs(
+                &format!("eta{k}"),
+                &format!("lobe {k} real part of the complex index"),
+                nc,
+                0.01,
+                5.0,
+                0.2,
+            )));
+            out.extend(non_linear(per_channel_specs(
+                &format!("kappa{k}"),
+                &format!("lobe {k} extinction coefficient"),
+                nc,
+                0.0,
+                10.0,
+                3.0,
+            )));
+        }
+    }
+    out
+}
+
 fn non_linear(mut s: Vec<ParamSpec>) -> Vec<ParamSpec> {
     s.iter_mut().for_each(|p| p.linear = false);
     s
@@ -112,52 +166,7 @@ impl ColouredLobes {
         for (i, &fresnel) in fresnels.iter().enumerate() {
             let k = i + 1;
             let start = specs.len();
-            match fresnel {
-                LobeFresnel::None => specs.extend(per_channel_specs(
-                    &format!("ks{k}"),
-                    &format!("colour of lobe {k}"),
-                    nc,
-                    0.0,
-                    1.0,
-                    0.1,
-                )),
-                LobeFresnel::F82Tint => {
-                    specs.extend(non_linear(per_channel_specs(
-                        &format!("f0{k}"),
-                        &format!("lobe {k} reflectance at normal incidence"),
-                        nc,
-                        0.0,
-                        1.0,
-                        0.9,
-                    )));
-                    specs.extend(non_linear(per_channel_specs(
-                        &format!("tint{k}"),
-                        &format!("lobe {k} tint at 82 deg (times Schlick's value)"),
-                        nc,
-                        F82_TINT_MIN,
-                        1.0,
-                        1.0,
-                    )));
-                }
-                LobeFresnel::Conductor => {
-                    specs.extend(non_linear(per_channel_specs(
-                        &format!("eta{k}"),
-                        &format!("lobe {k} real part of the complex index"),
-                        nc,
-                        0.01,
-                        5.0,
-                        0.2,
-                    )));
-                    specs.extend(non_linear(per_channel_specs(
-                        &format!("kappa{k}"),
-                        &format!("lobe {k} extinction coefficient"),
-                        nc,
-                        0.0,
-                        10.0,
-                        3.0,
-                    )));
-                }
-            }
+            specs.extend(fresnel_specs(k, fresnel, nc));
             let alpha = specs.len();
             specs.push(alpha_spec(k, widths[i]));
             lobes.push(LobeLayout {
