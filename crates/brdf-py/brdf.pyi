@@ -162,3 +162,9 @@ def canonical_name(name: str) -> str:
 
 def data_name(spec: str) -> str:
     """A data set's name in outputs (relative to ``BRDF_DATA``)."""
+
+def format_number(x: float, digits: int) -> str:
+    """``x`` with ``digits`` significant digits, as ``brdf batch``'s tables."""
+
+def format_full(x: float) -> str:
+    """``x`` in full, as ``brdf batch``'s CSV files hold it."""

@@ -22,11 +22,9 @@ in OUT/fits.jsonl.
 import argparse
 import csv
 import json
-import math
 import os
 import sys
 import time
-from decimal import Decimal
 from typing import Any, Optional, Union
 
 import brdf
@@ -102,29 +100,14 @@ def read_bytes(path: str) -> bytes:
         return f.read()
 
 
-def rust_display(x: Optional[float]) -> str:
-    """A number as Rust's `{}` prints an f64 (shortest digits, no exponent)."""
-    if x is None or math.isnan(x):
-        return "NaN"
-    if math.isinf(x):
-        return "inf" if x > 0 else "-inf"
-    s = format(Decimal(repr(float(x))), "f")
-    if "." in s:
-        s = s.rstrip("0").rstrip(".")
-    return s
+def full(x: Optional[float]) -> str:
+    """A CSV cell: the number in full, as `brdf batch` writes it."""
+    return "NaN" if x is None else brdf.format_full(x)
 
 
-def fmt_sig(x: Optional[float], digits: int) -> str:
-    """`x` to `digits` significant digits, as the study's Markdown tables."""
-    if x is None or not math.isfinite(x):
-        return rust_display(x)
-    if x == 0:
-        return "0"
-    mag = math.floor(math.log10(abs(x)))
-    if not -4 <= mag < 6:
-        mantissa, exponent = f"{x:.{max(digits - 1, 0)}e}".split("e")
-        return f"{mantissa}e{int(exponent)}"
-    return f"{x:.{max(digits - 1 - mag, 0)}f}"
+def sig(x: Optional[float], digits: int) -> str:
+    """A Markdown cell: `digits` significant digits, as `brdf batch`."""
+    return "NaN" if x is None else brdf.format_number(x, digits)
 
 
 def summary_rows(fits: Fits) -> list[list[Cell]]:
@@ -159,11 +142,11 @@ def write_summary(out: str, fits: Fits) -> None:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(COLUMNS)
         for r in rows:
-            w.writerow([rust_display(c[1]) if c[0] == "num" else c[1] for c in r])
+            w.writerow([full(c[1]) if c[0] == "num" else c[1] for c in r])
     lines = [f"## {TITLE}", "", "| " + " | ".join(COLUMNS) + " |",
              "|" + " --- |" * len(COLUMNS)]
     for r in rows:
-        cells = [fmt_sig(c[1], c[2]) if c[0] == "num" else c[1] for c in r]
+        cells = [sig(c[1], c[2]) if c[0] == "num" else c[1] for c in r]
         lines.append("| " + " | ".join(cells) + " |")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -40,6 +40,7 @@ pub mod directions;
 pub mod error;
 pub mod fit;
 pub mod fitted;
+pub mod format;
 pub mod json;
 pub mod model;
 pub mod samples;
@@ -86,5 +87,7 @@ fn brdf_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(catalogue::materials, m)?)?;
     m.add_function(wrap_pyfunction!(catalogue::canonical_name, m)?)?;
     m.add_function(wrap_pyfunction!(catalogue::data_name, m)?)?;
+    m.add_function(wrap_pyfunction!(format::format_number, m)?)?;
+    m.add_function(wrap_pyfunction!(format::format_full, m)?)?;
     Ok(())
 }

@@ -9,6 +9,8 @@ import os
 import subprocess
 import sys
 
+import brdf
+
 from conftest import EXAMPLES, data_file, without_seconds
 
 MATERIALS = ["curet/abrdf.dat#2", "curet/abrdf.dat#12", "curet/abrdf.dat#33"]
@@ -72,3 +74,17 @@ def fit_lines_skipping_broken(path):
                 continue
             lines[(v["data"], v["model"])] = without_seconds(v)
     return lines
+
+
+def test_the_formatters_are_the_workspace_s():
+    # Hand-derived: three significant digits keep a trailing zero; outside
+    # 1e-4 .. 1e6 the notation is scientific with Rust's exponent; in full,
+    # Rust's shortest round-trip digits without an exponent.
+    assert brdf.format_number(0.019, 3) == "0.0190"
+    assert brdf.format_number(1234.6, 3) == "1235"
+    assert brdf.format_number(1.5e-7, 2) == "1.5e-7"
+    assert brdf.format_number(0.0, 4) == "0"
+    assert brdf.format_number(float("nan"), 3) == "NaN"
+    assert brdf.format_full(0.1) == "0.1"
+    assert brdf.format_full(1e-7) == "0.0000001"
+    assert brdf.format_full(2.5e6) == "2500000"
