@@ -1,5 +1,5 @@
-//! `brdf select` coarse to fine against the exhaustive selection (issue
-//! 28), on synthetic data from a known model: a one-lobe RGB Lafortune
+//! `brdf select` coarse to fine against the exhaustive selection, on
+//! synthetic data from a known model: a one-lobe RGB Lafortune
 //! BRDF on a grid of 4800 pairs with 1% deterministic noise, among
 //! candidates of which some cannot represent its lobe (Lambert, low
 //! polynomial degrees, low Koenderink orders) and some can.

@@ -157,6 +157,9 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
 fn other_file(name: &str) -> &'static str {
     match name {
         "performance.md" => "the peer comparison, written by `benches/peers/run.sh`",
+        "quickstart.md" => {
+            "the README's quick start timed, each command run as written, written by `bash benches/readme/quickstart.sh` (which also writes the README's table)"
+        }
         "performance_renderer_models.md" => {
             "the renderer models' fit times before and after their fitting kernels were sped up (commit `9779d66` against `d3d78b3`; tables from `benches/peers/renderer_models.sh`)"
         }

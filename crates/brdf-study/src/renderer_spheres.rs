@@ -1,5 +1,5 @@
-//! The labelled "measured vs fitted" spheres of the renderer models (issue
-//! 12's pictures): one row per dense RGL material, the sphere rendered from
+//! The labelled "measured vs fitted" spheres of the renderer models: one
+//! row per dense RGL material, the sphere rendered from
 //! the measured data first, then for each renderer model its fitted sphere
 //! and the difference from the measured one, every difference tile of a row
 //! on the colour bar at the row's end. Same camera, light and tone mapping
