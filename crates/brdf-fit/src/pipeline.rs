@@ -74,19 +74,14 @@ pub fn fit(
     let all_linear = specs.iter().all(|s| s.linear);
     let scales = opts.objective.row_scales(data);
     let values = data.values_channel_major();
+    let entry = brdf_models::entry(model.name());
+    let fact = |f: fn(&brdf_models::ModelEntry) -> bool| entry.as_ref().is_some_and(f);
     let solver_kind = match opts.solver {
-        Solver::Auto
-            if all_linear
-                && brdf_models::entry(model.name())
-                    .is_some_and(|e| e.linear_solver == LinearSolver::RobustIrls) =>
-        {
+        Solver::Auto if all_linear && fact(|e| e.linear_solver == LinearSolver::RobustIrls) => {
             Solver::Irls(RobustWeight::Bisquare)
         }
         Solver::Auto if all_linear => Solver::Ols,
-        Solver::Auto
-            if brdf_models::entry(model.name())
-                .is_some_and(|e| e.nonlinear_search == NonlinearSearch::AllParameters) =>
-        {
+        Solver::Auto if fact(|e| e.nonlinear_search == NonlinearSearch::AllParameters) => {
             Solver::Lm
         }
         Solver::Auto => Solver::Sqp,
