@@ -183,12 +183,7 @@ fn each_fit_is_brdf_fits_with_its_image_errors() {
                 .expect("a number")
         })
         .collect();
-    let lights = rgl["image_error"]["lights"].as_array().expect("lights");
-    let mean = lights
-        .iter()
-        .map(|l| l["flip"].as_f64().expect("flip"))
-        .sum::<f64>()
-        / lights.len() as f64;
+    let mean = common::mean_flip(&rgl["image_error"]);
     let seconds = rgl["seconds"].as_f64().expect("seconds");
     // Columns: Ngan L2, FLIP, dE (max), seconds.
     assert!(

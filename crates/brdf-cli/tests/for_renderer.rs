@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{brdf, data_file};
+use common::{brdf, data_file, mean_flip};
 use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
@@ -22,13 +22,8 @@ fn candidates(v: &Value) -> Vec<(String, f64)> {
         .expect("candidates")
         .iter()
         .map(|c| {
-            let lights = c["image"]["lights"].as_array().expect("lights");
-            let flip = lights
-                .iter()
-                .map(|l| l["flip"].as_f64().expect("flip"))
-                .sum::<f64>()
-                / lights.len() as f64;
-            (c["model"].as_str().expect("model").to_string(), flip)
+            let model = c["model"].as_str().expect("model").to_string();
+            (model, mean_flip(&c["image"]))
         })
         .collect()
 }

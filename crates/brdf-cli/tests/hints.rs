@@ -4,9 +4,12 @@
 //! the data as the fit it advises against (a second-colour model strictly
 //! closer, a selection by image never worse).
 
+mod common;
+
 use std::path::PathBuf;
 use std::process::Command;
 
+use common::mean_flip;
 use serde_json::Value;
 
 fn brdf(args: &[String]) -> Value {
@@ -17,16 +20,6 @@ fn brdf(args: &[String]) -> Value {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "brdf {}: {err}", args.join(" "));
     serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("brdf {}: {e}", args.join(" ")))
-}
-
-/// The mean HDR-FLIP over the light sets of an image-error JSON object.
-fn mean_flip(image: &Value) -> f64 {
-    let lights = image["lights"].as_array().expect("lights");
-    let sum: f64 = lights
-        .iter()
-        .map(|l| l["flip"].as_f64().expect("flip"))
-        .sum();
-    sum / lights.len() as f64
 }
 
 /// The RGL files of the shared data.

@@ -33,3 +33,14 @@ pub fn data_file(rel: &str) -> PathBuf {
     );
     path
 }
+
+/// The mean HDR-FLIP over the light sets of an image-error JSON object
+/// (`{"lights": [{"flip": ...}, ...]}`, as `--json` prints it).
+pub fn mean_flip(image: &serde_json::Value) -> f64 {
+    let lights = image["lights"].as_array().expect("lights");
+    lights
+        .iter()
+        .map(|l| l["flip"].as_f64().expect("flip"))
+        .sum::<f64>()
+        / lights.len() as f64
+}
