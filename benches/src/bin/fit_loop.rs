@@ -1,4 +1,4 @@
-//! `fit_loop`: run one `brdf fit` (the library's [`Fit`] builder) many times
+//! `fit_loop`: run one `brdf fit` (the library's [`FitRequest`]) many times
 //! in one process, for profiling (`perf record -- fit_loop ...`) and quick
 //! timing of the automatic multi-start fits.
 //!
@@ -14,7 +14,7 @@
 use std::time::Instant;
 
 use brdf_benches::peers::process_cpu_seconds;
-use brdf_fit::{Channels, Fit};
+use brdf_fit::{ChannelMode, FitOutcome, FitRequest, Material, Metric};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
@@ -41,24 +41,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             _ => return Err(usage.into()),
         }
     }
-    let samples = brdf_io::load(&data)?;
-    let channels = if grey { Channels::Grey } else { Channels::All };
-    let mut fit = Fit::model(&model)?.channels(channels).lobes(lobes);
-    if lm != brdf_solve::LmOptions::default() {
-        fit = fit.lm_options(lm);
-    }
+    // The samples alone (no dense data): a fit's time, not the judge's.
+    let material = Material::new(&data, brdf_io::load(&data)?, None);
+    let mut request = FitRequest::new(&material, brdf_fit::resolve(&model)?);
+    request.channels = if grey {
+        ChannelMode::Grey
+    } else {
+        ChannelMode::Rgb
+    };
+    request.config.lobes = lobes;
+    request.lm = lm;
     if let Some(o) = metric {
-        fit = fit.objective(o);
+        request.metric = Metric::Objective(o);
     }
     if let Some(t) = search {
-        fit = fit.search_tolerance(t);
+        request.search_tolerance = t;
     }
     let mut times = Vec::with_capacity(reps);
     let mut last = None;
     let cpu0 = process_cpu_seconds();
     for _ in 0..reps.max(1) {
         let t = Instant::now();
-        last = Some(fit.run(&samples)?);
+        last = Some(request.run().and_then(FitOutcome::into_report)?);
         times.push(t.elapsed().as_secs_f64());
     }
     let cpu = (process_cpu_seconds() - cpu0) / times.len() as f64;

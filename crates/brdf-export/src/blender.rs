@@ -28,6 +28,7 @@
 use crate::fitted::Fitted;
 use crate::python_literal::py_str;
 use crate::{ExportError, Target, WriteOptions};
+use brdf_models::RendererForm;
 
 /// A Principled BSDF input: its Blender name and Python value.
 type Input = (&'static str, String);
@@ -39,20 +40,20 @@ fn rgba(c: [f64; 3]) -> String {
 /// The Principled BSDF inputs of `fit`.
 pub fn inputs(fit: &Fitted) -> Result<Vec<Input>, ExportError> {
     let f = |n: &'static str, v: f64| (n, format!("{v:?}"));
-    let v = match fit.name.as_str() {
-        "lambert" => vec![
+    let v = match fit.form {
+        RendererForm::Diffuse => vec![
             ("Base Color", rgba(fit.colour("kd")?)),
             f("Metallic", 0.0),
             f("Roughness", 1.0),
             f("Specular IOR Level", 0.0),
         ],
-        "gltf" | "gltf-ext" => {
+        RendererForm::Gltf { extended } => {
             let mut v = vec![
                 ("Base Color", rgba(fit.colour("base_color")?)),
                 f("Metallic", fit.get("metallic")?),
                 f("Roughness", fit.get("roughness")?),
             ];
-            if fit.name == "gltf-ext" {
+            if extended {
                 v.extend([
                     f("IOR", fit.get("ior")?),
                     f("Specular IOR Level", 0.5 * fit.get("specular")?),

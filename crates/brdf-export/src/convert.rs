@@ -57,10 +57,12 @@ use brdf_core::half_diff::HalfDiff;
 use brdf_core::{Brdf, DirPairs, Direction, Parametric, SampleSet};
 use std::sync::Arc;
 
-use brdf_fit::appearance::fit_for_appearance_with;
 use brdf_fit::image_objective::{ImageTarget, image_terms};
-use brdf_fit::{Channels, Fit, FitOptions, Objective, pipeline};
-use brdf_models::ModelConfig;
+use brdf_fit::{
+    ChannelMode, FitOptions, FitOutcome, FitReport, FitRequest, Material, Metric, Objective,
+    pipeline,
+};
+use brdf_models::{GgxForm, GgxFresnel, ModelConfig, RendererForm};
 use brdf_render::ImageError;
 use brdf_render::judge::{FIT_SIZE, Judge, REPORT_SIZE};
 
@@ -221,20 +223,15 @@ pub fn convert(
     opts: &ConvertOptions,
 ) -> Result<Conversion, ExportError> {
     // Forgiving names (`--via GGX_Dielectric`), resolved as wherever a
-    // model is named, so the pbrt lobe test below sees the canonical name.
-    let via = match opts.via.as_deref() {
-        Some(v) => {
-            brdf_fit::resolve(v)
-                .map_err(|e| ExportError::Conversion {
-                    model: source.name().to_string(),
-                    target,
-                    via: v.to_string(),
-                    reason: e.to_string(),
-                })?
-                .name
-        }
-        None => default_via(target),
-    };
+    // model is named.
+    let via_name = opts.via.as_deref().unwrap_or(default_via(target));
+    let via_entry = brdf_fit::resolve(via_name).map_err(|e| ExportError::Conversion {
+        model: source.name().to_string(),
+        target,
+        via: via_name.to_string(),
+        reason: e.to_string(),
+    })?;
+    let via = via_entry.name;
     let fail = |reason: String| ExportError::Conversion {
         model: source.name().to_string(),
         target,
@@ -251,24 +248,39 @@ pub fn convert(
         return Err(fail(format!("{} pairs: need at least 16", opts.pairs)));
     }
     let samples = sample_source(source, opts).map_err(fail)?;
+    // pbrt-v4's conductor and dielectric materials: one height-correlated
+    // GGX lobe with an exact Fresnel term, mixed with a diffuse one.
     let pbrt_lobe = matches!(
-        via,
-        "ggx-conductor" | "ggx-dielectric" | "ggx-conductor-aniso" | "ggx-dielectric-aniso"
+        via_entry.form,
+        RendererForm::Ggx(GgxForm {
+            fresnel: GgxFresnel::Conductor | GgxFresnel::Dielectric,
+            separable: false,
+            numbered: false,
+            ..
+        })
     );
-    let (model, config) = if target == Target::Pbrt && pbrt_lobe {
+    let (model, config, judged) = if target == Target::Pbrt && pbrt_lobe {
         let mix = fit_mix(source, via, &samples, opts).map_err(fail)?;
         let config = ModelConfig {
             channels: source.channels(),
             ..ModelConfig::default()
         };
-        (mix.catalogue().map_err(|e| fail(e.to_string()))?, config)
+        (
+            mix.catalogue().map_err(|e| fail(e.to_string()))?,
+            config,
+            None,
+        )
     } else {
-        fit_target(source, via, &samples, opts).map_err(fail)?
+        let report = fit_target(source, via, &samples, opts).map_err(fail)?;
+        (report.model, report.config, report.image_error)
     };
     let error = measure(source, model.as_ref(), &samples, opts.limit_deg).map_err(fail)?;
-    let image = Judge::new(opts.judge_size.max(8))
-        .errors(source as &dyn Brdf, model.as_ref() as &dyn Brdf)
-        .map_err(|e| fail(e.to_string()))?;
+    let image = match judged {
+        Some(image) if opts.judge_size == REPORT_SIZE => image,
+        _ => Judge::new(opts.judge_size.max(8))
+            .errors(source as &dyn Brdf, model.as_ref() as &dyn Brdf)
+            .map_err(|e| fail(e.to_string()))?,
+    };
     Ok(Conversion {
         source: source.name().to_string(),
         model,
@@ -324,29 +336,42 @@ fn fit_mix(
 }
 
 /// Fit the catalogue model `via` to the samples of `source`: for
-/// appearance (see the module doc) or in BRDF space.
+/// appearance (see the module doc) or in BRDF space. With the judge's
+/// report size, the report holds the fit's image errors against the
+/// source (the conversion is judged on them).
 fn fit_target(
     source: &dyn Parametric,
     via: &str,
     samples: &SampleSet,
     opts: &ConvertOptions,
-) -> Result<(Box<dyn Parametric>, ModelConfig), String> {
-    let fit = Fit::model(via)
-        .map_err(|e| e.to_string())?
-        .channels(Channels::All)
-        .starts(opts.starts)
+) -> Result<FitReport, String> {
+    let material = Material::new(
+        source.name(),
+        samples.clone(),
+        Some(source.clone_box() as Box<dyn Brdf>),
+    );
+    let request = FitRequest {
+        metric: if opts.appearance {
+            Metric::Appearance
+        } else {
+            Metric::Objective(Objective::Ngan)
+        },
+        channels: ChannelMode::Rgb,
+        starts: opts.starts,
         // Every pair already lies inside the limit; 90 keeps them all.
-        .limit_deg(90.0);
-    let report = if opts.appearance {
+        limit_deg: 90.0,
         // A conversion is judged by its render (its BRDF-space L2 is
         // printed beside): no limit on the refinement's L2.
-        fit_for_appearance_with(&fit, samples, source as &dyn Brdf, f64::INFINITY)
-            .map_err(|e| e.to_string())?
-            .0
-    } else {
-        fit.run(samples).map_err(|e| e.to_string())?
+        refine_l2_growth: f64::INFINITY,
+        ..FitRequest::new(
+            &material,
+            brdf_fit::resolve(via).map_err(|e| e.to_string())?,
+        )
     };
-    Ok((report.model, report.config))
+    request
+        .run()
+        .and_then(FitOutcome::into_report)
+        .map_err(|e| e.to_string())
 }
 
 /// Element `i` of a 4-D quasi-random (Kronecker) sequence in `[0, 1)^4`

@@ -1,7 +1,10 @@
-//! A fitted model as the exporters see it: its catalogue name, channel
-//! count and parameters by name, with the GGX family decoded into lobes.
+//! A fitted model as the exporters see it: its catalogue name, the
+//! renderer material its formula is (its catalogue entry's
+//! [`RendererForm`]), channel count and parameters by name, with the GGX
+//! family decoded into lobes.
 
 use brdf_core::Parametric;
+use brdf_models::{GgxFresnel, RendererForm};
 
 use crate::{ExportError, Target};
 
@@ -10,6 +13,9 @@ use crate::{ExportError, Target};
 pub struct Fitted {
     /// Catalogue name.
     pub name: String,
+    /// The renderer material its formula is ([`RendererForm::None`] for a
+    /// model outside the catalogue).
+    pub form: RendererForm,
     /// 1 (grey) or 3 (linear sRGB).
     pub channels: usize,
     /// `(name, value)` in parameter-vector order.
@@ -70,7 +76,9 @@ impl Fitted {
             .zip(model.params())
             .map(|(s, &v)| (s.name.clone(), v))
             .collect();
+        let form = brdf_models::entry(model.name()).map_or(RendererForm::None, |e| e.form);
         Ok(Fitted {
+            form,
             name: model.name().to_string(),
             channels,
             params,
@@ -113,13 +121,11 @@ impl Fitted {
 
     /// The model decoded as the GGX family, `None` for other models.
     pub fn ggx(&self) -> Result<Option<GgxFit>, ExportError> {
-        let n = self.name.as_str();
-        if !n.starts_with("ggx") {
+        let RendererForm::Ggx(form) = self.form else {
             return Ok(None);
-        }
-        let separable = n.ends_with("-separable");
+        };
         let kd = self.colour("kd")?;
-        if n == "ggx" || n == "ggx-separable" {
+        if form.numbered {
             let mut lobes = Vec::new();
             let mut k = 1;
             while self.get(&format!("alpha{k}")).is_ok() {
@@ -135,27 +141,25 @@ impl Fitted {
             return Ok(Some(GgxFit {
                 kd,
                 lobes,
-                separable,
+                separable: form.separable,
             }));
         }
-        let (ax, ay) = if n.contains("-aniso") {
+        let (ax, ay) = if form.anisotropic {
             (self.get("ax")?, self.get("ay")?)
         } else {
             let a = self.get("alpha")?;
             (a, a)
         };
-        let fresnel = if n.contains("-conductor") {
-            LobeFresnel::Complex {
+        let fresnel = match form.fresnel {
+            GgxFresnel::Conductor => LobeFresnel::Complex {
                 eta: self.get("eta")?,
                 k: self.get("k")?,
-            }
-        } else if n.contains("-dielectric") {
-            LobeFresnel::Complex {
+            },
+            GgxFresnel::Dielectric => LobeFresnel::Complex {
                 eta: self.get("eta")?,
                 k: 0.0,
-            }
-        } else {
-            LobeFresnel::Schlick(self.get("f0")?)
+            },
+            GgxFresnel::Schlick => LobeFresnel::Schlick(self.get("f0")?),
         };
         let lobe = LobeFit {
             ks: self.colour("ks")?,
@@ -166,7 +170,7 @@ impl Fitted {
         Ok(Some(GgxFit {
             kd,
             lobes: vec![lobe],
-            separable,
+            separable: form.separable,
         }))
     }
 }

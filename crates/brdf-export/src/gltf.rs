@@ -22,16 +22,17 @@ use serde_json::{Value, json};
 
 use crate::fitted::Fitted;
 use crate::{ExportError, Target, WriteOptions};
+use brdf_models::RendererForm;
 
 /// The material object and the extensions it uses.
 pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError> {
-    let (base, metallic, roughness) = match fit.name.as_str() {
-        "gltf" | "gltf-ext" => (
+    let (base, metallic, roughness) = match fit.form {
+        RendererForm::Gltf { .. } => (
             fit.colour("base_color")?,
             fit.get("metallic")?,
             fit.get("roughness")?,
         ),
-        "lambert" => (fit.colour("kd")?, 0.0, 1.0),
+        RendererForm::Diffuse => (fit.colour("kd")?, 0.0, 1.0),
         _ => {
             return Err(fit.no_equivalent(
                 Target::Gltf,
@@ -49,14 +50,14 @@ pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError>
     });
     let mut ext = serde_json::Map::new();
     let mut used = Vec::new();
-    if fit.name == "lambert" {
+    if fit.form == RendererForm::Diffuse {
         ext.insert(
             "KHR_materials_specular".into(),
             json!({ "specularFactor": 0.0 }),
         );
         used.push("KHR_materials_specular");
     }
-    if fit.name == "gltf-ext" {
+    if fit.form == (RendererForm::Gltf { extended: true }) {
         let ior = fit.get("ior")?;
         if ior != 1.5 {
             ext.insert("KHR_materials_ior".into(), json!({ "ior": ior }));

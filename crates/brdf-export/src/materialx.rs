@@ -21,6 +21,8 @@
 //! No equivalent (an error): every other model (converted by fitting
 //! `gltf`).
 
+use brdf_models::RendererForm;
+
 use crate::fitted::{Fitted, rgb_string};
 use crate::xml::Node;
 use crate::{ExportError, Surface, Target, WriteOptions};
@@ -55,12 +57,12 @@ fn gltf_params(fit: &Fitted) -> Result<Gltf, ExportError> {
         coat: 0.0,
         coat_roughness: 0.0,
     };
-    match fit.name.as_str() {
-        "gltf" | "gltf-ext" => {
+    match fit.form {
+        RendererForm::Gltf { extended } => {
             g.base = fit.colour("base_color")?;
             g.metallic = fit.get("metallic")?;
             g.roughness = fit.get("roughness")?;
-            if fit.name == "gltf-ext" {
+            if extended {
                 g.ior = fit.get("ior")?;
                 g.specular = fit.get("specular")?;
                 g.specular_color = fit.colour("specular_color")?;
@@ -68,7 +70,7 @@ fn gltf_params(fit: &Fitted) -> Result<Gltf, ExportError> {
                 g.coat_roughness = fit.get("clearcoat_roughness")?;
             }
         }
-        "lambert" => {
+        RendererForm::Diffuse => {
             g.base = fit.colour("kd")?;
             g.specular = 0.0;
         }
@@ -93,7 +95,7 @@ fn shader_inputs(fit: &Fitted, g: &Gltf, surface: Surface) -> (&'static str, Vec
                 f("metallic", g.metallic),
                 f("roughness", g.roughness),
             ];
-            if fit.name == "gltf-ext" {
+            if fit.form == (RendererForm::Gltf { extended: true }) {
                 v.extend([
                     f("ior", g.ior),
                     f("specular", g.specular),
@@ -101,7 +103,7 @@ fn shader_inputs(fit: &Fitted, g: &Gltf, surface: Surface) -> (&'static str, Vec
                     f("clearcoat", g.coat),
                     f("clearcoat_roughness", g.coat_roughness),
                 ]);
-            } else if fit.name == "lambert" {
+            } else if fit.form == RendererForm::Diffuse {
                 v.push(f("specular", 0.0));
             }
             ("gltf_pbr", v)

@@ -30,6 +30,8 @@
 //! material: `principled` uses Burley's diffuse and the exact dielectric
 //! Fresnel), and the other catalogue models.
 
+use brdf_models::RendererForm;
+
 use crate::fitted::{Fitted, GgxFit, LobeFit, LobeFresnel};
 use crate::mitsuba_nodes::{float, rgb};
 use crate::xml::Node;
@@ -61,9 +63,9 @@ pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<St
 }
 
 fn bsdf_node(fit: &Fitted) -> Result<Node, ExportError> {
-    let node = match fit.name.as_str() {
-        "lambert" => bsdf("diffuse").child(rgb("reflectance", &fit.colour("kd")?)),
-        "principled" => principled(fit)?,
+    let node = match fit.form {
+        RendererForm::Diffuse => bsdf("diffuse").child(rgb("reflectance", &fit.colour("kd")?)),
+        RendererForm::Principled => principled(fit)?,
         _ => match fit.ggx()? {
             Some(g) => ggx(fit, &g)?,
             None => {

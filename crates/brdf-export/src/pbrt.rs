@@ -16,6 +16,8 @@
 //! conductor), the separable Smith, several lobes, principled and glTF
 //! (pbrt-v4 has neither), and the other catalogue models.
 
+use brdf_models::RendererForm;
+
 use crate::fitted::{Fitted, LobeFresnel};
 use crate::{ExportError, Target};
 
@@ -40,7 +42,7 @@ pub fn write(fit: &Fitted, note: Option<&str>) -> Result<String, ExportError> {
 }
 
 fn statements(fit: &Fitted) -> Result<String, ExportError> {
-    if fit.name == "lambert" {
+    if fit.form == RendererForm::Diffuse {
         return Ok(format!(
             "Material \"diffuse\" \"rgb reflectance\" {}\n",
             rgb(&fit.colour("kd")?)

@@ -53,7 +53,8 @@ impl std::fmt::Display for Support {
 fn maps(model: &str, target: Target) -> bool {
     match target {
         Target::Usd => true,
-        Target::Blender => brdf_models::coloured_lobes::variant_named(model).is_none(),
+        Target::Blender => brdf_models::entry(model)
+            .is_none_or(|e| e.form != brdf_models::RendererForm::ColouredLobes),
         _ => false,
     }
 }

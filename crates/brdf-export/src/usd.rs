@@ -18,6 +18,7 @@
 
 use crate::fitted::Fitted;
 use crate::{ExportError, Target, WriteOptions};
+use brdf_models::RendererForm;
 
 /// A shader input: USD type, name, value text.
 type Input = (&'static str, &'static str, String);
@@ -40,16 +41,15 @@ pub fn inputs(fit: &Fitted) -> Result<Vec<Input>, ExportError> {
         ]
     };
     let mut v: Vec<Input> = Vec::new();
-    match fit.name.as_str() {
-        "lambert" => {
+    match fit.form {
+        RendererForm::Diffuse => {
             v.push(("color3f", "diffuseColor", colour(fit.colour("kd")?)));
             v.extend(specular([0.0; 3], 1.0));
         }
-        "gltf" | "gltf-ext" => {
+        RendererForm::Gltf { extended: ext } => {
             let base = fit.colour("base_color")?;
             let (m, r) = (fit.get("metallic")?, fit.get("roughness")?);
             v.push(("color3f", "diffuseColor", colour(base)));
-            let ext = fit.name == "gltf-ext";
             let ior = if ext { fit.get("ior")? } else { 1.5 };
             let (s, sc) = if ext {
                 (fit.get("specular")?, fit.colour("specular_color")?)

@@ -2,18 +2,21 @@
 //!
 //! `BRDF_DATA=path/to/data cargo run -p brdf-fit --example fit_curet`
 
-use brdf_fit::{Channels, Fit};
+use brdf_fit::{ChannelMode, FitRequest, Material};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let Ok(root) = std::env::var("BRDF_DATA") else {
+    if std::env::var_os("BRDF_DATA").is_none() {
         println!("BRDF_DATA is not set: skipped (it names the folder with curet/abrdf.dat)");
         return Ok(());
+    }
+    // Relative paths are read under BRDF_DATA.
+    let material = Material::load("curet/abrdf.dat#25")?;
+    let request = FitRequest {
+        channels: ChannelMode::Grey,
+        limit_deg: 80.0,
+        ..FitRequest::new(&material, brdf_fit::resolve("Blinn-Phong")?)
     };
-    let samples = brdf_io::load(&format!("{root}/curet/abrdf.dat#25"))?;
-    let report = Fit::model("Blinn-Phong")?
-        .channels(Channels::Grey)
-        .limit_deg(80.0)
-        .run(&samples)?;
+    let report = request.run()?.into_report()?;
     let s = &report.summary;
     println!(
         "{} on {}: {} of {} samples, Ngan L2 {:.5}, {}",

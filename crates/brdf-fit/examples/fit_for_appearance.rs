@@ -2,29 +2,29 @@
 //! measurement: candidates under several objectives, chosen by their image
 //! error under the standard light sets, refined in the image objective.
 //!
-//! `BRDF_DATA=path/to/data cargo run --release -p brdf-fit --example fit_for_appearance [MODEL] [FILE]`
+//! `BRDF_DATA=path/to/data cargo run --release -p brdf-fit --example fit_for_appearance [MODEL] [FILE] [OUT.json]`
 
-use brdf_fit::Fit;
-use brdf_fit::appearance::fit_for_appearance;
-use brdf_render::judge::{Judge, REPORT_SIZE};
+use brdf_fit::{FitRequest, Material, Metric};
+use brdf_render::judge::REPORT_SIZE;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let Ok(root) = std::env::var("BRDF_DATA") else {
+    if std::env::var_os("BRDF_DATA").is_none() {
         println!("BRDF_DATA is not set: skipped (it names the folder with rgl/)");
         return Ok(());
-    };
+    }
     let mut args = std::env::args().skip(1);
     let model = args.next().unwrap_or_else(|| "ggx".into());
     let file = args
         .next()
         .unwrap_or_else(|| "cc_iris_purple_gem_rgb.bsdf".into());
-    let spec = format!("{root}/rgl/{file}");
-    let samples = brdf_io::load(&spec)?;
-    let Some(data) = brdf_io::load_dense(&spec)? else {
-        return Err(format!("{spec}: not evaluable at any direction pair").into());
+    let spec = format!("rgl/{file}");
+    let material = Material::load(&spec)?;
+    let request = FitRequest {
+        metric: Metric::Appearance,
+        ..FitRequest::new(&material, brdf_fit::resolve(&model)?)
     };
-    let (report, candidates) = fit_for_appearance(&Fit::model(&model)?, &samples, data.as_ref())?;
-    for c in &candidates {
+    let report = request.run()?.into_report()?;
+    for c in &report.candidates {
         println!(
             "{} {:<10} lobes {:<14} FLIP sky {:.3} studio {:.3}  dE {:.1}  Ngan L2 {:.4}  {:.2} s",
             if c.chosen { "*" } else { " " },
@@ -37,18 +37,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             c.seconds
         );
     }
-    let final_errors = Judge::new(REPORT_SIZE).errors(data.as_ref(), report.model.as_ref())?;
+    let errors = report
+        .image_error
+        .as_ref()
+        .ok_or("an RGL file is always judged")?;
     println!(
         "chosen at {REPORT_SIZE} px: mean FLIP {:.3}",
-        final_errors.mean_flip()
+        errors.mean_flip()
     );
-    for w in final_errors.warnings() {
-        println!("warning: {w}");
+    for note in &report.notes {
+        println!("note: {note}");
     }
     if let Some(out) = args.next() {
-        report
-            .saved_model(&format!("rgl/{file}"))?
-            .save(out.as_ref())?;
+        report.saved_model(&spec)?.save(out.as_ref())?;
         println!("saved {out}");
     }
     Ok(())

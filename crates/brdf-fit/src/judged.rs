@@ -8,7 +8,7 @@ use std::sync::Arc;
 use brdf_core::{Brdf, SampleSet};
 use brdf_models::ColourStructure;
 
-use crate::appearance::fit_for_appearance;
+use crate::appearance::fit_for_appearance_with;
 use crate::image_objective::{ImageTarget, image_terms};
 use crate::{Fit, FitError, FitReport, Objective};
 use brdf_render::ImageError;
@@ -46,15 +46,18 @@ pub fn colour_plane_note(model: &str, e: &ImageError) -> Option<String> {
 }
 
 /// A fit of data that can be rendered, before its image errors: chosen by
-/// image error when `for_appearance`, else `fit` itself.
+/// image error when `for_appearance` (the refinement's L2 growth limited
+/// to `refine_l2_growth`), else `fit` itself.
 pub(crate) fn fit_rendered(
     fit: &Fit,
     samples: &SampleSet,
     data: &dyn Brdf,
     for_appearance: bool,
+    refine_l2_growth: f64,
 ) -> Result<FitReport, FitError> {
     if for_appearance {
-        let (mut report, candidates) = fit_for_appearance(fit, samples, data)?;
+        let (mut report, candidates) =
+            fit_for_appearance_with(fit, samples, data, refine_l2_growth)?;
         report.candidates = candidates;
         Ok(report)
     } else if fit.needs_image_target() {
@@ -81,7 +84,7 @@ pub(crate) fn with_image_errors(
 /// A fit in the image objective alone (a front end's `--metric image`):
 /// `fit` under Ngan's L2, then refined in the image objective at
 /// [`FIT_SIZE`] pixels from there (the objective needs a start; its
-/// basins trap a cold one). Unlike [`fit_for_appearance`] nothing checks
+/// basins trap a cold one). Unlike [`fit_for_appearance`](crate::appearance::fit_for_appearance) nothing checks
 /// that the result still fits the data's unrendered directions: the
 /// render is the whole objective.
 pub fn fit_in_image_objective(

@@ -22,7 +22,9 @@ use std::time::Instant;
 use brdf_core::SampleSet;
 use brdf_core::progress::{Progress, Silent};
 use brdf_models::{ModelConfig, ModelEntry};
+use brdf_solve::LmOptions;
 
+use crate::appearance::REFINE_L2_GROWTH;
 use crate::hints::hints;
 use crate::judged::{self, SCATTERED_NOTE};
 use crate::{Channels, Fit, FitError, FitOptions, FitReport, Material, Objective, Solver};
@@ -140,6 +142,19 @@ pub struct FitRequest<'a> {
     pub config: ModelConfig,
     /// End a fit for appearance with a search on the judge's mean FLIP.
     pub polish: bool,
+    /// How far the image refinement of a fit for appearance may let Ngan's
+    /// L2 grow over the winning candidate's (default
+    /// [`REFINE_L2_GROWTH`]); `f64::INFINITY` judges by the render alone,
+    /// as a conversion between renderer models does, whose source has no
+    /// unrendered directions to keep.
+    pub refine_l2_growth: f64,
+    /// The solver's tolerances (default [`LmOptions::default`]), for
+    /// studies of convergence and profiling.
+    pub lm: LmOptions,
+    /// Tolerance of the multi-start search (default
+    /// [`FitOptions::search_tolerance`]); the best start is polished to
+    /// `lm`'s own tolerances.
+    pub search_tolerance: f64,
     /// Who watches the fit's progress.
     pub progress: &'a dyn Progress,
 }
@@ -191,6 +206,9 @@ impl<'a> FitRequest<'a> {
             limit_deg: 80.0,
             config: ModelConfig::default(),
             polish: false,
+            refine_l2_growth: REFINE_L2_GROWTH,
+            lm: defaults.lm,
+            search_tolerance: defaults.search_tolerance,
             progress: &Silent,
         }
     }
@@ -243,6 +261,8 @@ impl<'a> FitRequest<'a> {
             .order(self.config.order)
             .degree(self.config.degree)
             .polish_on_flip(self.polish)
+            .lm_options(self.lm.clone())
+            .search_tolerance(self.search_tolerance)
     }
 
     /// The sample sets fitted, each with the builder's channel setting.
@@ -275,7 +295,7 @@ impl<'a> FitRequest<'a> {
             }
         };
         let (report, judge) = rayon::join(
-            || judged::fit_rendered(fit, set, data, for_appearance),
+            || judged::fit_rendered(fit, set, data, for_appearance, self.refine_l2_growth),
             || self.material.judge(),
         );
         let judge = judge?.ok_or_else(|| FitError::NotRenderable {
@@ -304,6 +324,9 @@ impl<'a> FitRequest<'a> {
             && self.starts == defaults.starts
             && self.limit_deg == defaults.limit_deg
             && self.config == defaults.config
+            && self.refine_l2_growth == defaults.refine_l2_growth
+            && self.lm == defaults.lm
+            && self.search_tolerance == defaults.search_tolerance
             && !self.polish
     }
 

@@ -11,7 +11,9 @@ use std::sync::OnceLock;
 use brdf_core::{DirPairs, ParamError, Parametric, SampleSet};
 
 use crate::Lambert;
-use crate::entry_facts::{ColourStructure, LinearSolver, NonlinearSearch, OptionalLobe};
+use crate::entry_facts::{
+    ColourStructure, GgxForm, GgxFresnel, LinearSolver, NonlinearSearch, OptionalLobe, RendererForm,
+};
 pub use crate::model_entry::{
     BuildForData, BuildFromSamples, ChannelModel, ModelConfig, ModelEntry, SuggestStarts,
 };
@@ -73,6 +75,17 @@ pub fn catalogue() -> &'static [ModelEntry] {
 }
 
 /// The catalogue's entries ([`catalogue`] keeps them).
+/// The form of a one-lobe GGX model (unnumbered parameters).
+#[cfg(feature = "renderer")]
+const fn single_ggx(fresnel: GgxFresnel, anisotropic: bool, separable: bool) -> RendererForm {
+    RendererForm::Ggx(GgxForm {
+        fresnel,
+        anisotropic,
+        separable,
+        numbered: false,
+    })
+}
+
 fn entries() -> Vec<ModelEntry> {
     #[allow(unused_mut)]
     let mut v = vec![ModelEntry {
@@ -93,11 +106,15 @@ fn entries() -> Vec<ModelEntry> {
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
         nonlinear_search: NonlinearSearch::Projected,
+        form: RendererForm::Diffuse,
     }];
     // Only the lobe families use it; a build without them has no use for it.
     #[cfg(any(feature = "phong", feature = "ward", feature = "microfacet"))]
     macro_rules! lobe_model {
         ($t:ty, $family:literal, $summary:literal, $paper:literal) => {
+            lobe_model!($t, $family, $summary, $paper, RendererForm::None)
+        };
+        ($t:ty, $family:literal, $summary:literal, $paper:literal, $form:expr) => {
             v.push(ModelEntry {
                 name: <<$t as crate::combinators::HasLobe>::L as crate::combinators::Lobe>::NAME,
                 family: $family,
@@ -116,6 +133,7 @@ fn entries() -> Vec<ModelEntry> {
                 optional_lobes: &[],
                 linear_solver: LinearSolver::Direct,
                 nonlinear_search: NonlinearSearch::Projected,
+                form: $form,
             })
         };
     }
@@ -217,6 +235,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
         v.push(ModelEntry {
             name: <crate::sgd::SgdShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -236,6 +255,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
         v.push(ModelEntry {
             name: <crate::low::LowAbcShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -255,6 +275,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
         v.push(ModelEntry {
             name: <crate::low::LowSmoothShape as crate::fitted_lobes::FittedShape>::NAME,
@@ -274,6 +295,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
         v.push(ModelEntry {
             name: crate::dupuy::NAME,
@@ -293,6 +315,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
     }
     #[cfg(feature = "lafortune")]
@@ -315,6 +338,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
         v.push(ModelEntry {
             name: crate::Lafortune::NAME_ANISO,
@@ -334,6 +358,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
     }
     #[cfg(feature = "oren-nayar")]
@@ -355,6 +380,7 @@ fn entries() -> Vec<ModelEntry> {
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
         nonlinear_search: NonlinearSearch::Projected,
+        form: RendererForm::None,
     });
     #[cfg(feature = "oren-nayar")]
     v.push(ModelEntry {
@@ -375,6 +401,7 @@ fn entries() -> Vec<ModelEntry> {
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
         nonlinear_search: NonlinearSearch::Projected,
+        form: RendererForm::None,
     });
     #[cfg(feature = "sopp")]
     {
@@ -413,6 +440,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
     }
     #[cfg(feature = "koenderink")]
@@ -434,6 +462,7 @@ fn entries() -> Vec<ModelEntry> {
         optional_lobes: &[],
         linear_solver: LinearSolver::Direct,
         nonlinear_search: NonlinearSearch::Projected,
+        form: RendererForm::None,
     });
     #[cfg(feature = "polynomial")]
     {
@@ -466,6 +495,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::RobustIrls,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
         v.push(ModelEntry {
             name: KurtPolynomial::NAME_ANISO,
@@ -495,6 +525,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::RobustIrls,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::None,
         });
     }
     #[cfg(feature = "renderer")]
@@ -517,6 +548,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::Ggx(GgxForm { fresnel: GgxFresnel::Schlick, anisotropic: false, separable: false, numbered: true }),
         });
         v.push(ModelEntry {
             name: <crate::ggx::GgxSeparableLobe as crate::combinators::Lobe>::NAME,
@@ -536,66 +568,82 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::Ggx(GgxForm {
+                fresnel: GgxFresnel::Schlick,
+                anisotropic: false,
+                separable: true,
+                numbered: true,
+            }),
         });
         lobe_model!(
             crate::GgxAniso,
             "renderer",
             "kd/pi + ks D G F / (4 N.L N.V): anisotropic GGX (ax, ay), height-correlated Smith, Schlick F",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Schlick, true, false)
         );
         lobe_model!(
             crate::GgxAnisoSeparable,
             "renderer",
             "anisotropic GGX, separable Smith, Schlick F",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Schlick, true, true)
         );
         lobe_model!(
             crate::GgxDielectric,
             "renderer",
             "kd/pi + ks D G F_dielectric(eta) / (4 N.L N.V): GGX, height-correlated Smith",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Dielectric, false, false)
         );
         lobe_model!(
             crate::GgxDielectricSeparable,
             "renderer",
             "GGX, separable Smith, exact dielectric F(eta)",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Dielectric, false, true)
         );
         lobe_model!(
             crate::GgxDielectricAniso,
             "renderer",
             "anisotropic GGX, height-correlated Smith, exact dielectric F(eta)",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Dielectric, true, false)
         );
         lobe_model!(
             crate::GgxDielectricAnisoSeparable,
             "renderer",
             "anisotropic GGX, separable Smith, exact dielectric F(eta)",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Dielectric, true, true)
         );
         lobe_model!(
             crate::GgxConductor,
             "renderer",
             "kd/pi + ks D G F_conductor(eta, k) / (4 N.L N.V): GGX, height-correlated Smith",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Conductor, false, false)
         );
         lobe_model!(
             crate::GgxConductorSeparable,
             "renderer",
             "GGX, separable Smith, exact conductor F(eta, k) (Mitsuba 3 roughconductor)",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Conductor, false, true)
         );
         lobe_model!(
             crate::GgxConductorAniso,
             "renderer",
             "anisotropic GGX, height-correlated Smith, exact conductor F(eta, k)",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Conductor, true, false)
         );
         lobe_model!(
             crate::GgxConductorAnisoSeparable,
             "renderer",
             "anisotropic GGX, separable Smith, exact conductor F(eta, k)",
-            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)"
+            "Walter, Marschner, Li & Torrance 2007, EGSR; Heitz 2014, JCGT 3(2)",
+            single_ggx(GgxFresnel::Conductor, true, true)
         );
         v.push(ModelEntry {
             name: <crate::principled::PrincipledFormula as crate::dual_model::DualFormula>::NAME,
@@ -615,6 +663,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: PRINCIPLED_LOBES,
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::Principled,
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfFormula as crate::dual_model::DualFormula>::NAME,
@@ -634,6 +683,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: &[],
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::Gltf { extended: false },
         });
         v.push(ModelEntry {
             name: <crate::gltf_pbr::GltfExtFormula as crate::dual_model::DualFormula>::NAME,
@@ -653,6 +703,7 @@ fn entries() -> Vec<ModelEntry> {
             optional_lobes: GLTF_EXT_LOBES,
             linear_solver: LinearSolver::Direct,
             nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::Gltf { extended: true },
         });
     }
     #[cfg(feature = "renderer")]

@@ -54,3 +54,56 @@ pub enum LinearSolver {
     /// polynomial).
     RobustIrls,
 }
+
+/// The renderer material a model's formula is, when one is: what its
+/// exporters write it as, reading its parameters by their names here.
+/// Models without one are converted (fitted again as a renderer model)
+/// by every exporter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RendererForm {
+    /// No renderer material has the model's formula.
+    None,
+    /// Lambert's `kd / pi`: every renderer's diffuse material.
+    Diffuse,
+    /// Burley's principled BRDF as Mitsuba 3's `principled` evaluates it.
+    Principled,
+    /// glTF 2.0's metallic-roughness material (`base_color`, `metallic`,
+    /// `roughness`); `extended`: with `KHR_materials_specular`, `_ior` and
+    /// `_clearcoat` (`ior`, `specular`, `specular_color`, `clearcoat`,
+    /// `clearcoat_roughness`).
+    Gltf {
+        /// Whether the KHR extensions' parameters are present.
+        extended: bool,
+    },
+    /// A Lambert base (`kd`) under GGX lobes.
+    Ggx(GgxForm),
+    /// Lobes with colours of their own, one renderer's formula each
+    /// ([`crate::coloured_lobes`]): their exporters read the variant.
+    ColouredLobes,
+}
+
+/// The GGX lobes of a [`RendererForm::Ggx`] model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GgxForm {
+    /// Each lobe's Fresnel term.
+    pub fresnel: GgxFresnel,
+    /// Two widths `ax`, `ay` instead of one `alpha`.
+    pub anisotropic: bool,
+    /// Smith's separable masking `G1(L) G1(V)` (Mitsuba 3's), not the
+    /// height-correlated one.
+    pub separable: bool,
+    /// Any number of lobes, numbered (`ks1`, `alpha1`, `f0_1`, ...); else
+    /// one lobe with unnumbered parameters.
+    pub numbered: bool,
+}
+
+/// The Fresnel term of a GGX lobe.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GgxFresnel {
+    /// Schlick's approximation from `f0`.
+    Schlick,
+    /// A dielectric's exact Fresnel from its index `eta`.
+    Dielectric,
+    /// A conductor's exact Fresnel from its complex index `eta + i k`.
+    Conductor,
+}

@@ -111,7 +111,9 @@ pub use cook_torrance::CookTorrance;
 #[cfg(feature = "microfacet")]
 pub use dupuy::{Dupuy, TabulatedMicrofacet, TabulatedNdf};
 #[cfg(feature = "microfacet")]
-pub use entry_facts::{ColourStructure, LinearSolver, NonlinearSearch, OptionalLobe};
+pub use entry_facts::{
+    ColourStructure, GgxForm, GgxFresnel, LinearSolver, NonlinearSearch, OptionalLobe, RendererForm,
+};
 #[cfg(feature = "microfacet")]
 pub use fitted_lobes::FittedLobe;
 #[cfg(feature = "renderer")]

@@ -5,7 +5,9 @@
 
 use brdf_core::{DirPairs, ParamError, Parametric, SampleSet};
 
-use crate::entry_facts::{ColourStructure, LinearSolver, NonlinearSearch, OptionalLobe};
+use crate::entry_facts::{
+    ColourStructure, LinearSolver, NonlinearSearch, OptionalLobe, RendererForm,
+};
 
 /// Structural options of a model (not parameters: they fix the parameter
 /// vector's length).
@@ -106,6 +108,8 @@ pub struct ModelEntry {
     pub linear_solver: LinearSolver,
     /// How its non-linear parameters are searched by default.
     pub nonlinear_search: NonlinearSearch,
+    /// The renderer material its formula is, which its exporters write.
+    pub form: RendererForm,
 }
 
 impl ModelEntry {

@@ -160,6 +160,9 @@ fn other_file(name: &str) -> &'static str {
         "quickstart.md" => {
             "the README's quick start timed, each command run as written, written by `bash benches/readme/quickstart.sh` (which also writes the README's table)"
         }
+        "setup.md" => {
+            "the README's two set-up commands timed in a fresh clone without data, written by `bash benches/readme/setup.sh` (which also writes the README's table)"
+        }
         "performance_renderer_models.md" => {
             "the renderer models' fit times before and after their fitting kernels were sped up (commit `9779d66` against `d3d78b3`; tables from `benches/peers/renderer_models.sh`)"
         }

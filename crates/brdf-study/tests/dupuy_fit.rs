@@ -14,7 +14,7 @@ mod common;
 use std::f64::consts::PI;
 
 use brdf_core::{Brdf, Direction, SampleSet};
-use brdf_fit::{Channels, Fit};
+use brdf_fit::{FitError, FitOutcome, FitReport, FitRequest, Material};
 use brdf_models::ggx::{ggx_d, smith_lambda};
 use brdf_study::synthetic::scattered_pairs;
 use nalgebra::Vector3;
@@ -104,6 +104,14 @@ fn samples(data: &Microfacet) -> SampleSet {
     set
 }
 
+/// `brdf fit`'s default fit of `model` to the samples `set` alone.
+fn fit(model: &str, set: &SampleSet) -> Result<FitReport, FitError> {
+    let material = Material::new(&set.name, set.clone(), None);
+    FitRequest::new(&material, brdf_fit::resolve(model)?)
+        .run()
+        .and_then(FitOutcome::into_report)
+}
+
 #[test]
 fn the_fit_is_exact_for_ggx_and_beckmann_data() {
     for ndf in [Ndf::Ggx(0.2), Ndf::Ggx(0.5), Ndf::Beckmann(0.3)] {
@@ -112,11 +120,7 @@ fn the_fit_is_exact_for_ggx_and_beckmann_data() {
             f: vec![0.9, 0.5, 0.2],
         };
         let set = samples(&data);
-        let rep = Fit::model("dupuy")
-            .unwrap()
-            .channels(Channels::All)
-            .run(&set)
-            .unwrap();
+        let rep = fit("dupuy", &set).unwrap();
         let value = |name: &str| {
             rep.summary
                 .parameters
@@ -185,7 +189,7 @@ fn no_back_scattering_is_an_error() {
         data.eval(l.vector(), v.vector(), &mut f);
         set.push(&l, &v, &f, 1.0).unwrap();
     }
-    let e = match Fit::model("dupuy").unwrap().run(&set) {
+    let e = match fit("dupuy", &set) {
         Ok(_) => panic!("a fit without back-scattering samples"),
         Err(e) => e,
     };
@@ -197,8 +201,8 @@ fn no_back_scattering_is_an_error() {
 fn fits_an_rgl_file() {
     let path = common::data_file("rgl/paper_white_rgb.bsdf");
     let set = brdf_study::data::load(&path.display().to_string()).unwrap();
-    let dupuy = Fit::model("dupuy").unwrap().run(&set).unwrap();
-    let lambert = Fit::model("lambert").unwrap().run(&set).unwrap();
+    let dupuy = fit("dupuy", &set).unwrap();
+    let lambert = fit("lambert", &set).unwrap();
     let alpha = table_of(&set).ndf().fit_ggx_alpha();
     eprintln!(
         "paper_white: dupuy L2 {} (lambert {}), GGX alpha read off the table {alpha}",
@@ -230,7 +234,7 @@ fn the_saved_model_holds_the_table_and_round_trips() {
         f: vec![0.9, 0.5, 0.2],
     };
     let set = samples(&data);
-    let rep = Fit::model("dupuy").unwrap().run(&set).unwrap();
+    let rep = fit("dupuy", &set).unwrap();
     let saved = rep.saved_model("microfacet").unwrap();
     assert_eq!(saved.version, TERMINATION_VERSION);
     let table = saved.ndf_table.as_ref().expect("the table is saved");
@@ -259,7 +263,7 @@ fn the_saved_model_holds_the_table_and_round_trips() {
     assert!(e.contains("brdf fit --save"), "{e}");
     let e = edited(&|v| v["ndf_table"]["theta"][3] = serde_json::json!(0.5));
     assert!(e.contains("table angle 3"), "{e}");
-    let lambert = Fit::model("lambert").unwrap().run(&set).unwrap();
+    let lambert = fit("lambert", &set).unwrap();
     assert_eq!(
         lambert.saved_model("x").unwrap().version,
         TERMINATION_VERSION
@@ -274,7 +278,7 @@ fn the_saved_model_holds_the_table_and_round_trips() {
 fn curet_is_an_error_naming_the_file_and_the_fix() {
     let path = common::data_file("curet/abrdf.dat");
     let set = brdf_study::data::load(&format!("{}#25", path.display())).unwrap();
-    let e = match Fit::model("dupuy").unwrap().run(&set) {
+    let e = match fit("dupuy", &set) {
         Ok(_) => panic!("a Dupuy fit of CUReT"),
         Err(e) => e,
     };

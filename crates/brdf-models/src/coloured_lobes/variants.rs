@@ -221,6 +221,7 @@ pub fn entries() -> Vec<ModelEntry> {
             } else {
                 crate::NonlinearSearch::AllParameters
             },
+            form: crate::RendererForm::ColouredLobes,
         })
         .collect()
 }
