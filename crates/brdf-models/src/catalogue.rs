@@ -12,8 +12,10 @@ use brdf_core::{DirPairs, ParamError, Parametric, SampleSet};
 
 use crate::Lambert;
 use crate::entry_facts::{
-    ColourStructure, GgxForm, GgxFresnel, LinearSolver, NonlinearSearch, OptionalLobe, RendererForm,
+    ColourStructure, LinearSolver, NonlinearSearch, OptionalLobe, RendererForm,
 };
+#[cfg(feature = "renderer")]
+use crate::entry_facts::{GgxForm, GgxFresnel};
 pub use crate::model_entry::{
     BuildForData, BuildFromSamples, ChannelModel, ModelConfig, ModelEntry, SuggestStarts,
 };
