@@ -4,7 +4,9 @@
 //! of the models fitted to the Table 9.2 materials; CUReT data are
 //! scattered, so there is no measured sphere to show beside them).
 
-use brdf_core::Parametric;
+use std::path::Path;
+
+use brdf_core::{Parametric, SampleSet};
 use brdf_fit::FitSummary;
 use brdf_models::ModelConfig;
 use nalgebra::Vector3;
@@ -85,52 +87,7 @@ pub fn figure_9_1(study: &mut Study) -> Result<(), StudyError> {
         .collect();
     let bar = progress::bar(names.len() * degrees.len(), "Fig. 9.1");
     for name in &names {
-        let (measured, set) = crate::context::rgl_material(&rgl, name)?;
-        let reference = sphere(&measured);
-        let exposure = exposure_for(&reference, QUANTILE);
-        let fits: Vec<Result<Image, StudyError>> = degrees
-            .par_iter()
-            .map(|d| {
-                let config = ModelConfig {
-                    channels: 3,
-                    degree: *d,
-                    ..ModelConfig::default()
-                };
-                let r = fit_model("polynomial", config, &set, FitHow::default())
-                    .map(|(m, _)| sphere(m.as_ref()));
-                bar.inc(1);
-                r
-            })
-            .collect();
-        let images = fits.into_iter().collect::<Result<Vec<_>, _>>()?;
-        let max = difference_scale(
-            &images
-                .iter()
-                .map(|i| i.abs_difference(&reference))
-                .collect::<Vec<_>>(),
-        );
-        let mut row = vec![Some(Tile {
-            image: reference.clone(),
-            tone: Tone::Exposure(exposure),
-        })];
-        let mut diff = vec![None];
-        for img in images {
-            diff.push(Some(Tile {
-                image: img.abs_difference(&reference),
-                tone: Tone::Difference(max),
-            }));
-            row.push(Some(Tile {
-                image: img,
-                tone: Tone::Exposure(exposure),
-            }));
-        }
-        grid.rows.push(format!(
-            "{name}\nexposure x{}",
-            brdf_core::format::number(exposure, 3)
-        ));
-        grid.rows.push(format!("{name}\n|difference|"));
-        grid.tiles.push(row);
-        grid.tiles.push(diff);
+        polynomial_rows(&mut grid, &rgl, name, &degrees, &bar)?;
     }
     bar.finish_and_clear();
     grid.footer = vec![
@@ -140,6 +97,75 @@ pub fn figure_9_1(study: &mut Study) -> Result<(), StudyError> {
     grid.write_png(&study.path("kurt_fig_9_1.png"))?;
     study.wrote("kurt_fig_9_1.png", "Figure 9.1: polynomial p = 1..6 spheres beside the measured RGL materials, difference images with colour bars", "`rgl/*.bsdf`");
     Ok(())
+}
+
+/// One RGL material's two rows of Figure 9.1: the measured sphere and the
+/// polynomial's at every degree, then their differences from the measured
+/// one (on one colour scale for the row).
+fn polynomial_rows(
+    grid: &mut Grid,
+    rgl: &Path,
+    name: &str,
+    degrees: &[usize],
+    bar: &progress::Bar,
+) -> Result<(), StudyError> {
+    let (measured, set) = crate::context::rgl_material(rgl, name)?;
+    let reference = sphere(&measured);
+    let exposure = exposure_for(&reference, QUANTILE);
+    let images = polynomial_spheres(&set, degrees, bar)?;
+    let max = difference_scale(
+        &images
+            .iter()
+            .map(|i| i.abs_difference(&reference))
+            .collect::<Vec<_>>(),
+    );
+    let mut row = vec![Some(Tile {
+        image: reference.clone(),
+        tone: Tone::Exposure(exposure),
+    })];
+    let mut diff = vec![None];
+    for img in images {
+        diff.push(Some(Tile {
+            image: img.abs_difference(&reference),
+            tone: Tone::Difference(max),
+        }));
+        row.push(Some(Tile {
+            image: img,
+            tone: Tone::Exposure(exposure),
+        }));
+    }
+    grid.rows.push(format!(
+        "{name}\nexposure x{}",
+        brdf_core::format::number(exposure, 3)
+    ));
+    grid.rows.push(format!("{name}\n|difference|"));
+    grid.tiles.push(row);
+    grid.tiles.push(diff);
+    Ok(())
+}
+
+/// The spheres of the polynomial (RGB, IRLS) fitted to `set` at each of
+/// `degrees`, the fits run in parallel; in the order of `degrees`.
+fn polynomial_spheres(
+    set: &SampleSet,
+    degrees: &[usize],
+    bar: &progress::Bar,
+) -> Result<Vec<Image>, StudyError> {
+    let fits: Vec<Result<Image, StudyError>> = degrees
+        .par_iter()
+        .map(|d| {
+            let config = ModelConfig {
+                channels: 3,
+                degree: *d,
+                ..ModelConfig::default()
+            };
+            let r = fit_model("polynomial", config, set, FitHow::default())
+                .map(|(m, _)| sphere(m.as_ref()));
+            bar.inc(1);
+            r
+        })
+        .collect();
+    fits.into_iter().collect::<Result<Vec<_>, _>>()
 }
 
 /// Figure 9.2.

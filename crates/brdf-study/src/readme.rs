@@ -66,6 +66,33 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
     let earlier = earlier_rows(&path);
     let version = format!("{} @ {}", env!("CARGO_PKG_VERSION"), commit_of(&study.out));
     let mut s = String::new();
+    preamble(&mut s, study, command, &version);
+    file_rows(&mut s, study, &earlier, &version);
+    let others = unlisted(study, &earlier);
+    if !others.is_empty() {
+        let _ = writeln!(
+            s,
+            "\nOther files and folders here, not written by `brdf reproduce`:\n"
+        );
+        for f in others {
+            let _ = writeln!(s, "- `{f}`: {}", other_file(&f));
+        }
+    }
+    if !study.skipped.is_empty() {
+        let _ = writeln!(s, "\nParts of the last run that wrote nothing:\n");
+        for (part, why) in &study.skipped {
+            let _ = writeln!(s, "- `{part}`: {why}");
+        }
+    }
+    std::fs::write(&path, s).map_err(|e| StudyError::Io {
+        path: path.display().to_string(),
+        source: e,
+    })
+}
+
+/// The README's title, what wrote the folder (command, software `version`,
+/// data) and the header of the table of files.
+fn preamble(s: &mut String, study: &Study, command: &str, version: &str) {
     let name = study
         .out
         .file_name()
@@ -88,6 +115,11 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
         "| file | what it holds | data | metric | angle limit | version @ commit |"
     );
     let _ = writeln!(s, "| --- | --- | --- | --- | --- | --- |");
+}
+
+/// The table's rows: this run's files (written by `version`), then the
+/// `earlier` rows of files this run did not rewrite, as they were.
+fn file_rows(s: &mut String, study: &Study, earlier: &[(String, String)], version: &str) {
     for w in &study.written {
         let _ = writeln!(
             s,
@@ -95,11 +127,16 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
             w.file, w.what, w.data, w.metric, w.limit
         );
     }
-    for (file, line) in &earlier {
+    for (file, line) in earlier {
         if !study.written.iter().any(|w| &w.file == file) && line.matches(" | ").count() >= 5 {
             let _ = writeln!(s, "{line}");
         }
     }
+}
+
+/// Files and folders of the output folder that this run did not write
+/// and no earlier run's row names, sorted; folders end in `/`.
+fn unlisted(study: &Study, earlier: &[(String, String)]) -> Vec<String> {
     let listed = |f: &str| {
         let stem = f.split('.').next().unwrap_or(f);
         study
@@ -111,8 +148,6 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
                 .any(|(e, _)| e.split('.').next() == Some(stem))
             || f == "README.md"
     };
-    // Files and folders of the output folder that this run did not write
-    // and no earlier run's row names; folders end in `/`.
     let mut others: Vec<String> = std::fs::read_dir(&study.out)
         .map(|d| {
             d.filter_map(|e| e.ok())
@@ -131,25 +166,7 @@ pub fn write(study: &Study, command: &str) -> Result<(), StudyError> {
         })
         .unwrap_or_default();
     others.sort();
-    if !others.is_empty() {
-        let _ = writeln!(
-            s,
-            "\nOther files and folders here, not written by `brdf reproduce`:\n"
-        );
-        for f in others {
-            let _ = writeln!(s, "- `{f}`: {}", other_file(&f));
-        }
-    }
-    if !study.skipped.is_empty() {
-        let _ = writeln!(s, "\nParts of the last run that wrote nothing:\n");
-        for (part, why) in &study.skipped {
-            let _ = writeln!(s, "- `{part}`: {why}");
-        }
-    }
-    std::fs::write(&path, s).map_err(|e| StudyError::Io {
-        path: path.display().to_string(),
-        source: e,
-    })
+    others
 }
 
 /// What a file or folder of `results/` that `brdf reproduce` does not

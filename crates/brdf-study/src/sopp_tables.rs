@@ -129,16 +129,152 @@ fn material(rgl_dir: &Path, name: &str) -> Result<MaterialRows, StudyError> {
     let path = rgl_dir.join(format!("{name}.bsdf"));
     let rgl = brdf_io::rgl::Rgl::read(&path)?;
     let grid = SoppGrid::resample(&rgl);
-    let mut rows: Vec<Vec<Cell>> = Vec::new();
-    let mut row = |proc_: &str,
-                   fresnel: &str,
-                   weighted: bool,
-                   limit: f64,
-                   start: Option<f64>,
-                   r: &FitSummary,
-                   m: &dyn Parametric,
-                   data: &SampleSet|
-     -> Result<(), StudyError> {
+    let mut fits = MaterialFits {
+        name,
+        rows: Vec::new(),
+        best: None,
+    };
+    for weighted in [true, false] {
+        for limit in [75.0, 45.0] {
+            let data = grid.to_samples(name, limit, weighted);
+            let opts = FitOptions {
+                objective: Objective::Sopp { weighted },
+                ..FitOptions::default()
+            };
+            fits.sopp_starts(weighted, limit, &data, &opts)?;
+            if weighted && limit == 75.0 {
+                fits.beside_sopp(weighted, limit, &data, &opts)?;
+            }
+        }
+    }
+    let preview = fits.best.map(|(_, m)| {
+        let model_grid = SoppGrid::resample(m.as_ref());
+        strips(&grid, &model_grid)
+    });
+    Ok((fits.rows, preview))
+}
+
+/// The configuration of the fitted RGB models (the stage-1 start is grey).
+fn rgb_cfg() -> ModelConfig {
+    ModelConfig {
+        channels: 3,
+        ..ModelConfig::default()
+    }
+}
+
+/// One material's fits as they are made: its rows of the table so far and
+/// the best Sopp two-stage fit (weighted, 75 deg), which starts the fit
+/// with Fresnel and is drawn in the preview.
+struct MaterialFits<'a> {
+    /// The material.
+    name: &'a str,
+    /// Its rows so far.
+    rows: Vec<Vec<Cell>>,
+    /// Sopp's error and model of the best weighted 75-degree Sopp fit.
+    best: Option<(f64, Box<dyn Parametric>)>,
+}
+
+impl MaterialFits<'_> {
+    /// Sopp's two-stage fit from each of his start exponents on `data`.
+    fn sopp_starts(
+        &mut self,
+        weighted: bool,
+        limit: f64,
+        data: &SampleSet,
+        opts: &FitOptions,
+    ) -> Result<(), StudyError> {
+        for start in [25.0, 50.0, 250.0] {
+            let mut grey = grey_start("as-paint", start)?;
+            let mut m = build("as-paint", &rgb_cfg())?;
+            let r = fit_sopp(grey.as_mut(), m.as_mut(), data, opts)?;
+            self.row(
+                "Sopp two-stage",
+                "no",
+                weighted,
+                limit,
+                Some(start),
+                &r,
+                m.as_ref(),
+                data,
+            )?;
+            if weighted && limit == 75.0 {
+                let e = sopp_error(data, m.as_ref())?;
+                if self.best.as_ref().is_none_or(|b| e < b.0) {
+                    self.best = Some((e, m.clone_box()));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The fits set beside Sopp's on the weighted 75-degree data: the
+    /// project's automatic fit, the model with Fresnel started from the
+    /// best Sopp result, and the clear-coat split.
+    fn beside_sopp(
+        &mut self,
+        weighted: bool,
+        limit: f64,
+        data: &SampleSet,
+        opts: &FitOptions,
+    ) -> Result<(), StudyError> {
+        // The project's automatic fit of the same model.
+        let mut m = build("as-paint", &rgb_cfg())?;
+        let r = fit(m.as_mut(), data, opts)?;
+        self.row(
+            "automatic",
+            "no",
+            weighted,
+            limit,
+            None,
+            &r,
+            m.as_ref(),
+            data,
+        )?;
+        // With Fresnel, started from the best Sopp result.
+        let start_n = self.best.as_ref().map_or(50.0, |b| b.1.params()[6]);
+        let mut grey = grey_start("ashikhmin-shirley", start_n)?;
+        let mut mf = build("ashikhmin-shirley", &rgb_cfg())?;
+        let r = fit_sopp(grey.as_mut(), mf.as_mut(), data, opts)?;
+        self.row(
+            "Sopp two-stage, from the result without Fresnel",
+            "yes",
+            weighted,
+            limit,
+            Some(start_n),
+            &r,
+            mf.as_ref(),
+            data,
+        )?;
+        // The clear-coat split: base fitted to data / (1 - Fr).
+        let base = brdf_models::clear_coat::divide_by_transmission(data, 1.5)?;
+        let mut mb = build("as-paint", &rgb_cfg())?;
+        let r = fit(mb.as_mut(), &base, opts)?;
+        self.row(
+            "automatic, clear-coat split (eta 1.5)",
+            "no",
+            weighted,
+            limit,
+            None,
+            &r,
+            mb.as_ref(),
+            &base,
+        )
+    }
+
+    /// One fit's row: how it was made (procedure, Fresnel, weighting,
+    /// limit, start exponent), the fitted exponent, colours and `Rs`,
+    /// Sopp's unweighted error of `m` on `data`, and how the fit ended.
+    fn row(
+        &mut self,
+        proc_: &str,
+        fresnel: &str,
+        weighted: bool,
+        limit: f64,
+        start: Option<f64>,
+        r: &FitSummary,
+        m: &dyn Parametric,
+        data: &SampleSet,
+    ) -> Result<(), StudyError> {
         let (cd, cs) = if fresnel == "yes" {
             (rgb(r, "kd"), rgb(r, "ks"))
         } else {
@@ -151,7 +287,7 @@ fn material(rgl_dir: &Path, name: &str) -> Result<MaterialRows, StudyError> {
             value(r, "ns")
         };
         let mut cells = vec![
-            Cell::Text(name.to_string()),
+            Cell::Text(self.name.to_string()),
             Cell::Text(proc_.into()),
             Cell::Text(fresnel.into()),
             Cell::Text(if weighted { "yes" } else { "no" }.into()),
@@ -163,93 +299,9 @@ fn material(rgl_dir: &Path, name: &str) -> Result<MaterialRows, StudyError> {
         cells.push(Cell::Num(rs, 4));
         cells.push(Cell::Num(sopp_error(data, m)?, 4));
         cells.push(Cell::Text(r.termination.to_string()));
-        rows.push(cells);
+        self.rows.push(cells);
         Ok(())
-    };
-    let rgb_cfg = ModelConfig {
-        channels: 3,
-        ..ModelConfig::default()
-    };
-    let mut best: Option<(f64, Box<dyn Parametric>)> = None;
-    for weighted in [true, false] {
-        for limit in [75.0, 45.0] {
-            let data = grid.to_samples(name, limit, weighted);
-            let opts = FitOptions {
-                objective: Objective::Sopp { weighted },
-                ..FitOptions::default()
-            };
-            for start in [25.0, 50.0, 250.0] {
-                let mut grey = grey_start("as-paint", start)?;
-                let mut m = build("as-paint", &rgb_cfg)?;
-                let r = fit_sopp(grey.as_mut(), m.as_mut(), &data, &opts)?;
-                row(
-                    "Sopp two-stage",
-                    "no",
-                    weighted,
-                    limit,
-                    Some(start),
-                    &r,
-                    m.as_ref(),
-                    &data,
-                )?;
-                if weighted && limit == 75.0 {
-                    let e = sopp_error(&data, m.as_ref())?;
-                    if best.as_ref().is_none_or(|b| e < b.0) {
-                        best = Some((e, m.clone_box()));
-                    }
-                }
-            }
-            if weighted && limit == 75.0 {
-                // The project's automatic fit of the same model.
-                let mut m = build("as-paint", &rgb_cfg)?;
-                let r = fit(m.as_mut(), &data, &opts)?;
-                row(
-                    "automatic",
-                    "no",
-                    weighted,
-                    limit,
-                    None,
-                    &r,
-                    m.as_ref(),
-                    &data,
-                )?;
-                // With Fresnel, started from the best Sopp result.
-                let start_n = best.as_ref().map_or(50.0, |b| b.1.params()[6]);
-                let mut grey = grey_start("ashikhmin-shirley", start_n)?;
-                let mut mf = build("ashikhmin-shirley", &rgb_cfg)?;
-                let r = fit_sopp(grey.as_mut(), mf.as_mut(), &data, &opts)?;
-                row(
-                    "Sopp two-stage, from the result without Fresnel",
-                    "yes",
-                    weighted,
-                    limit,
-                    Some(start_n),
-                    &r,
-                    mf.as_ref(),
-                    &data,
-                )?;
-                // The clear-coat split: base fitted to data / (1 - Fr).
-                let base = brdf_models::clear_coat::divide_by_transmission(&data, 1.5)?;
-                let mut mb = build("as-paint", &rgb_cfg)?;
-                let r = fit(mb.as_mut(), &base, &opts)?;
-                row(
-                    "automatic, clear-coat split (eta 1.5)",
-                    "no",
-                    weighted,
-                    limit,
-                    None,
-                    &r,
-                    mb.as_ref(),
-                    &base,
-                )?;
-            }
-        }
     }
-    let preview = best.map(|(_, m)| {
-        let model_grid = SoppGrid::resample(m.as_ref());
-        strips(&grid, &model_grid)
-    });
-    Ok((rows, preview))
 }
 
 /// Run the Sopp study on the selected RGL materials (in parallel).
@@ -261,6 +313,44 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
         ));
         return Ok(());
     };
+    let mut t = table();
+    let names: Vec<&str> = MATERIALS
+        .iter()
+        .copied()
+        .filter(|n| study.spec.has_material(n) && rgl_dir.join(format!("{n}.bsdf")).exists())
+        .collect();
+    let bar = progress::bar(names.len(), "Sopp");
+    let done: Vec<_> = names
+        .par_iter()
+        .map(|n| {
+            let r = material(&rgl_dir, n);
+            bar.inc(1);
+            r
+        })
+        .collect();
+    bar.finish_and_clear();
+    for (name, r) in names.iter().zip(done) {
+        let (rows, preview) = r?;
+        t.rows.extend(rows);
+        if let Some((a, b)) = preview {
+            write_preview(study, name, a, b)?;
+        }
+    }
+    if !t.rows.is_empty() {
+        t.write(&study.out, "sopp_a8")?;
+        study.wrote_with(Written {
+            file: "sopp_a8.{csv,md}".into(),
+            what: "Sopp's Appendix A.8/A.9 layout: two-stage LM fits (Fresnel, weighting, limit, start), the automatic fit, clear-coat split".into(),
+            data: "`rgl/*.bsdf` on Sopp's grid (RGB)".into(),
+            metric: SOPP_METRIC.into(),
+            limit: "75 and 45 deg".into(),
+        });
+    }
+    Ok(())
+}
+
+/// The empty table in the layout of Sopp's Appendix A.8/A.9, with its note.
+fn table() -> Table {
     let mut t = Table::new(
         "Sopp Appendix A.8/A.9 layout: Ashikhmin-Shirley paint shader on the RGL materials (Sopp's grid)",
         &[
@@ -283,81 +373,54 @@ pub fn write(study: &mut Study) -> Result<(), StudyError> {
         ],
     );
     t.note = "Sopp's car-paint files are not available; the RGL materials stand in, resampled onto his grid (19 x 37 x 36, RGB). `cd`, `cs` are the fitted forms (cd' = cd (1 - Rs), cs' = Rs cs), Rs = max cs'. Sopp two-stage: LM with his damping schedule on the channel mean, then the per-channel linear coefficients solved directly within their box (least squares with inequality constraints); automatic: variable projection + bounded solver from deterministic multi-starts, no start values. Generated by `brdf reproduce`.".into();
-    let names: Vec<&str> = MATERIALS
-        .iter()
-        .copied()
-        .filter(|n| study.spec.has_material(n) && rgl_dir.join(format!("{n}.bsdf")).exists())
-        .collect();
-    let bar = progress::bar(names.len(), "Sopp");
-    let done: Vec<_> = names
-        .par_iter()
-        .map(|n| {
-            let r = material(&rgl_dir, n);
-            bar.inc(1);
-            r
-        })
-        .collect();
-    bar.finish_and_clear();
-    for (name, r) in names.iter().zip(done) {
-        let (rows, preview) = r?;
-        t.rows.extend(rows);
-        if let Some((a, b)) = preview {
-            let exposure = exposure_for(&a, 0.99);
-            let d = a.abs_difference(&b);
-            let max = difference_scale(std::slice::from_ref(&d));
-            let grid = Grid {
-                title: format!("Sopp preview: {name}"),
-                columns: vec!["measured".into(), "model".into(), "|difference|".into()],
-                rows: vec![format!(
-                    "{name}\nexposure x{}",
-                    brdf_core::format::number(exposure, 3)
-                )],
-                tiles: vec![vec![
-                    Some(Tile {
-                        image: a,
-                        tone: Tone::Exposure(exposure),
-                    }),
-                    Some(Tile {
-                        image: b,
-                        tone: Tone::Exposure(exposure),
-                    }),
-                    Some(Tile {
-                        image: d,
-                        tone: Tone::Difference(max),
-                    }),
-                ]],
-                footer: vec![
-                    "Best Sopp two-stage fit (weighted, 75 deg) on Sopp's grid.".into(),
-                    "Rows: light angle x camera polar angle;".into(),
-                    "columns: camera azimuth mirrored.".into(),
-                    "Linear x exposure (99th percentile".into(),
-                    "of the measured -> 0.8), gamma 2.2.".into(),
-                    "Difference: Viridis to the 99th".into(),
-                    "percentile (larger ones saturate).".into(),
-                ],
-            };
-            let file = format!("sopp_preview_{name}.png");
-            grid.write_png(&study.path(&file))?;
-            study.wrote_with(Written {
-                file,
-                what:
-                    "Sopp preview strip: measured, best two-stage fit, difference with colour bar"
-                        .into(),
-                data: format!("`rgl/{name}.bsdf` on Sopp's grid"),
-                metric: SOPP_METRIC.into(),
-                limit: "75 deg".into(),
-            });
-        }
-    }
-    if !t.rows.is_empty() {
-        t.write(&study.out, "sopp_a8")?;
-        study.wrote_with(Written {
-            file: "sopp_a8.{csv,md}".into(),
-            what: "Sopp's Appendix A.8/A.9 layout: two-stage LM fits (Fresnel, weighting, limit, start), the automatic fit, clear-coat split".into(),
-            data: "`rgl/*.bsdf` on Sopp's grid (RGB)".into(),
-            metric: SOPP_METRIC.into(),
-            limit: "75 and 45 deg".into(),
-        });
-    }
+    t
+}
+
+/// Write one material's preview (measured strip `a`, model strip `b`,
+/// their difference) as `sopp_preview_{name}.png` and list it.
+fn write_preview(study: &mut Study, name: &str, a: Image, b: Image) -> Result<(), StudyError> {
+    let exposure = exposure_for(&a, 0.99);
+    let d = a.abs_difference(&b);
+    let max = difference_scale(std::slice::from_ref(&d));
+    let grid = Grid {
+        title: format!("Sopp preview: {name}"),
+        columns: vec!["measured".into(), "model".into(), "|difference|".into()],
+        rows: vec![format!(
+            "{name}\nexposure x{}",
+            brdf_core::format::number(exposure, 3)
+        )],
+        tiles: vec![vec![
+            Some(Tile {
+                image: a,
+                tone: Tone::Exposure(exposure),
+            }),
+            Some(Tile {
+                image: b,
+                tone: Tone::Exposure(exposure),
+            }),
+            Some(Tile {
+                image: d,
+                tone: Tone::Difference(max),
+            }),
+        ]],
+        footer: vec![
+            "Best Sopp two-stage fit (weighted, 75 deg) on Sopp's grid.".into(),
+            "Rows: light angle x camera polar angle;".into(),
+            "columns: camera azimuth mirrored.".into(),
+            "Linear x exposure (99th percentile".into(),
+            "of the measured -> 0.8), gamma 2.2.".into(),
+            "Difference: Viridis to the 99th".into(),
+            "percentile (larger ones saturate).".into(),
+        ],
+    };
+    let file = format!("sopp_preview_{name}.png");
+    grid.write_png(&study.path(&file))?;
+    study.wrote_with(Written {
+        file,
+        what: "Sopp preview strip: measured, best two-stage fit, difference with colour bar".into(),
+        data: format!("`rgl/{name}.bsdf` on Sopp's grid"),
+        metric: SOPP_METRIC.into(),
+        limit: "75 deg".into(),
+    });
     Ok(())
 }

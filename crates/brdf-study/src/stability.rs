@@ -262,46 +262,22 @@ pub fn fit_cases() -> Result<Vec<CaseOutcome>, StudyError> {
         1.0,
         1.0,
     )?;
-    let zero = map_values(&bp, |_, _| 0.0)?;
-    let constant = map_values(&bp, |_, _| 0.3)?;
-    let spike = map_values(&bp, |j, v| if j == 7 { 1e6 } else { v })?;
+    let mut v = degenerate_cases(&ct, &bp)?;
+    v.extend(stiff_cases()?);
+    v.extend(request_cases(&ct, &bp)?);
+    v.extend(scale_cases(&ct)?);
+    Ok(v)
+}
+
+/// Data that cannot determine the model: all zero, constant, fewer
+/// samples than parameters, every sample twice.
+fn degenerate_cases(ct: &SampleSet, bp: &SampleSet) -> Result<Vec<CaseOutcome>, StudyError> {
+    let zero = map_values(bp, |_, _| 0.0)?;
+    let constant = map_values(bp, |_, _| 0.3)?;
     let one = bp.select(&(0..bp.len()).map(|j| j == 0).collect::<Vec<_>>());
     let three = ct.select(&(0..ct.len()).map(|j| j < 3).collect::<Vec<_>>());
-    let doubled = {
-        let mut d = ct.clone();
-        let p = ct.pairs();
-        for j in 0..ct.len() {
-            d.push(
-                &Direction::new_unchecked(p.l(j)),
-                &Direction::new_unchecked(p.v(j)),
-                &[ct.channel(0)[j]],
-                1.0,
-            )?;
-        }
-        d
-    };
-    let mirror = synthetic(
-        "blinn-phong",
-        &[("kd", 0.1), ("ks", 0.5), ("n", 1e5)],
-        205,
-        1.0,
-        1.0,
-    )?;
-    let black = synthetic(
-        "blinn-phong",
-        &[("kd", 1e-4), ("ks", 1e-4), ("n", 20.0)],
-        205,
-        1.0,
-        1.0,
-    )?;
-    let stiff = synthetic(
-        "blinn-phong",
-        &[("kd", 1e-3), ("ks", 0.5), ("n", 1e4)],
-        205,
-        1.0,
-        1.0,
-    )?;
-    let mut v = vec![
+    let doubled = twice(ct)?;
+    Ok(vec![
         fit_case("fit", "all-zero data, Lambert", model("lambert")?, &zero),
         fit_case(
             "fit",
@@ -340,6 +316,49 @@ pub fn fit_cases() -> Result<Vec<CaseOutcome>, StudyError> {
             model("cook-torrance")?,
             &doubled,
         ),
+    ])
+}
+
+/// `set` with every sample pushed a second time (weight 1).
+fn twice(set: &SampleSet) -> Result<SampleSet, StudyError> {
+    let mut d = set.clone();
+    let p = set.pairs();
+    for j in 0..set.len() {
+        d.push(
+            &Direction::new_unchecked(p.l(j)),
+            &Direction::new_unchecked(p.v(j)),
+            &[set.channel(0)[j]],
+            1.0,
+        )?;
+    }
+    Ok(d)
+}
+
+/// Blinn-Phong data at the edges of its box: a near-mirror lobe, an
+/// almost black material, a sharp lobe beside a tiny albedo.
+fn stiff_cases() -> Result<Vec<CaseOutcome>, StudyError> {
+    let mirror = synthetic(
+        "blinn-phong",
+        &[("kd", 0.1), ("ks", 0.5), ("n", 1e5)],
+        205,
+        1.0,
+        1.0,
+    )?;
+    let black = synthetic(
+        "blinn-phong",
+        &[("kd", 1e-4), ("ks", 1e-4), ("n", 20.0)],
+        205,
+        1.0,
+        1.0,
+    )?;
+    let stiff = synthetic(
+        "blinn-phong",
+        &[("kd", 1e-3), ("ks", 0.5), ("n", 1e4)],
+        205,
+        1.0,
+        1.0,
+    )?;
+    Ok(vec![
         fit_case(
             "fit",
             "near-mirror Blinn-Phong n = 1e5 data, Blinn-Phong",
@@ -358,17 +377,26 @@ pub fn fit_cases() -> Result<Vec<CaseOutcome>, StudyError> {
             model("blinn-phong")?,
             &stiff,
         ),
+    ])
+}
+
+/// Well-posed data met by an unusual request: another model than the
+/// data's, a high-degree polynomial, one outlier beyond the box, a metric
+/// without a solver named, no starts.
+fn request_cases(ct: &SampleSet, bp: &SampleSet) -> Result<Vec<CaseOutcome>, StudyError> {
+    let spike = map_values(bp, |j, v| if j == 7 { 1e6 } else { v })?;
+    Ok(vec![
         fit_case(
             "fit",
             "Cook-Torrance data, Ward (other model)",
             model("ward")?,
-            &ct,
+            ct,
         ),
         fit_case(
             "fit",
             "Cook-Torrance data, polynomial degree 12",
             model("polynomial")?.degree(12),
-            &ct,
+            ct,
         ),
         fit_case(
             "fit",
@@ -380,12 +408,10 @@ pub fn fit_cases() -> Result<Vec<CaseOutcome>, StudyError> {
             "fit",
             "Lambert with the log metric (no solver given)",
             model("lambert")?.objective(Objective::Log),
-            &bp,
+            bp,
         ),
-        fit_case("fit", "--starts 0", model("blinn-phong")?.starts(0), &bp),
-    ];
-    v.extend(scale_cases(&ct)?);
-    Ok(v)
+        fit_case("fit", "--starts 0", model("blinn-phong")?.starts(0), bp),
+    ])
 }
 
 /// `set` divided by its largest magnitude (largest value exactly 1: the
@@ -500,50 +526,78 @@ fn select_case(label: &str, data: &SampleSet) -> CaseOutcome {
 
 /// Bad input files, written into `dir` and read through `brdf_io`.
 pub fn input_cases(dir: &Path) -> Result<Vec<CaseOutcome>, StudyError> {
-    let io = |p: &Path| {
-        let p = p.to_path_buf();
-        move |source| StudyError::Io {
-            path: p.display().to_string(),
-            source,
-        }
-    };
-    std::fs::create_dir_all(dir).map_err(io(dir))?;
-    let mut v = Vec::new();
-    let read = |label: &str, path: &Path| -> CaseOutcome {
-        match brdf_io::load(&path.display().to_string()) {
-            Ok(s) => CaseOutcome {
-                group: "input",
-                case: label.into(),
-                outcome: "read",
-                termination: String::new(),
-                iterations: None,
-                ngan_l2: None,
-                detail: format!("{} samples", s.len()),
-            },
-            Err(e) => error_case("input", label, &relative(&e.to_string(), dir)),
-        }
-    };
-    // Angles in degrees under a radian header.
+    std::fs::create_dir_all(dir).map_err(io_error(dir))?;
     let bp = synthetic("blinn-phong", &[], 205, 1.0, 1.0)?;
+    let mut v = csv_cases(dir, &bp)?;
+    v.push(rat43_case(dir)?);
+    v.push(truncated_model_case(dir, &bp)?);
+    Ok(v)
+}
+
+/// The error of a failed read or write of `p`, naming it.
+fn io_error(p: &Path) -> impl FnOnce(std::io::Error) -> StudyError {
+    let p = p.to_path_buf();
+    move |source| StudyError::Io {
+        path: p.display().to_string(),
+        source,
+    }
+}
+
+/// The file at `path` read as samples: how many, or the error (its
+/// messages without the temporary folder `dir`).
+fn read_case(label: &str, path: &Path, dir: &Path) -> CaseOutcome {
+    match brdf_io::load(&path.display().to_string()) {
+        Ok(s) => CaseOutcome {
+            group: "input",
+            case: label.into(),
+            outcome: "read",
+            termination: String::new(),
+            iterations: None,
+            ngan_l2: None,
+            detail: format!("{} samples", s.len()),
+        },
+        Err(e) => error_case("input", label, &relative(&e.to_string(), dir)),
+    }
+}
+
+/// CSV files of `bp` that a reader could get wrong: angles in degrees
+/// (under a radian header and under a `_deg` one), and a `#` in a folder
+/// name.
+fn csv_cases(dir: &Path, bp: &SampleSet) -> Result<Vec<CaseOutcome>, StudyError> {
+    let mut v = Vec::new();
+    // Angles in degrees under a radian header.
     let csv = dir.join("degrees.csv");
-    brdf_io::csv_samples::write(&csv, &bp)?;
-    let text = std::fs::read_to_string(&csv).map_err(io(&csv))?;
+    brdf_io::csv_samples::write(&csv, bp)?;
+    let text = std::fs::read_to_string(&csv).map_err(io_error(&csv))?;
     let degrees = to_degrees_csv(&text, false);
-    std::fs::write(&csv, &degrees).map_err(io(&csv))?;
-    v.push(read("CSV with angles in degrees, radian header", &csv));
+    std::fs::write(&csv, &degrees).map_err(io_error(&csv))?;
+    v.push(read_case(
+        "CSV with angles in degrees, radian header",
+        &csv,
+        dir,
+    ));
     let csv_deg = dir.join("degrees_named.csv");
-    std::fs::write(&csv_deg, to_degrees_csv(&text, true)).map_err(io(&csv_deg))?;
-    v.push(read("CSV with angles in degrees, `_deg` header", &csv_deg));
+    std::fs::write(&csv_deg, to_degrees_csv(&text, true)).map_err(io_error(&csv_deg))?;
+    v.push(read_case(
+        "CSV with angles in degrees, `_deg` header",
+        &csv_deg,
+        dir,
+    ));
     // `#` inside a folder name.
     let hash = dir.join("set#1");
-    std::fs::create_dir_all(&hash).map_err(io(&hash))?;
+    std::fs::create_dir_all(&hash).map_err(io_error(&hash))?;
     let hashed = hash.join("samples.csv");
-    brdf_io::csv_samples::write(&hashed, &bp)?;
-    v.push(read("`#` in a folder name", &hashed));
-    // NIST's Rat43 header (9 degrees of freedom for 15 - 4).
+    brdf_io::csv_samples::write(&hashed, bp)?;
+    v.push(read_case("`#` in a folder name", &hashed, dir));
+    Ok(v)
+}
+
+/// NIST's Rat43 file, whose header says 9 degrees of freedom (for 15 - 4):
+/// how many were used and the reader's warning.
+fn rat43_case(dir: &Path) -> Result<CaseOutcome, StudyError> {
     let rat43 = dir.join("Rat43.dat");
-    std::fs::write(&rat43, RAT43).map_err(io(&rat43))?;
-    v.push(match brdf_io::nist::read(&rat43) {
+    std::fs::write(&rat43, RAT43).map_err(io_error(&rat43))?;
+    Ok(match brdf_io::nist::read(&rat43) {
         Ok(d) => CaseOutcome {
             group: "input",
             case: "NIST Rat43.dat (header: 9 degrees of freedom)".into(),
@@ -558,15 +612,19 @@ pub fn input_cases(dir: &Path) -> Result<Vec<CaseOutcome>, StudyError> {
             ),
         },
         Err(e) => error_case("input", "NIST Rat43.dat", &relative(&e.to_string(), dir)),
-    });
-    // A truncated saved model and one without provenance.
-    let fit = model("blinn-phong")?.run("synthetic", &bp)?;
+    })
+}
+
+/// A saved model (of a fit to `bp`) cut in half, then loaded: what the
+/// load says.
+fn truncated_model_case(dir: &Path, bp: &SampleSet) -> Result<CaseOutcome, StudyError> {
+    let fit = model("blinn-phong")?.run("synthetic", bp)?;
     let saved = dir.join("model.json");
     fit.saved_model("synthetic")?.save(&saved)?;
-    let text = std::fs::read_to_string(&saved).map_err(io(&saved))?;
+    let text = std::fs::read_to_string(&saved).map_err(io_error(&saved))?;
     let truncated = dir.join("truncated.json");
-    std::fs::write(&truncated, &text[..text.len() / 2]).map_err(io(&truncated))?;
-    v.push(
+    std::fs::write(&truncated, &text[..text.len() / 2]).map_err(io_error(&truncated))?;
+    Ok(
         match brdf_models::saved_model::SavedModel::load_model(&truncated) {
             Ok(_) => error_case("input", "truncated saved model", "read (unexpected)"),
             Err(e) => error_case(
@@ -575,8 +633,7 @@ pub fn input_cases(dir: &Path) -> Result<Vec<CaseOutcome>, StudyError> {
                 &relative(&e.to_string(), dir),
             ),
         },
-    );
-    Ok(v)
+    )
 }
 
 /// NIST's `Rat43.dat` as published (public domain, NIST ITL StRD).

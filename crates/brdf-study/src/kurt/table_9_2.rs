@@ -4,10 +4,12 @@
 
 use brdf_core::SampleSet;
 use brdf_fit::FitSummary;
+use brdf_models::ModelConfig;
 
 use super::common::{KURT_9_2, TABLE_9_2_MATERIALS, err, lafortune_note, nine_index};
 use crate::StudyError;
 use crate::context::Study;
+use crate::context::models::FitHow;
 use crate::report::{Cell, Table};
 use brdf_fit::report_text::undetermined;
 
@@ -97,6 +99,9 @@ pub fn parameter_text(r: &FitSummary) -> String {
         .join(", ")
 }
 
+/// A model of the study: `(label, catalogue name, config)`.
+type Model = (&'static str, &'static str, ModelConfig);
+
 /// Run the part.
 pub fn run(study: &mut Study) -> Result<(), StudyError> {
     let all = study.curet()?;
@@ -112,8 +117,34 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
     let models = study.models();
     let how = study.how()?;
     let results = study.fits(&models, &sets, how)?;
+    let t = errors_table(study, &models, &cols, &results, how);
+    let stem = study.stem("kurt_9_2");
+    t.write(&study.out, &stem)?;
+    let data = "`curet/abrdf.dat` #1, 55, 25, 33, 34 (grey)";
+    study.wrote(
+        format!("{stem}.{{csv,md}}"),
+        "Table 9.2: nine models on five CUReT materials, Kurt's values beside",
+        data,
+    );
+
+    let p = parameters_table(&models, &cols, &results, how);
+    let stem = study.stem("kurt_9_2_parameters");
+    p.write(&study.out, &stem)?;
+    study.wrote(format!("{stem}.{{csv,md}}"), "Table 9.2: fitted non-linear parameters beside Kurt's; switched-off lobes marked undetermined", data);
+    Ok(())
+}
+
+/// Table 9.2 proper: a row per model, its error on each material of `cols`
+/// (`results[model][column]`) beside Kurt's.
+fn errors_table(
+    study: &Study,
+    models: &[Model],
+    cols: &[(usize, SampleSet)],
+    results: &[Vec<FitSummary>],
+    how: FitHow,
+) -> Table {
     let mut header = vec!["model".to_string()];
-    for (k, _) in &cols {
+    for (k, _) in cols {
         let n = TABLE_9_2_MATERIALS[*k].1;
         header.push(format!("{n} (ours)"));
         header.push(format!("{n} (Kurt)"));
@@ -137,15 +168,17 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
         }
         t.rows.push(r);
     }
-    let stem = study.stem("kurt_9_2");
-    t.write(&study.out, &stem)?;
-    let data = "`curet/abrdf.dat` #1, 55, 25, 33, 34 (grey)";
-    study.wrote(
-        format!("{stem}.{{csv,md}}"),
-        "Table 9.2: nine models on five CUReT materials, Kurt's values beside",
-        data,
-    );
+    t
+}
 
+/// The fitted non-linear parameters beside Kurt's: a row per model he
+/// listed them for and material of `cols`.
+fn parameters_table(
+    models: &[Model],
+    cols: &[(usize, SampleSet)],
+    results: &[Vec<FitSummary>],
+    how: FitHow,
+) -> Table {
     let mut p = Table::new(
         "Kurt Table 9.2: fitted non-linear parameters (ours, grey) and Kurt's (RGB)",
         &[
@@ -175,8 +208,5 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
             ]);
         }
     }
-    let stem = study.stem("kurt_9_2_parameters");
-    p.write(&study.out, &stem)?;
-    study.wrote(format!("{stem}.{{csv,md}}"), "Table 9.2: fitted non-linear parameters beside Kurt's; switched-off lobes marked undetermined", data);
-    Ok(())
+    p
 }

@@ -5,6 +5,7 @@
 //! glTF) join the error against time (not Kurt's Table 9.4), with a column
 //! saying how every procedure's fits ended.
 
+use brdf_core::SampleSet;
 use brdf_fit::FitSummary;
 
 use super::common::{converged, err, nine_index};
@@ -33,6 +34,9 @@ fn mean(v: &[FitSummary], f: impl Fn(&FitSummary) -> f64) -> f64 {
     v.iter().map(f).sum::<f64>() / v.len().max(1) as f64
 }
 
+/// The data of every file the part writes, for the README.
+const DATA: &str = "`curet/abrdf.dat` (grey, isotropic samples)";
+
 /// Run the part.
 pub fn run(study: &mut Study) -> Result<(), StudyError> {
     let sets = study.curet()?;
@@ -45,6 +49,48 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
         labels.push(POLY_OLS);
     }
     let metric = how.objective.name();
+    let mut plot = Plot {
+        title: study
+            .title("Error against fit time: every material (small), mean per procedure (large)"),
+        x_label: "fit time (s)".into(),
+        y_label: format!("{metric} error"),
+        log_x: true,
+        log_y: true,
+        ..Plot::default()
+    };
+    let mut means = times_table(study, &sets, &labels, &results, metric, &mut plot)?;
+    let mut tallies: Vec<String> = results.iter().map(|r| tally(r.iter().map(Some))).collect();
+    let renderers = study.renderer_models();
+    let fits = fit_sets(&renderers, &sets, 1, how, "renderer models");
+    for ((label, _, _), fits) in renderers.iter().zip(fits) {
+        let ok: Vec<FitSummary> = fits.iter().flatten().map(|(_, r)| r.clone()).collect();
+        tallies.push(tally(fits.iter().map(|f| f.as_ref().ok().map(|(_, r)| r))));
+        // A procedure with no successful fit has no mean (not a zero one).
+        let m = if ok.is_empty() {
+            (f64::NAN, f64::NAN)
+        } else {
+            (mean(&ok, |x| x.seconds), mean(&ok, err))
+        };
+        plot.series.extend(series(label, labels.len(), &ok, m));
+        labels.push(label);
+        means.push(m);
+    }
+    error_table(study, &labels, &means, tallies, metric, plot)
+}
+
+/// Table 9.4 for the procedures `labels` (Kurt's models, then the
+/// polynomial by OLS when it ran) with `results[k]` their fits of the
+/// `sets` materials, written and listed; every procedure's points added
+/// to `plot`. Returns the procedures' means (time, error), which the error
+/// against time compares.
+fn times_table(
+    study: &mut Study,
+    sets: &[SampleSet],
+    labels: &[&str],
+    results: &[Vec<FitSummary>],
+    metric: &str,
+    plot: &mut Plot,
+) -> Result<Vec<(f64, f64)>, StudyError> {
     let mut t = Table::new(
         "Kurt Table 9.4: mean fit time per model",
         &[
@@ -62,15 +108,6 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
         sets.len()
     );
     let mut means = Vec::new();
-    let mut plot = Plot {
-        title: study
-            .title("Error against fit time: every material (small), mean per procedure (large)"),
-        x_label: "fit time (s)".into(),
-        y_label: format!("{metric} error"),
-        log_x: true,
-        log_y: true,
-        ..Plot::default()
-    };
     for (k, label) in labels.iter().enumerate() {
         let r = &results[k];
         let (mt, me) = (mean(r, |x| x.seconds), mean(r, err));
@@ -92,29 +129,25 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
     }
     let stem = study.stem("kurt_9_4_times");
     t.write(&study.out, &stem)?;
-    let data = "`curet/abrdf.dat` (grey, isotropic samples)";
     study.wrote(
         format!("{stem}.{{csv,md}}"),
         "Table 9.4: mean fit time per model (measured in the run), Kurt's times and the speed-up",
-        data,
+        DATA,
     );
+    Ok(means)
+}
 
-    let mut tallies: Vec<String> = results.iter().map(|r| tally(r.iter().map(Some))).collect();
-    let renderers = study.renderer_models();
-    let fits = fit_sets(&renderers, &sets, 1, how, "renderer models");
-    for ((label, _, _), fits) in renderers.iter().zip(fits) {
-        let ok: Vec<FitSummary> = fits.iter().flatten().map(|(_, r)| r.clone()).collect();
-        tallies.push(tally(fits.iter().map(|f| f.as_ref().ok().map(|(_, r)| r))));
-        // A procedure with no successful fit has no mean (not a zero one).
-        let m = if ok.is_empty() {
-            (f64::NAN, f64::NAN)
-        } else {
-            (mean(&ok, |x| x.seconds), mean(&ok, err))
-        };
-        plot.series.extend(series(label, labels.len(), &ok, m));
-        labels.push(label);
-        means.push(m);
-    }
+/// The error against fit time: every procedure's mean (time, error) and
+/// how its fits ended (`tallies`), the Pareto front of the means marked;
+/// written with `plot` and listed.
+fn error_table(
+    study: &mut Study,
+    labels: &[&str],
+    means: &[(f64, f64)],
+    tallies: Vec<String>,
+    metric: &str,
+    mut plot: Plot,
+) -> Result<(), StudyError> {
     let finite: Vec<(f64, f64)> = means
         .iter()
         .copied()
@@ -135,7 +168,7 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
         "Data: {}. Per-material points are in the plot; a procedure is on the Pareto front when no other is both faster and more accurate on average. Kurt's nine models, then the renderer models (GGX, principled, glTF, in the renderers' own boxes; means over the fits that did not fail); `fits` counts the fits that converged, that left a parameter on a bound of the model's box, and that failed. Generated by `brdf reproduce`.",
         study.curet_source()
     );
-    for ((label, (mt, me)), fits) in labels.iter().zip(&means).zip(tallies) {
+    for ((label, (mt, me)), fits) in labels.iter().zip(means).zip(tallies) {
         let num = |v: f64, d| {
             if v.is_finite() {
                 Cell::Num(v, d)
@@ -165,7 +198,7 @@ pub fn run(study: &mut Study) -> Result<(), StudyError> {
     study.wrote(
         format!("{stem}.{{csv,md,svg,png}}"),
         "error against fit time per material and procedure (Kurt's models and the renderer models), Pareto front of the means, how the fits ended; plot",
-        data,
+        DATA,
     );
     Ok(())
 }
