@@ -8,6 +8,11 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "brdf", version, about)]
 pub struct Cli {
+    /// Render measured data for the image errors every time instead of
+    /// reading the renders kept in the cache folder (`BRDF_CACHE_DIR`, else
+    /// the platform's cache folder under `brdf-fit/judge`).
+    #[arg(long, global = true)]
+    pub no_cache: bool,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,

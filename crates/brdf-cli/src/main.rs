@@ -31,6 +31,9 @@ use error::CliError;
 
 fn run() -> Result<(), CliError> {
     let cli = Cli::parse();
+    if cli.no_cache {
+        brdf_fit::render_cache::set_enabled(false);
+    }
     match cli.command {
         Command::Models(a) => commands::models::run(&a),
         Command::Eval(a) => commands::eval::run(&a),

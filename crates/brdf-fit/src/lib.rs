@@ -89,6 +89,7 @@ pub mod objective;
 pub mod options;
 pub mod param_box;
 pub mod pipeline;
+pub mod render_cache;
 pub mod report_json;
 pub mod report_text;
 pub mod request;

@@ -4,8 +4,10 @@
 //! judge renders), and the judge holding the data's renders, made the
 //! first time an image error is asked for. A fit, a selection, a report
 //! page and a batch row of the same file share one [`Material`] instead of
-//! each reading and rendering the file again.
+//! each reading and rendering the file again; across processes the
+//! renders of a file are kept in [`crate::render_cache`].
 
+use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use brdf_core::{Brdf, SampleSet};
@@ -19,6 +21,8 @@ pub struct Material {
     name: String,
     samples: SampleSet,
     dense: Option<Box<dyn Brdf>>,
+    /// The file the dense data were read from: the render cache's key.
+    file: Option<PathBuf>,
     judge: OnceLock<Judge>,
 }
 
@@ -33,11 +37,13 @@ impl Material {
                 spec: spec.to_string(),
             });
         }
+        let dense = brdf_io::load_dense(spec)?;
         Ok(Material {
             spec: spec.to_string(),
             name: crate::data_name(spec),
             samples: brdf_io::load(spec)?,
-            dense: brdf_io::load_dense(spec)?,
+            file: dense.is_some().then_some(path),
+            dense,
             judge: OnceLock::new(),
         })
     }
@@ -48,7 +54,7 @@ impl Material {
     pub fn load_on<'j>(spec: &str, terms: impl FnOnce() -> &'j Judge) -> Result<Self, FitError> {
         let material = Material::load(spec)?;
         if let Some(data) = material.dense.as_deref() {
-            let judge = terms().rendering(data)?;
+            let judge = material.render(terms(), data)?;
             let _ = material.judge.set(judge);
         }
         Ok(material)
@@ -63,6 +69,7 @@ impl Material {
             name: name.to_string(),
             samples,
             dense,
+            file: None,
             judge: OnceLock::new(),
         }
     }
@@ -102,7 +109,16 @@ impl Material {
         if let Some(judge) = self.judge.get() {
             return Ok(Some(judge));
         }
-        let judge = Judge::with_data(REPORT_SIZE, data)?;
+        let judge = self.render(&Judge::new(REPORT_SIZE), data)?;
         Ok(Some(self.judge.get_or_init(|| judge)))
+    }
+
+    /// `terms` with the data's renders: from the render cache for data
+    /// read from a file, else rendered.
+    fn render(&self, terms: &Judge, data: &dyn Brdf) -> Result<Judge, FitError> {
+        match &self.file {
+            Some(file) => crate::render_cache::rendering(terms, file, data),
+            None => Ok(terms.rendering(data)?),
+        }
     }
 }

@@ -88,6 +88,36 @@ impl Judge {
         })
     }
 
+    /// This judge's terms with the data's renders made before by a judge
+    /// of the same size (kept in a cache: [`Judge::data_renders`]), one per
+    /// light set in order; refused when one does not fit the film.
+    pub fn rendering_from(&self, renders: Vec<Image>) -> Result<Self, RenderError> {
+        if renders.len() != self.points.len() {
+            return Err(RenderError::Invalid(format!(
+                "{} renders of the data given for {} light sets",
+                renders.len(),
+                self.points.len()
+            )));
+        }
+        let reference = self
+            .points
+            .iter()
+            .zip(renders)
+            .map(|((light, sp), image)| Reference::from_image(light, sp, image))
+            .collect::<Result<_, _>>()?;
+        Ok(Judge {
+            size: self.size,
+            points: Arc::clone(&self.points),
+            reference,
+        })
+    }
+
+    /// The data's renders this judge holds, one per light set (none
+    /// before [`Judge::rendering`]): what a cache keeps.
+    pub fn data_renders(&self) -> Vec<&Image> {
+        self.reference.iter().map(Reference::image).collect()
+    }
+
     /// The image errors of `fit` against `data`.
     pub fn errors(&self, data: &dyn Brdf, fit: &dyn Brdf) -> Result<ImageError, RenderError> {
         let refs = self

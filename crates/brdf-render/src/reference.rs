@@ -35,8 +35,34 @@ impl Reference {
         sp: &ShadingPoints,
         data: &(impl Brdf + ?Sized),
     ) -> Result<Self, RenderError> {
-        let image: Image = sp.render(data);
+        Reference::from_image(light, sp, sp.render(data))
+    }
+
+    /// The reference of a render of the data made before on `sp` (kept in
+    /// a cache): refused unless it has `sp`'s film and holds only finite,
+    /// non-negative radiance.
+    pub fn from_image(
+        light: &LightSet,
+        sp: &ShadingPoints,
+        image: Image,
+    ) -> Result<Self, RenderError> {
         let mask = sp.mask();
+        if image.channels != 3 || image.width * image.height != mask.len() {
+            return Err(RenderError::Invalid(format!(
+                "a {}x{}x{} render of the data given for a {}-pixel film of 3 channels",
+                image.width,
+                image.height,
+                image.channels,
+                mask.len()
+            )));
+        }
+        if image.data.len() != mask.len() * 3
+            || image.data.iter().any(|v| !(*v >= 0.0 && v.is_finite()))
+        {
+            return Err(RenderError::Invalid(
+                "a render of the data with missing, negative or non-finite values".into(),
+            ));
+        }
         let exposure = p99_exposure(&image, Some(&mask))?;
         let mean_colour = mean_colour(&image, &mask);
         let colour_plane = colour_plane(&image, &mask);
