@@ -46,6 +46,14 @@ pub const LOBE_MARGIN: f64 = 0.05;
 /// winner; on paper_white the Ngan candidate, at 1.25 times, is the one
 /// whose lobes win.
 pub const PAIR_REACH: f64 = 1.4;
+/// Base candidates rendering more than this many times the best base's
+/// mean FLIP (32 px) are not refined in the image objective. Measured on
+/// the five RGL files with `principled`, `gltf` and `ggx`: refining only
+/// the bases within 1.4 times the best moved the chosen fit's 128-px FLIP
+/// by at most 0.0004 (cc_ibiza_sunset, `principled`) and saved up to two
+/// of the refinements; on the films the Ngan and log bases render at 1.5-2
+/// times the cube-root one's, and their basins ended where its did.
+pub const REFINE_REACH: f64 = 1.4;
 /// Largest growth of Ngan's L2 an image-objective refinement may bring
 /// (against the best BRDF-space candidate's). Measured: the rough clear
 /// coat that renders vch_golden_yellow at sky FLIP 0.256 instead of 0.279
@@ -358,9 +366,9 @@ impl Refiner<'_> {
     }
 
     /// Refine in the image objective from the choice and from every other
-    /// base candidate (the image objective has several basins: on
-    /// cc_iris_purple_gem the Ngan start's basin renders at mean FLIP
-    /// 0.326, the winner's at 0.343); keep the least image error.
+    /// base candidate within [`REFINE_REACH`] of the best base (the image
+    /// objective has several basins, and a base that renders close to the
+    /// best may lie in a better one); keep the least image error.
     fn refine_starts(
         &self,
         bases: &[Base],
@@ -369,8 +377,12 @@ impl Refiner<'_> {
     ) -> Result<(), FitError> {
         let lobes = candidates[choice.k].lobes.clone();
         let mut starts = vec![(choice.report.model.params().to_vec(), lobes)];
+        let best_base = bases
+            .iter()
+            .map(|(_, j)| flip(candidates, *j))
+            .fold(f64::INFINITY, f64::min);
         for (p, j) in bases {
-            if *j != choice.k {
+            if *j != choice.k && flip(candidates, *j) <= REFINE_REACH * best_base {
                 starts.push((p.clone(), Vec::new()));
             }
         }
