@@ -317,7 +317,6 @@ pub fn directional_albedo(
     frame: AlbedoFrame,
     opts: &QuadratureOptions,
 ) -> Albedo {
-    use std::f64::consts::PI;
     let nc = brdf.channels();
     if l.z <= 0.0 {
         return Albedo {
@@ -328,9 +327,48 @@ pub fn directional_albedo(
     }
     let mut evals = 0usize;
     let mut fbuf = vec![0.0; nc];
-    let r = reflect_about_normal(l);
-    // Geometric break points towards the pole of the outer variable catch
-    // lobes of width down to 1e-12 in mu (exponents up to ~1e12).
+    let (breaks, pole, phi_center) = outer_breaks(l, frame);
+    let outer = integrate_with_breaks(
+        |mu, out: &mut [f64]| {
+            let s = (1.0 - mu * mu).max(0.0).sqrt();
+            let (center, half) = azimuth_range(frame, &pole, phi_center, mu, s);
+            if half <= 0.0 {
+                out.iter_mut().for_each(|x| *x = 0.0);
+                return;
+            }
+            let ring = Ring {
+                brdf,
+                l,
+                pole: &pole,
+                mu,
+                s,
+            };
+            let inner = ring.integrate(frame, center, half, &mut fbuf, opts);
+            evals += inner.evaluations;
+            out[..nc].copy_from_slice(&inner.value);
+            out[nc..].copy_from_slice(&inner.error);
+        },
+        &breaks,
+        2 * nc,
+        opts,
+    );
+    Albedo {
+        value: outer.value[..nc].to_vec(),
+        error: (0..nc)
+            .map(|c| outer.error[c] + outer.value[nc + c].abs() + outer.error[nc + c])
+            .collect(),
+        evaluations: evals,
+    }
+}
+
+/// The break points of the outer variable of [`directional_albedo`] (sorted,
+/// finite, within its range), the frame whose pole it measures the angle
+/// from, and the azimuth of the mirror direction in that frame (used by the
+/// Normal frame only). Geometric break points towards the pole of the outer
+/// variable catch lobes of width down to 1e-12 in mu (exponents up to
+/// ~1e12).
+fn outer_breaks(l: &Vector3<f64>, frame: AlbedoFrame) -> (Vec<f64>, Frame, f64) {
+    use std::f64::consts::PI;
     let mut breaks: Vec<f64> = Vec::new();
     let (pole, phi_center) = match frame {
         AlbedoFrame::Normal => {
@@ -353,6 +391,7 @@ pub fn directional_albedo(
             // mu' = cos of the angle to R in [-sin theta_r, 1]; below -sin
             // theta_r every direction is under the horizon, above sin theta_r
             // every direction is above it (a kink of the inner integral).
+            let r = reflect_about_normal(l);
             let sin_r = (r.x * r.x + r.y * r.y).sqrt().min(1.0);
             breaks.push(-sin_r);
             breaks.push(sin_r);
@@ -368,64 +407,75 @@ pub fn directional_albedo(
     breaks.retain(|&b| b >= lo && b <= 1.0);
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
-    let outer = integrate_with_breaks(
-        |mu, out: &mut [f64]| {
-            let s = (1.0 - mu * mu).max(0.0).sqrt();
-            // Azimuth range above the horizon: V.z = mu R.z + s A cos(phi -
-            // phi0) > 0 with A cos(phi0), A sin(phi0) the z-components of the
-            // frame's tangents; integrating only over it keeps the integrand
-            // smooth (no jump at the horizon).
-            let (center, half) = match frame {
-                AlbedoFrame::Normal => (phi_center, PI),
-                AlbedoFrame::Mirror => {
-                    let ax = pole.x.z;
-                    let ay = pole.y.z;
-                    let a = ax.hypot(ay);
-                    let phi0 = ay.atan2(ax);
-                    if a * s <= 0.0 {
-                        (phi0, if mu * pole.z.z > 0.0 { PI } else { 0.0 })
-                    } else {
-                        let c = (-mu * pole.z.z / (a * s)).clamp(-1.0, 1.0);
-                        (phi0, c.acos())
-                    }
-                }
-            };
-            if half <= 0.0 {
-                out.iter_mut().for_each(|x| *x = 0.0);
+    (breaks, pole, phi_center)
+}
+
+/// The azimuth range `(center, half width)` of the ring at `mu` (with
+/// `s = sqrt(1 - mu^2)`) that lies above the horizon: `V.z = mu R.z + s A
+/// cos(phi - phi0) > 0` with `A cos(phi0)`, `A sin(phi0)` the z-components
+/// of the frame's tangents. Integrating only over it keeps the integrand
+/// smooth (no jump at the horizon). In the Normal frame the whole ring is
+/// above it, centred on the mirror direction's azimuth `phi_center`.
+fn azimuth_range(frame: AlbedoFrame, pole: &Frame, phi_center: f64, mu: f64, s: f64) -> (f64, f64) {
+    use std::f64::consts::PI;
+    match frame {
+        AlbedoFrame::Normal => (phi_center, PI),
+        AlbedoFrame::Mirror => {
+            let ax = pole.x.z;
+            let ay = pole.y.z;
+            let a = ax.hypot(ay);
+            let phi0 = ay.atan2(ax);
+            if a * s <= 0.0 {
+                (phi0, if mu * pole.z.z > 0.0 { PI } else { 0.0 })
+            } else {
+                let c = (-mu * pole.z.z / (a * s)).clamp(-1.0, 1.0);
+                (phi0, c.acos())
+            }
+        }
+    }
+}
+
+/// The ring of outgoing directions at `mu = cos` of the angle to `pole.z`
+/// (`s = sqrt(1 - mu^2)`), whose integral over the azimuth is the inner
+/// integral of [`directional_albedo`].
+struct Ring<'a, B: Brdf + ?Sized> {
+    brdf: &'a B,
+    l: &'a Vector3<f64>,
+    pole: &'a Frame,
+    mu: f64,
+    s: f64,
+}
+
+impl<B: Brdf + ?Sized> Ring<'_, B> {
+    /// `int f(L, V) cos theta_o dphi` over `[center - half, center + half]`
+    /// per channel (`fbuf` holds one BRDF value per channel). In the Normal
+    /// frame a lobe around the mirror direction is a peak in the azimuth at
+    /// `center`; in the Mirror frame it is at the pole of the outer variable
+    /// instead.
+    fn integrate(
+        &self,
+        frame: AlbedoFrame,
+        center: f64,
+        half: f64,
+        fbuf: &mut [f64],
+        opts: &QuadratureOptions,
+    ) -> Integral {
+        let nc = fbuf.len();
+        let integrand = |phi: f64, o: &mut [f64]| {
+            let local = Vector3::new(self.s * phi.cos(), self.s * phi.sin(), self.mu);
+            let v = self.pole.from_local(&local);
+            if v.z <= 0.0 {
+                o.iter_mut().for_each(|x| *x = 0.0);
                 return;
             }
-            let integrand = |phi: f64, o: &mut [f64]| {
-                let local = Vector3::new(s * phi.cos(), s * phi.sin(), mu);
-                let v = pole.from_local(&local);
-                if v.z <= 0.0 {
-                    o.iter_mut().for_each(|x| *x = 0.0);
-                    return;
-                }
-                brdf.eval(l, &v, &mut fbuf);
-                for c in 0..nc {
-                    o[c] = fbuf[c] * v.z;
-                }
-            };
-            // In the Normal frame a lobe around the mirror direction is a
-            // peak in the azimuth at `center`; in the Mirror frame it is at
-            // the pole of the outer variable instead.
-            let inner = match frame {
-                AlbedoFrame::Normal => integrate_around_peak(integrand, center, half, nc, opts),
-                AlbedoFrame::Mirror => integrate(integrand, center - half, center + half, nc, opts),
-            };
-            evals += inner.evaluations;
-            out[..nc].copy_from_slice(&inner.value);
-            out[nc..].copy_from_slice(&inner.error);
-        },
-        &breaks,
-        2 * nc,
-        opts,
-    );
-    Albedo {
-        value: outer.value[..nc].to_vec(),
-        error: (0..nc)
-            .map(|c| outer.error[c] + outer.value[nc + c].abs() + outer.error[nc + c])
-            .collect(),
-        evaluations: evals,
+            self.brdf.eval(self.l, &v, fbuf);
+            for c in 0..nc {
+                o[c] = fbuf[c] * v.z;
+            }
+        };
+        match frame {
+            AlbedoFrame::Normal => integrate_around_peak(integrand, center, half, nc, opts),
+            AlbedoFrame::Mirror => integrate(integrand, center - half, center + half, nc, opts),
+        }
     }
 }

@@ -31,43 +31,8 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
     let mut rdr = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .from_reader(text.as_bytes());
-    let header: Vec<String> = rdr
-        .headers()
-        .map_err(|e| IoError::Format {
-            path: path.to_path_buf(),
-            line: 1,
-            reason: e.to_string(),
-        })?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    let n = header.len();
-    let degrees = n >= 4 && header[..4] == ["theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"];
-    let weighted = n >= 1 && header[n - 1] == "weight";
-    // Columns holding values: the channels end before `weight` when there is one.
-    let end = if weighted { n - 1 } else { n };
-    if end < 5 || !(degrees || header[..4] == ["theta_i", "phi_i", "theta_o", "phi_o"]) {
-        return Err(IoError::Format {
-            path: path.to_path_buf(),
-            line: 1,
-            reason: format!(
-                "header must be theta_i,phi_i,theta_o,phi_o,<channels...>[,weight] (radians) or theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,<channels...>[,weight]; found {}",
-                header.join(",")
-            ),
-        });
-    }
-    let channels: Vec<String> = header[4..end].to_vec();
-    let name = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let mut set = SampleSet::new(format!("csv#{name}"), path.display().to_string(), channels);
-    if !weighted {
-        set.notes.push(format!(
-            "{}: no weight column; every sample weighted 1",
-            path.display()
-        ));
-    }
+    let columns = Columns::read(path, &mut rdr)?;
+    let mut set = columns.empty_set(path);
     for (i, rec) in rdr.records().enumerate() {
         let line = i + 2;
         let rec = rec.map_err(|e| IoError::Format {
@@ -75,6 +40,92 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             line,
             reason: e.to_string(),
         })?;
+        let v = columns.values(path, line, &rec)?;
+        columns.push(path, line, v, &mut set)?;
+    }
+    if set.is_empty() {
+        return Err(IoError::Format {
+            path: path.to_path_buf(),
+            line: 1,
+            reason: "no samples".into(),
+        });
+    }
+    Ok(set)
+}
+
+/// The layout of a sample file, from its header.
+struct Columns {
+    header: Vec<String>,
+    /// Whether the angles are in degrees (the `*_deg` names).
+    degrees: bool,
+    /// Whether the last column is `weight`.
+    weighted: bool,
+    /// The end of the channel columns, which start at 4.
+    end: usize,
+}
+
+impl Columns {
+    fn read(path: &Path, rdr: &mut csv::Reader<&[u8]>) -> Result<Self, IoError> {
+        let header: Vec<String> = rdr
+            .headers()
+            .map_err(|e| IoError::Format {
+                path: path.to_path_buf(),
+                line: 1,
+                reason: e.to_string(),
+            })?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        let n = header.len();
+        let degrees =
+            n >= 4 && header[..4] == ["theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"];
+        let weighted = n >= 1 && header[n - 1] == "weight";
+        // Columns holding values: the channels end before `weight` when there is one.
+        let end = if weighted { n - 1 } else { n };
+        if end < 5 || !(degrees || header[..4] == ["theta_i", "phi_i", "theta_o", "phi_o"]) {
+            return Err(IoError::Format {
+                path: path.to_path_buf(),
+                line: 1,
+                reason: format!(
+                    "header must be theta_i,phi_i,theta_o,phi_o,<channels...>[,weight] (radians) or theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,<channels...>[,weight]; found {}",
+                    header.join(",")
+                ),
+            });
+        }
+        Ok(Columns {
+            header,
+            degrees,
+            weighted,
+            end,
+        })
+    }
+
+    /// The set the samples go into, named after the file, with a note when
+    /// the weights are made up (the caller prints it).
+    fn empty_set(&self, path: &Path) -> SampleSet {
+        let channels: Vec<String> = self.header[4..self.end].to_vec();
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let mut set = SampleSet::new(format!("csv#{name}"), path.display().to_string(), channels);
+        if !self.weighted {
+            set.notes.push(format!(
+                "{}: no weight column; every sample weighted 1",
+                path.display()
+            ));
+        }
+        set
+    }
+
+    /// The numbers of one record, which must have a field per column.
+    fn values(
+        &self,
+        path: &Path,
+        line: usize,
+        rec: &csv::StringRecord,
+    ) -> Result<Vec<f64>, IoError> {
+        let n = self.header.len();
         if rec.len() != n {
             return Err(IoError::Count {
                 path: path.to_path_buf(),
@@ -93,7 +144,7 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             })?;
             // NaN values are data to be counted and filtered; NaN angles
             // and weights are errors.
-            if !x.is_finite() && (k < 4 || (weighted && k == n - 1)) {
+            if !x.is_finite() && (k < 4 || (self.weighted && k == n - 1)) {
                 return Err(IoError::NotFinite {
                     path: path.to_path_buf(),
                     line,
@@ -103,13 +154,24 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             }
             v.push(x);
         }
+        Ok(v)
+    }
+
+    /// Add the sample of record values `v` (angles in the header's unit).
+    fn push(
+        &self,
+        path: &Path,
+        line: usize,
+        mut v: Vec<f64>,
+        set: &mut SampleSet,
+    ) -> Result<(), IoError> {
         let bad = |what: &str, e: String| IoError::Format {
             path: path.to_path_buf(),
             line,
             reason: format!("{what}: {e}"),
         };
-        check_angles(path, line, &header, &v[..4], degrees)?;
-        if degrees {
+        check_angles(path, line, &self.header, &v[..4], self.degrees)?;
+        if self.degrees {
             for a in &mut v[..4] {
                 *a = a.to_radians();
             }
@@ -118,18 +180,14 @@ pub fn parse(path: &Path, text: &str) -> Result<SampleSet, IoError> {
             .map_err(|e| bad("incident direction", e.to_string()))?;
         let o = Direction::from_spherical(v[2], v[3])
             .map_err(|e| bad("outgoing direction", e.to_string()))?;
-        let weight = if weighted { v[n - 1] } else { 1.0 };
-        set.push(&l, &o, &v[4..end], weight)
-            .map_err(|e| bad("sample", e.to_string()))?;
+        let weight = if self.weighted {
+            v[self.header.len() - 1]
+        } else {
+            1.0
+        };
+        set.push(&l, &o, &v[4..self.end], weight)
+            .map_err(|e| bad("sample", e.to_string()))
     }
-    if set.is_empty() {
-        return Err(IoError::Format {
-            path: path.to_path_buf(),
-            line: 1,
-            reason: "no samples".into(),
-        });
-    }
-    Ok(set)
 }
 
 /// Refuse angles outside their range in the header's unit: a polar angle

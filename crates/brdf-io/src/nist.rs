@@ -69,35 +69,122 @@ pub fn read(path: &Path) -> Result<NistDataset, IoError> {
 
 /// Parse the text of a StRD `.dat` file (`path` only names it in errors).
 pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
-    let fmt = |line: usize, reason: String| IoError::Format {
+    let lines: Vec<&str> = text.lines().collect();
+    let header = Header::scan(path, &lines)?;
+    let missing = |what: &str| format_error(path, 0, format!("missing {what}"));
+    if header.params.is_empty() {
+        return Err(missing("parameter lines `b1 = ...`"));
+    }
+    let rss = header
+        .rss
+        .ok_or_else(|| missing("Residual Sum of Squares"))?;
+    let residual_sd = header
+        .rsd
+        .ok_or_else(|| missing("Residual Standard Deviation"))?;
+    let dof = header.dof.ok_or_else(|| missing("Degrees of Freedom"))?;
+    let nobs = header
+        .nobs
+        .ok_or_else(|| missing("Number of Observations"))?;
+    let (hdr, ncols) = header
+        .data_header
+        .ok_or_else(|| missing("the `Data: y x` line"))?;
+    let (x, y) = read_data(path, &lines, hdr, ncols)?;
+    let params = &header.params;
+    check_observations(path, y.len(), nobs, params.len())?;
+    let warnings = dof_warnings(path, dof, nobs, params.len());
+    let dof = nobs - params.len();
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    Ok(NistDataset {
+        name,
+        path: path.to_path_buf(),
+        model_text: header.model_text,
+        starts: [
+            params.iter().map(|p| p.1[0]).collect(),
+            params.iter().map(|p| p.1[1]).collect(),
+        ],
+        certified: params.iter().map(|p| p.1[2]).collect(),
+        certified_sd: params.iter().map(|p| p.1[3]).collect(),
+        rss,
+        residual_sd,
+        dof,
+        warnings,
+        n_predictors: ncols - 1,
+        x,
+        y,
+    })
+}
+
+fn format_error(path: &Path, line: usize, reason: String) -> IoError {
+    IoError::Format {
         path: path.to_path_buf(),
         line,
         reason,
-    };
-    let lines: Vec<&str> = text.lines().collect();
-    let mut params: Vec<(usize, [f64; 4])> = Vec::new();
-    let (mut rss, mut rsd, mut dof, mut nobs) = (None, None, None, None);
-    let mut model_text = String::new();
-    let mut in_model = false;
-    let mut data_header = None;
-    for (i, line) in lines.iter().enumerate() {
-        let no = i + 1;
-        let t = line.trim();
-        if t.starts_with("Model:") {
-            in_model = true;
-            continue;
-        }
-        if in_model {
-            if t.starts_with("Starting") || t.starts_with("b1") {
-                in_model = false;
-            } else {
-                if !t.is_empty() {
-                    model_text.push_str(t);
-                    model_text.push('\n');
-                }
+    }
+}
+
+/// What the header of a StRD file says, gathered line by line up to the
+/// `Data:` line.
+#[derive(Default)]
+struct Header {
+    /// `(line, [start 1, start 2, certified, sd])` of `b1`, `b2`, ...
+    params: Vec<(usize, [f64; 4])>,
+    rss: Option<f64>,
+    rsd: Option<f64>,
+    dof: Option<usize>,
+    nobs: Option<usize>,
+    model_text: String,
+    /// Whether the scan is inside the model block, which runs from
+    /// `Model:` to the starting values.
+    in_model: bool,
+    /// The index of the `Data:` line naming the columns, and their count.
+    data_header: Option<(usize, usize)>,
+}
+
+impl Header {
+    fn scan(path: &Path, lines: &[&str]) -> Result<Self, IoError> {
+        let mut header = Header::default();
+        for (i, line) in lines.iter().enumerate() {
+            let t = line.trim();
+            if header.model_line(t) {
                 continue;
             }
+            if let Some(ncols) = header.value_line(path, i + 1, t)? {
+                header.data_header = Some((i, ncols));
+                break;
+            }
         }
+        Ok(header)
+    }
+
+    /// Collect the model text; true when the line belongs to the model
+    /// block. Its formula lines may contain `=` and look like anything
+    /// else, so they are set aside before any other rule reads them.
+    fn model_line(&mut self, t: &str) -> bool {
+        if t.starts_with("Model:") {
+            self.in_model = true;
+            return true;
+        }
+        if !self.in_model {
+            return false;
+        }
+        if t.starts_with("Starting") || t.starts_with("b1") {
+            self.in_model = false;
+            return false;
+        }
+        if !t.is_empty() {
+            self.model_text.push_str(t);
+            self.model_text.push('\n');
+        }
+        true
+    }
+
+    /// Read a parameter line or a certified value; at the `Data:` line
+    /// naming the columns (only `y...` and `x...`), their count. Another
+    /// `Data:` line (a prose mention) is not the data header.
+    fn value_line(&mut self, path: &Path, no: usize, t: &str) -> Result<Option<usize>, IoError> {
         if let Some((lhs, rhs)) = t.split_once('=')
             && let Some(k) = lhs.trim().strip_prefix('b')
             && let Ok(k) = k.parse::<usize>()
@@ -111,18 +198,22 @@ pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
                     found: format!("{}", v.len()),
                 });
             }
-            if k != params.len() + 1 {
-                return Err(fmt(no, format!("parameter b{k} out of order")));
+            if k != self.params.len() + 1 {
+                return Err(format_error(
+                    path,
+                    no,
+                    format!("parameter b{k} out of order"),
+                ));
             }
-            params.push((no, [v[0], v[1], v[2], v[3]]));
+            self.params.push((no, [v[0], v[1], v[2], v[3]]));
         } else if t.starts_with("Residual Sum of Squares:") {
-            rss = Some(value_after_colon(path, no, t)?);
+            self.rss = Some(value_after_colon(path, no, t)?);
         } else if t.starts_with("Residual Standard Deviation:") {
-            rsd = Some(value_after_colon(path, no, t)?);
+            self.rsd = Some(value_after_colon(path, no, t)?);
         } else if t.starts_with("Degrees of Freedom:") {
-            dof = Some(value_after_colon(path, no, t)? as usize);
+            self.dof = Some(value_after_colon(path, no, t)? as usize);
         } else if t.starts_with("Number of Observations:") {
-            nobs = Some(value_after_colon(path, no, t)? as usize);
+            self.nobs = Some(value_after_colon(path, no, t)? as usize);
         } else if let Some(rest) = t.strip_prefix("Data:") {
             let cols: Vec<&str> = rest.split_whitespace().collect();
             if !cols.is_empty()
@@ -130,20 +221,21 @@ pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
                     .iter()
                     .all(|c| c.starts_with('y') || c.starts_with('x'))
             {
-                data_header = Some((i, cols.len()));
-                break;
+                return Ok(Some(cols.len()));
             }
         }
+        Ok(None)
     }
-    let missing = |what: &str| fmt(0, format!("missing {what}"));
-    if params.is_empty() {
-        return Err(missing("parameter lines `b1 = ...`"));
-    }
-    let rss = rss.ok_or_else(|| missing("Residual Sum of Squares"))?;
-    let residual_sd = rsd.ok_or_else(|| missing("Residual Standard Deviation"))?;
-    let dof = dof.ok_or_else(|| missing("Degrees of Freedom"))?;
-    let nobs = nobs.ok_or_else(|| missing("Number of Observations"))?;
-    let (hdr, ncols) = data_header.ok_or_else(|| missing("the `Data: y x` line"))?;
+}
+
+/// The data lines after the `Data:` line at index `hdr`: `(x, y)`, the
+/// predictors row after row. Every line must have `ncols` finite numbers.
+fn read_data(
+    path: &Path,
+    lines: &[&str],
+    hdr: usize,
+    ncols: usize,
+) -> Result<(Vec<f64>, Vec<f64>), IoError> {
     let mut x = Vec::new();
     let mut y = Vec::new();
     for (i, line) in lines.iter().enumerate().skip(hdr + 1) {
@@ -170,58 +262,44 @@ pub fn parse(path: &Path, text: &str) -> Result<NistDataset, IoError> {
         y.push(v[0]);
         x.extend_from_slice(&v[1..]);
     }
-    if y.len() != nobs {
+    Ok((x, y))
+}
+
+/// The data lines must be as many as the header announces (fewer is a
+/// truncated file), and more than the parameters.
+fn check_observations(path: &Path, lines: usize, nobs: usize, np: usize) -> Result<(), IoError> {
+    if lines != nobs {
         return Err(IoError::Count {
             path: path.to_path_buf(),
             line: 0,
             expected: format!("{nobs} observations (header)"),
-            found: format!("{} data lines (truncated file?)", y.len()),
+            found: format!("{lines} data lines (truncated file?)"),
         });
     }
-    if nobs <= params.len() {
-        return Err(fmt(
+    if nobs <= np {
+        return Err(format_error(
+            path,
             0,
-            format!(
-                "{nobs} observations for {} parameters: no degrees of freedom",
-                params.len()
-            ),
+            format!("{nobs} observations for {np} parameters: no degrees of freedom"),
         ));
     }
-    // The header's count is informative only: n - p is what the certified
-    // residual standard deviation uses (Rat43's header is off by two).
+    Ok(())
+}
+
+/// The header's count is informative only: n - p is what the certified
+/// residual standard deviation uses (Rat43's header is off by two).
+fn dof_warnings(path: &Path, dof: usize, nobs: usize, np: usize) -> Vec<String> {
     let mut warnings = Vec::new();
-    if dof + params.len() != nobs {
+    if dof + np != nobs {
         warnings.push(format!(
             "{}: the header says {dof} degrees of freedom, but {nobs} observations and {} parameters give {}; using {}",
             path.display(),
-            params.len(),
-            nobs - params.len(),
-            nobs - params.len()
+            np,
+            nobs - np,
+            nobs - np
         ));
     }
-    let dof = nobs - params.len();
-    let name = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    Ok(NistDataset {
-        name,
-        path: path.to_path_buf(),
-        model_text,
-        starts: [
-            params.iter().map(|p| p.1[0]).collect(),
-            params.iter().map(|p| p.1[1]).collect(),
-        ],
-        certified: params.iter().map(|p| p.1[2]).collect(),
-        certified_sd: params.iter().map(|p| p.1[3]).collect(),
-        rss,
-        residual_sd,
-        dof,
-        warnings,
-        n_predictors: ncols - 1,
-        x,
-        y,
-    })
+    warnings
 }
 
 /// Every `.dat` file of a folder, read and sorted by name.

@@ -114,72 +114,19 @@ fn dtype_size(d: u8) -> Option<usize> {
 impl TensorFile {
     /// Parse the bytes of a tensor file (`path` only names it in errors).
     pub fn parse(path: &Path, b: &[u8]) -> Result<Self, IoError> {
-        let err = |at: usize, reason: String| IoError::Format {
-            path: path.to_path_buf(),
-            line: 0,
-            reason: format!("byte {at}: {reason}"),
-        };
-        let take = |at: usize, n: usize| -> Result<&[u8], IoError> {
-            b.get(at..at.saturating_add(n)).ok_or_else(|| {
-                err(
-                    at,
-                    format!(
-                        "needs {n} more bytes; the file has {} (truncated?)",
-                        b.len()
-                    ),
-                )
-            })
-        };
-        if take(0, 12)? != b"tensor_file\0" {
-            return Err(err(
-                0,
-                "not a tensor file (magic `tensor_file` missing)".into(),
-            ));
+        let bytes = Bytes { path, b };
+        if bytes.take(0, 12)? != b"tensor_file\0" {
+            return Err(bytes.err(0, "not a tensor file (magic `tensor_file` missing)".into()));
         }
-        let v = take(12, 2)?;
+        let v = bytes.take(12, 2)?;
         if v != [1, 0] {
-            return Err(err(12, format!("version {}.{}, expected 1.0", v[0], v[1])));
+            return Err(bytes.err(12, format!("version {}.{}, expected 1.0", v[0], v[1])));
         }
-        let n = u32::from_le_bytes(take(14, 4)?.try_into().unwrap_or([0; 4])) as usize;
+        let n = u32::from_le_bytes(bytes.take(14, 4)?.try_into().unwrap_or([0; 4])) as usize;
         let mut at = 18;
         let mut fields = Vec::new();
         for _ in 0..n {
-            let nl = u16::from_le_bytes(take(at, 2)?.try_into().unwrap_or([0; 2])) as usize;
-            let name = String::from_utf8_lossy(take(at + 2, nl)?).into_owned();
-            at += 2 + nl;
-            let rank = u16::from_le_bytes(take(at, 2)?.try_into().unwrap_or([0; 2])) as usize;
-            let dtype = take(at + 2, 1)?[0];
-            let offset = u64::from_le_bytes(take(at + 3, 8)?.try_into().unwrap_or([0; 8]));
-            at += 11;
-            let mut shape = Vec::with_capacity(rank);
-            for _ in 0..rank {
-                shape.push(u64::from_le_bytes(take(at, 8)?.try_into().unwrap_or([0; 8])) as usize);
-                at += 8;
-            }
-            let size = dtype_size(dtype)
-                .ok_or_else(|| err(at, format!("field `{name}`: unknown dtype {dtype}")))?;
-            let count = shape
-                .iter()
-                .try_fold(size, |acc, s| acc.checked_mul(*s))
-                .ok_or_else(|| err(at, format!("field `{name}`: size overflows")))?;
-            let offset = usize::try_from(offset)
-                .map_err(|_| err(at, format!("field `{name}`: offset too large")))?;
-            let bytes = take(offset, count)
-                .map_err(|_| {
-                    err(
-                        offset,
-                        format!("field `{name}`: data ({count} bytes) beyond the end of the file"),
-                    )
-                })?
-                .to_vec();
-            fields.push((
-                name,
-                Field {
-                    dtype,
-                    shape,
-                    bytes,
-                },
-            ));
+            fields.push(bytes.field(&mut at)?);
         }
         Ok(Self { fields })
     }
@@ -235,6 +182,81 @@ impl TensorFile {
             out.extend_from_slice(&f.bytes);
         }
         Ok(out)
+    }
+}
+
+/// The bytes of a tensor file being parsed, with the file's path for the
+/// errors: every read is checked against the file length, so a truncated
+/// or damaged file is an error naming the byte, never a panic.
+struct Bytes<'a> {
+    path: &'a Path,
+    b: &'a [u8],
+}
+
+impl<'a> Bytes<'a> {
+    fn err(&self, at: usize, reason: String) -> IoError {
+        IoError::Format {
+            path: self.path.to_path_buf(),
+            line: 0,
+            reason: format!("byte {at}: {reason}"),
+        }
+    }
+
+    /// The `n` bytes at `at`.
+    fn take(&self, at: usize, n: usize) -> Result<&'a [u8], IoError> {
+        self.b.get(at..at.saturating_add(n)).ok_or_else(|| {
+            self.err(
+                at,
+                format!(
+                    "needs {n} more bytes; the file has {} (truncated?)",
+                    self.b.len()
+                ),
+            )
+        })
+    }
+
+    /// The field whose header starts at `at` (moved past that header), its
+    /// data copied from wherever the header's offset points.
+    fn field(&self, at: &mut usize) -> Result<(String, Field), IoError> {
+        let nl = u16::from_le_bytes(self.take(*at, 2)?.try_into().unwrap_or([0; 2])) as usize;
+        let name = String::from_utf8_lossy(self.take(*at + 2, nl)?).into_owned();
+        *at += 2 + nl;
+        let rank = u16::from_le_bytes(self.take(*at, 2)?.try_into().unwrap_or([0; 2])) as usize;
+        let dtype = self.take(*at + 2, 1)?[0];
+        let offset = u64::from_le_bytes(self.take(*at + 3, 8)?.try_into().unwrap_or([0; 8]));
+        *at += 11;
+        let mut shape = Vec::with_capacity(rank);
+        for _ in 0..rank {
+            shape
+                .push(u64::from_le_bytes(self.take(*at, 8)?.try_into().unwrap_or([0; 8])) as usize);
+            *at += 8;
+        }
+        let at = *at;
+        let size = dtype_size(dtype)
+            .ok_or_else(|| self.err(at, format!("field `{name}`: unknown dtype {dtype}")))?;
+        let count = shape
+            .iter()
+            .try_fold(size, |acc, s| acc.checked_mul(*s))
+            .ok_or_else(|| self.err(at, format!("field `{name}`: size overflows")))?;
+        let offset = usize::try_from(offset)
+            .map_err(|_| self.err(at, format!("field `{name}`: offset too large")))?;
+        let bytes = self
+            .take(offset, count)
+            .map_err(|_| {
+                self.err(
+                    offset,
+                    format!("field `{name}`: data ({count} bytes) beyond the end of the file"),
+                )
+            })?
+            .to_vec();
+        Ok((
+            name,
+            Field {
+                dtype,
+                shape,
+                bytes,
+            },
+        ))
     }
 }
 
@@ -587,6 +609,85 @@ fn phi2u(p: f64) -> f64 {
     (p + PI) / (2.0 * PI)
 }
 
+fn format_error(path: &Path, reason: String) -> IoError {
+    IoError::Format {
+        path: path.to_path_buf(),
+        line: 0,
+        reason,
+    }
+}
+
+/// The shape and values of the f32 table `name` of rank `rank`, every value
+/// finite.
+fn table(
+    tf: &TensorFile,
+    path: &Path,
+    name: &str,
+    rank: usize,
+) -> Result<(Vec<usize>, Vec<f64>), IoError> {
+    let bad = |reason: String| format_error(path, reason);
+    let f = tf
+        .field(name)
+        .ok_or_else(|| bad(format!("field `{name}` missing")))?;
+    if f.shape.len() != rank {
+        return Err(bad(format!(
+            "field `{name}` has rank {}, expected {rank}",
+            f.shape.len()
+        )));
+    }
+    // The tables are f32 in every RGL file; any other type byte
+    // (even one `to_f64` could read, such as u8) is a damaged file.
+    if f.dtype != DTYPE_F32 {
+        return Err(bad(format!(
+            "field `{name}` has type byte {} ({}), expected {DTYPE_F32} (f32)",
+            f.dtype,
+            dtype_name(f.dtype)
+        )));
+    }
+    let v = f.to_f64().ok_or_else(|| {
+        bad(format!(
+            "field `{name}` has dtype {}, expected f32",
+            f.dtype
+        ))
+    })?;
+    if let Some(k) = v.iter().position(|x| !x.is_finite()) {
+        return Err(bad(format!("field `{name}` value {k} is not finite")));
+    }
+    Ok((f.shape.clone(), v))
+}
+
+/// The largest tabulated incident elevation below 90 deg (90 deg when
+/// there is none): the 90 deg node itself is not a measurement.
+fn measured_theta_max(theta_i: &[f64]) -> f64 {
+    let measured_theta_max = theta_i
+        .iter()
+        .copied()
+        .filter(|t| *t < FRAC_PI_2 - 1e-6)
+        .fold(f64::NAN, f64::max);
+    if measured_theta_max.is_finite() {
+        measured_theta_max
+    } else {
+        FRAC_PI_2
+    }
+}
+
+/// The file's `jacobian` flag: whether the stored values still need the
+/// `ndf / (4 sigma)` factor (absent: they do).
+fn jacobian_flag(tf: &TensorFile, path: &Path) -> Result<bool, IoError> {
+    Ok(match tf.field("jacobian") {
+        None => true,
+        Some(f) => match f.to_f64().as_deref() {
+            Some([x]) => *x != 0.0,
+            _ => {
+                return Err(format_error(
+                    path,
+                    "field `jacobian`: expected one u8 or f32 flag".into(),
+                ));
+            }
+        },
+    })
+}
+
 impl Rgl {
     /// Read an RGL `.bsdf` file (RGB variant).
     pub fn read(path: &Path) -> Result<Self, IoError> {
@@ -600,41 +701,7 @@ impl Rgl {
     /// Parse the bytes of an RGL file.
     pub fn parse(path: &Path, bytes: &[u8]) -> Result<Self, IoError> {
         let tf = TensorFile::parse(path, bytes)?;
-        let bad = |reason: String| IoError::Format {
-            path: path.to_path_buf(),
-            line: 0,
-            reason,
-        };
-        let get = |name: &str, rank: usize| -> Result<(Vec<usize>, Vec<f64>), IoError> {
-            let f = tf
-                .field(name)
-                .ok_or_else(|| bad(format!("field `{name}` missing")))?;
-            if f.shape.len() != rank {
-                return Err(bad(format!(
-                    "field `{name}` has rank {}, expected {rank}",
-                    f.shape.len()
-                )));
-            }
-            // The tables are f32 in every RGL file; any other type byte
-            // (even one `to_f64` could read, such as u8) is a damaged file.
-            if f.dtype != DTYPE_F32 {
-                return Err(bad(format!(
-                    "field `{name}` has type byte {} ({}), expected {DTYPE_F32} (f32)",
-                    f.dtype,
-                    dtype_name(f.dtype)
-                )));
-            }
-            let v = f.to_f64().ok_or_else(|| {
-                bad(format!(
-                    "field `{name}` has dtype {}, expected f32",
-                    f.dtype
-                ))
-            })?;
-            if let Some(k) = v.iter().position(|x| !x.is_finite()) {
-                return Err(bad(format!("field `{name}` value {k} is not finite")));
-            }
-            Ok((f.shape.clone(), v))
-        };
+        let get = |name: &str, rank: usize| table(&tf, path, name, rank);
         let (_, theta_i) = get("theta_i", 1)?;
         let (_, phi_i) = get("phi_i", 1)?;
         let (ns, ndf) = get("ndf", 2)?;
@@ -647,35 +714,23 @@ impl Rgl {
             || rs[1] != theta_i.len()
             || rs[2] != 3
         {
-            return Err(bad(format!(
-                "inconsistent shapes: vndf {vs:?}, rgb {rs:?}, {} phi_i, {} theta_i",
-                phi_i.len(),
-                theta_i.len()
-            )));
+            return Err(format_error(
+                path,
+                format!(
+                    "inconsistent shapes: vndf {vs:?}, rgb {rs:?}, {} phi_i, {} theta_i",
+                    phi_i.len(),
+                    theta_i.len()
+                ),
+            ));
         }
         let description = tf
             .field("description")
             .map(|f| String::from_utf8_lossy(&f.bytes).into_owned())
             .unwrap_or_default();
-        let err = |what: &str| bad(format!("field `{what}`: degenerate table"));
-        let measured_theta_max = theta_i
-            .iter()
-            .copied()
-            .filter(|t| *t < FRAC_PI_2 - 1e-6)
-            .fold(f64::NAN, f64::max);
-        let measured_theta_max = if measured_theta_max.is_finite() {
-            measured_theta_max
-        } else {
-            FRAC_PI_2
-        };
+        let err = |what: &str| format_error(path, format!("field `{what}`: degenerate table"));
+        let measured_theta_max = measured_theta_max(&theta_i);
         let isotropic = phi_i.len() <= 2;
-        let jacobian = match tf.field("jacobian") {
-            None => true,
-            Some(f) => match f.to_f64().as_deref() {
-                Some([x]) => *x != 0.0,
-                _ => return Err(bad("field `jacobian`: expected one u8 or f32 flag".into())),
-            },
-        };
+        let jacobian = jacobian_flag(&tf, path)?;
         Ok(Self {
             path: path.to_path_buf(),
             description,

@@ -8,6 +8,7 @@
 use std::path::Path;
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 
 use crate::RenderError;
@@ -162,117 +163,187 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(75);
-    let integer = plot.integer_x;
-    let (log_x, log_y) = (plot.log_x, plot.log_y);
-    let xfmt = move |x: &f64| {
-        if integer {
-            // Only whole numbers are labelled (ranks, degrees).
-            if (x - x.round()).abs() < 1e-9 {
-                format!("{:.0}", x)
-            } else {
-                String::new()
-            }
-        } else {
-            tick(*x, log_x)
-        }
-    };
-    let yfmt = move |y: &f64| tick(*y, log_y);
-    macro_rules! body {
-        ($chart:expr) => {{
-            let mut chart = $chart;
-            chart
-                .configure_mesh()
-                .x_desc(plot.x_label.as_str())
-                .y_desc(plot.y_label.as_str())
-                .x_label_formatter(&xfmt)
-                .y_label_formatter(&yfmt)
-                .light_line_style(WHITE)
-                .draw()
-                .map_err(e)?;
-            let ok = |(x, y): &(f64, f64)| {
-                x.is_finite()
-                    && y.is_finite()
-                    && (!plot.log_x || *x > 0.0)
-                    && (!plot.log_y || *y > 0.0)
-            };
-            if let Some(front) = &plot.pareto {
-                // Step line: the best error reachable within a time budget.
-                let mut steps = Vec::new();
-                for (k, p) in front.iter().enumerate() {
-                    if k > 0 {
-                        steps.push((p.0, front[k - 1].1));
-                    }
-                    steps.push(*p);
-                }
-                steps.push((x1, front.last().map_or(y0, |p| p.1)));
-                let steps: Vec<(f64, f64)> = steps.into_iter().filter(ok).collect();
-                chart
-                    .draw_series(LineSeries::new(steps, BLACK.stroke_width(2)))
-                    .map_err(e)?;
-            }
-            for s in &plot.series {
-                let c = colour(s.style, s.alpha);
-                let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(ok).collect();
-                if s.line {
-                    chart
-                        .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
-                        .map_err(e)?;
-                }
-                if s.marker > 0 {
-                    let z = s.marker as i32;
-                    let at = |p: &(f64, f64)| EmptyElement::at(*p);
-                    match (shape(s.style) / 4) % 4 {
-                        0 => chart
-                            .draw_series(
-                                pts.iter()
-                                    .map(|p| at(p) + Circle::new((0, 0), z, c.filled())),
-                            )
-                            .map(|_| ()),
-                        1 => {
-                            chart
-                                .draw_series(pts.iter().map(|p| {
-                                    at(p) + TriangleMarker::new((0, 0), z + 1, c.filled())
-                                }))
-                                .map(|_| ())
-                        }
-                        2 => {
-                            chart
-                                .draw_series(pts.iter().map(|p| {
-                                    at(p) + Rectangle::new([(-z, -z), (z, z)], c.filled())
-                                }))
-                                .map(|_| ())
-                        }
-                        _ => chart
-                            .draw_series(
-                                pts.iter()
-                                    .map(|p| at(p) + Cross::new((0, 0), z, c.stroke_width(2))),
-                            )
-                            .map(|_| ()),
-                    }
-                    .map_err(e)?;
-                }
-            }
-        }};
-    }
+    // The coordinate type differs with each combination of log axes, so
+    // each gets its own instance of the generic chart drawing.
+    let corner = (x1, y0);
     match (plot.log_x, plot.log_y) {
-        (false, false) => body!(builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?),
-        (false, true) => body!(
+        (false, false) => draw_chart(
+            builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?,
+            plot,
+            corner,
+        )?,
+        (false, true) => draw_chart(
             builder
                 .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-                .map_err(e)?
-        ),
-        (true, false) => body!(
+                .map_err(e)?,
+            plot,
+            corner,
+        )?,
+        (true, false) => draw_chart(
             builder
                 .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
-                .map_err(e)?
-        ),
-        (true, true) => body!(
+                .map_err(e)?,
+            plot,
+            corner,
+        )?,
+        (true, true) => draw_chart(
             builder
                 .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-                .map_err(e)?
-        ),
+                .map_err(e)?,
+            plot,
+            corner,
+        )?,
     }
-    // The legend, beside the plot.
+    draw_legend(&legend_area, plot)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// The axes, the Pareto front and the series in the chart; `corner` is
+/// `(x_max, y_min)` of the axes, where the front's last step ends.
+fn draw_chart<DB, X, Y>(
+    mut chart: ChartContext<'_, DB, Cartesian2d<X, Y>>,
+    plot: &Plot,
+    corner: (f64, f64),
+) -> Result<(), String>
+where
+    DB: DrawingBackend,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let xfmt = |x: &f64| x_tick(*x, plot);
+    let yfmt = |y: &f64| tick(*y, plot.log_y);
+    chart
+        .configure_mesh()
+        .x_desc(plot.x_label.as_str())
+        .y_desc(plot.y_label.as_str())
+        .x_label_formatter(&xfmt)
+        .y_label_formatter(&yfmt)
+        .light_line_style(WHITE)
+        .draw()
+        .map_err(e)?;
+    if let Some(front) = &plot.pareto {
+        draw_pareto(&mut chart, plot, front, corner)?;
+    }
+    for s in &plot.series {
+        draw_series(&mut chart, plot, s)?;
+    }
+    Ok(())
+}
+
+/// An x tick label: with [`Plot::integer_x`] only whole numbers are
+/// labelled (ranks, degrees), else as [`tick`].
+fn x_tick(x: f64, plot: &Plot) -> String {
+    if plot.integer_x {
+        if (x - x.round()).abs() < 1e-9 {
+            format!("{:.0}", x)
+        } else {
+            String::new()
+        }
+    } else {
+        tick(x, plot.log_x)
+    }
+}
+
+/// Whether a point can be drawn on the plot's axes (finite, and positive
+/// on a log axis): the others are left out rather than failing the plot.
+fn drawable(plot: &Plot, (x, y): &(f64, f64)) -> bool {
+    x.is_finite() && y.is_finite() && (!plot.log_x || *x > 0.0) && (!plot.log_y || *y > 0.0)
+}
+
+/// The Pareto front as a step line: the best error reachable within a time
+/// budget, held to the right edge (`corner.0`) after the last point.
+fn draw_pareto<DB, CT>(
+    chart: &mut ChartContext<'_, DB, CT>,
+    plot: &Plot,
+    front: &[(f64, f64)],
+    (x1, y0): (f64, f64),
+) -> Result<(), String>
+where
+    DB: DrawingBackend,
+    CT: CoordTranslate<From = (f64, f64)>,
+{
+    let mut steps = Vec::new();
+    for (k, p) in front.iter().enumerate() {
+        if k > 0 {
+            steps.push((p.0, front[k - 1].1));
+        }
+        steps.push(*p);
+    }
+    steps.push((x1, front.last().map_or(y0, |p| p.1)));
+    let steps: Vec<(f64, f64)> = steps.into_iter().filter(|p| drawable(plot, p)).collect();
+    chart
+        .draw_series(LineSeries::new(steps, BLACK.stroke_width(2)))
+        .map_err(|x| x.to_string())?;
+    Ok(())
+}
+
+/// One series: its line, then its markers on top, in the shape of
+/// [`shape`] (the same as in the legend).
+fn draw_series<DB, CT>(
+    chart: &mut ChartContext<'_, DB, CT>,
+    plot: &Plot,
+    s: &Series,
+) -> Result<(), String>
+where
+    DB: DrawingBackend,
+    CT: CoordTranslate<From = (f64, f64)>,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let c = colour(s.style, s.alpha);
+    let pts: Vec<(f64, f64)> = s
+        .points
+        .iter()
+        .copied()
+        .filter(|p| drawable(plot, p))
+        .collect();
+    if s.line {
+        chart
+            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
+            .map_err(e)?;
+    }
+    if s.marker == 0 {
+        return Ok(());
+    }
+    let z = s.marker as i32;
+    let at = |p: &(f64, f64)| EmptyElement::at(*p);
+    match (shape(s.style) / 4) % 4 {
+        0 => chart
+            .draw_series(
+                pts.iter()
+                    .map(|p| at(p) + Circle::new((0, 0), z, c.filled())),
+            )
+            .map(|_| ()),
+        1 => chart
+            .draw_series(
+                pts.iter()
+                    .map(|p| at(p) + TriangleMarker::new((0, 0), z + 1, c.filled())),
+            )
+            .map(|_| ()),
+        2 => chart
+            .draw_series(
+                pts.iter()
+                    .map(|p| at(p) + Rectangle::new([(-z, -z), (z, z)], c.filled())),
+            )
+            .map(|_| ()),
+        _ => chart
+            .draw_series(
+                pts.iter()
+                    .map(|p| at(p) + Cross::new((0, 0), z, c.stroke_width(2))),
+            )
+            .map(|_| ()),
+    }
+    .map_err(e)
+}
+
+/// The legend, beside the plot (never over the data): a line and a marker
+/// per named series as drawn in the chart, then the Pareto front's line.
+fn draw_legend<DB: DrawingBackend>(
+    legend_area: &DrawingArea<DB, Shift>,
+    plot: &Plot,
+) -> Result<(), String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     let mut y = 50;
     let text = |s: &str, x: i32, y: i32| {
         legend_area
@@ -290,7 +361,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
                 .draw(&PathElement::new(vec![(4, y), (28, y)], c.stroke_width(2)))
                 .map_err(e)?;
         }
-        marker(&legend_area, (16, y), shape(s.style), s.marker.max(3), c)?;
+        marker(legend_area, (16, y), shape(s.style), s.marker.max(3), c)?;
         text(s.name.as_deref().unwrap_or(""), 36, y - 7)?;
         y += 22;
     }
@@ -303,7 +374,6 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &Plot) -> Result
             .map_err(e)?;
         text("Pareto front", 36, y - 7)?;
     }
-    root.present().map_err(e)?;
     Ok(())
 }
 

@@ -694,106 +694,231 @@ struct Fallback {
 /// The reweighting loop from the ordinary least-squares solution in `cur.b`.
 fn iterate(
     prob: &Problem<'_>,
-    mut cur: Point,
+    cur: Point,
     tol: f64,
     mut work: Work,
 ) -> Result<IrlsSolution, SolveError> {
-    let (opts, m, p) = (prob.options, prob.y.len(), prob.x.ncols());
-    prob.evaluate(&mut cur, &mut work.pairs);
-    let (mut next, mut cand) = (Point::new(m, p), Point::new(m, p));
-    let mut spare: Option<Point> = None;
-    let mut trial: Option<Fallback> = None;
-    let mut w = vec![1.0; m];
-    let mut anderson = (opts.acceleration && opts.anderson_memory > 0)
-        .then(|| Anderson::new(opts.anderson_memory));
-    let (mut accelerated, mut same) = (0, 0);
-    let done =
-        |coef, w, iterations, termination: IrlsTermination, scale, accelerated| IrlsSolution {
-            coef,
-            weights: w,
-            iterations,
-            termination,
-            accelerated_steps: accelerated,
-            scale,
-            convention: opts.scale,
-        };
-    let mut dev_old = prob.deviance(&cur.r, &w);
-    let mut last_g = cur.b.clone();
-    let mut s_w = cur.s;
-    let mut recent = opts
-        .stop_on_cycle
-        .then(|| Recent(std::collections::VecDeque::with_capacity(CYCLE_MEMORY)));
+    let opts = prob.options;
+    let mut state = Reweighting::start(prob, cur, &mut work);
     for it in 1..=opts.max_iterations {
-        if !(cur.s > prob.zero_scale) {
+        if let Some(t) = state.iteration(prob, tol, &mut work)? {
+            return Ok(state.solution(opts, it, t));
+        }
+    }
+    let t = IrlsTermination::IterationCap;
+    Ok(state.solution(opts, opts.max_iterations, t))
+}
+
+/// The state the reweighting loop carries from one iteration to the next.
+/// The points are buffers swapped between the roles, so an iteration
+/// allocates nothing for them.
+struct Reweighting {
+    /// The point `b` the next plain step starts from.
+    cur: Point,
+    /// The plain step `G(b)` of the current iteration.
+    next: Point,
+    /// The accelerated proposal.
+    cand: Point,
+    /// A point buffer free for the next trial's [`Fallback`].
+    spare: Option<Point>,
+    /// The plain step kept while an accelerated point is on trial.
+    trial: Option<Fallback>,
+    /// The robust weights of the latest weighted solve (1 before the first).
+    w: Vec<f64>,
+    /// The acceleration (`None`: MATLAB's plain loop).
+    anderson: Option<Anderson>,
+    /// Iterations whose next point came from the acceleration.
+    accelerated: usize,
+    /// Consecutive iterations with an unchanged [`Pattern`].
+    same: usize,
+    /// The deviance test's previous value: the deviance of the latest
+    /// plain step kept.
+    dev_old: f64,
+    /// The latest plain step `G(b)`: what the cap returns, being the
+    /// weighted least-squares solution for the returned weights.
+    last_g: Vec<f64>,
+    /// The scale the latest weights were computed with.
+    s_w: f64,
+    /// The cycle test's memory, for [`IrlsOptions::stop_on_cycle`].
+    recent: Option<Recent>,
+}
+
+impl Reweighting {
+    /// The loop's state at the ordinary least-squares solution `cur.b`,
+    /// with weights 1.
+    fn start(prob: &Problem<'_>, mut cur: Point, work: &mut Work) -> Self {
+        let (opts, m, p) = (prob.options, prob.y.len(), prob.x.ncols());
+        prob.evaluate(&mut cur, &mut work.pairs);
+        let w = vec![1.0; m];
+        let dev_old = prob.deviance(&cur.r, &w);
+        Self {
+            next: Point::new(m, p),
+            cand: Point::new(m, p),
+            spare: None,
+            trial: None,
+            w,
+            anderson: (opts.acceleration && opts.anderson_memory > 0)
+                .then(|| Anderson::new(opts.anderson_memory)),
+            accelerated: 0,
+            same: 0,
+            dev_old,
+            last_g: cur.b.clone(),
+            s_w: cur.s,
+            recent: opts
+                .stop_on_cycle
+                .then(|| Recent(std::collections::VecDeque::with_capacity(CYCLE_MEMORY))),
+            cur,
+        }
+    }
+
+    /// One iteration: the plain step from the current point, the stopping
+    /// tests on it, then the choice of the next point. Returns the
+    /// termination when the loop ends here.
+    fn iteration(
+        &mut self,
+        prob: &Problem<'_>,
+        tol: f64,
+        work: &mut Work,
+    ) -> Result<Option<IrlsTermination>, SolveError> {
+        if !(self.cur.s > prob.zero_scale) {
             // An exact fit of the weighted points (up to rounding): nothing
             // to reweight; the weights that produced it are kept.
-            let t = IrlsTermination::ExactFit;
-            return Ok(done(cur.b, w, it - 1, t, 0.0, accelerated));
+            return Ok(Some(IrlsTermination::ExactFit));
         }
-        reweight(prob, &cur, &mut w)?;
-        s_w = cur.s;
-        prob.solve(Some(&w), &mut work, &mut next.b)?;
-        prob.evaluate(&mut next, &mut work.pairs);
-        last_g.copy_from_slice(&next.b);
-        let dev = match opts.stopping {
-            StoppingTest::Deviance => prob.deviance(&next.r, &w),
+        let dev = self.plain_step(prob, work)?;
+        if let Some(t) = self.stopped(prob.options, tol, dev) {
+            return Ok(Some(t));
+        }
+        let step = distance(&self.next.r, &self.cur.r);
+        if self.reject_trial(step) {
+            return Ok(None);
+        }
+        self.advance(prob, work, dev, step)?;
+        Ok(None)
+    }
+
+    /// The weights at the current point and the weighted least-squares
+    /// solution `G(b)` into `next`. Returns its deviance when the deviance
+    /// test needs it (0 for the coefficient test, which would waste a pass
+    /// over the rows on it).
+    fn plain_step(&mut self, prob: &Problem<'_>, work: &mut Work) -> Result<f64, SolveError> {
+        reweight(prob, &self.cur, &mut self.w)?;
+        self.s_w = self.cur.s;
+        prob.solve(Some(&self.w), work, &mut self.next.b)?;
+        prob.evaluate(&mut self.next, &mut work.pairs);
+        self.last_g.copy_from_slice(&self.next.b);
+        Ok(match prob.options.stopping {
+            StoppingTest::Deviance => prob.deviance(&self.next.r, &self.w),
             StoppingTest::Coefficients => 0.0,
-        };
-        if let Some(t) = stop_test(opts.stopping, tol, &next.b, &cur.b, dev, dev_old) {
-            return Ok(done(next.b, w, it, t, cur.s, accelerated));
+        })
+    }
+
+    /// The stopping test on the plain step, then the cycle test (which
+    /// also remembers the step).
+    fn stopped(&mut self, opts: &IrlsOptions, tol: f64, dev: f64) -> Option<IrlsTermination> {
+        let (g, b) = (&self.next.b, &self.cur.b);
+        if let Some(t) = stop_test(opts.stopping, tol, g, b, dev, self.dev_old) {
+            return Some(t);
         }
-        if let Some(r) = recent.as_mut()
-            && r.recurs(&next.b, tol)
+        if let Some(r) = self.recent.as_mut()
+            && r.recurs(g, tol)
         {
-            let t = IrlsTermination::Cycle;
-            return Ok(done(next.b, w, it, t, cur.s, accelerated));
+            return Some(IrlsTermination::Cycle);
         }
-        let step = distance(&next.r, &cur.r);
-        if let Some(fb) = trial.take() {
-            if step > fb.step {
-                // The extrapolated point moves more than the point it came
-                // from: drop it and continue from that point's plain step.
-                spare = Some(std::mem::replace(&mut cur, fb.point));
-                dev_old = fb.deviance;
-                accelerated -= 1;
-                same = 0;
-                if let Some(a) = anderson.as_mut() {
-                    a.reset();
-                }
-                continue;
+        None
+    }
+
+    /// Judge the accelerated point on trial, if any, by the size of its
+    /// plain step. When it moves more than the point it was extrapolated
+    /// from, it is dropped and the loop continues from that point's plain
+    /// step, with the acceleration's history cleared (returns true: the
+    /// iteration ends there).
+    fn reject_trial(&mut self, step: f64) -> bool {
+        let Some(fb) = self.trial.take() else {
+            return false;
+        };
+        if step > fb.step {
+            self.spare = Some(std::mem::replace(&mut self.cur, fb.point));
+            self.dev_old = fb.deviance;
+            self.accelerated -= 1;
+            self.same = 0;
+            if let Some(a) = self.anderson.as_mut() {
+                a.reset();
             }
-            spare = Some(fb.point);
+            return true;
         }
-        dev_old = dev;
-        same = if next.pat == cur.pat { same + 1 } else { 0 };
-        let proposed = match anderson.as_mut() {
+        self.spare = Some(fb.point);
+        false
+    }
+
+    /// Move to the next point: the Anderson proposal once the pattern has
+    /// been stable for [`STABLE_ITERATIONS`] and only if the proposal keeps
+    /// it (the plain step then waits as its [`Fallback`]), else the plain
+    /// step.
+    fn advance(
+        &mut self,
+        prob: &Problem<'_>,
+        work: &mut Work,
+        dev: f64,
+        step: f64,
+    ) -> Result<(), SolveError> {
+        let (m, p) = (prob.y.len(), prob.x.ncols());
+        self.dev_old = dev;
+        self.same = if self.next.pat == self.cur.pat {
+            self.same + 1
+        } else {
+            0
+        };
+        let proposed = match self.anderson.as_mut() {
             Some(a) => {
-                if same == 0 {
+                if self.same == 0 {
                     a.reset();
                 }
-                a.propose(&cur.b, &next.b, &mut cand.b)? && same >= STABLE_ITERATIONS
+                a.propose(&self.cur.b, &self.next.b, &mut self.cand.b)?
+                    && self.same >= STABLE_ITERATIONS
             }
             None => false,
         };
         // Only a point on the same smooth piece (same pattern) is tried.
         let accept = proposed && {
-            prob.evaluate(&mut cand, &mut work.pairs);
-            cand.pat == cur.pat
+            prob.evaluate(&mut self.cand, &mut work.pairs);
+            self.cand.pat == self.cur.pat
         };
         if accept {
-            let plain =
-                std::mem::replace(&mut next, spare.take().unwrap_or_else(|| Point::new(m, p)));
-            trial = Some(Fallback {
+            let spare = self.spare.take().unwrap_or_else(|| Point::new(m, p));
+            let plain = std::mem::replace(&mut self.next, spare);
+            self.trial = Some(Fallback {
                 point: plain,
                 deviance: dev,
                 step,
             });
-            std::mem::swap(&mut cur, &mut cand);
-            accelerated += 1;
+            std::mem::swap(&mut self.cur, &mut self.cand);
+            self.accelerated += 1;
         } else {
-            std::mem::swap(&mut cur, &mut next);
+            std::mem::swap(&mut self.cur, &mut self.next);
+        }
+        Ok(())
+    }
+
+    /// The solution when the loop ended with `termination` at iteration
+    /// `it`. A plain step that passed a test is returned with the scale its
+    /// weights came from; an exact fit is found before iteration `it`
+    /// solves anything, so that iteration does not count, and its current
+    /// point is returned; at the cap the latest plain step is returned.
+    fn solution(self, opts: &IrlsOptions, it: usize, termination: IrlsTermination) -> IrlsSolution {
+        let (coef, iterations, scale) = match termination {
+            IrlsTermination::ExactFit => (self.cur.b, it - 1, 0.0),
+            IrlsTermination::IterationCap => (self.last_g, it, self.s_w),
+            _ => (self.next.b, it, self.cur.s),
+        };
+        IrlsSolution {
+            coef,
+            weights: self.w,
+            iterations,
+            termination,
+            accelerated_steps: self.accelerated,
+            scale,
+            convention: opts.scale,
         }
     }
-    let t = IrlsTermination::IterationCap;
-    Ok(done(last_g, w, opts.max_iterations, t, s_w, accelerated))
 }

@@ -87,31 +87,71 @@ pub fn lstsq(
     }
     check_finite("A", a)?;
     check_finite("b", b)?;
-    let sw: Vec<f64> = match weights {
-        None => vec![1.0; m],
-        Some(w) => {
-            if w.len() != m {
-                return Err(SolveError::Dimension {
-                    what: "weights vs rows",
-                    left: w.len(),
-                    right: m,
-                });
-            }
-            if let Some((_, &bad)) = w
-                .iter()
-                .enumerate()
-                .find(|(_, x)| !(x.is_finite() && **x >= 0.0))
-            {
-                return Err(SolveError::InvalidOption {
-                    name: "weight",
-                    value: bad,
-                    reason: "weights must be finite and >= 0",
-                });
-            }
-            w.iter().map(|x| x.sqrt()).collect()
+    let sw = sqrt_weights(weights, m)?;
+    let (aw, bw, scale) = scaled_problem(a, b, &sw);
+    let tol = (m.max(n) as f64) * f64::EPSILON;
+    let (mut y, rank, condition, used) = match method {
+        LstsqMethod::PivotedQr => pivoted_qr_solve(&aw, &bw, tol)?,
+        LstsqMethod::Svd => {
+            let (y, rank, cond) = svd_solve(&aw, &bw, tol)?;
+            (y, rank, cond, LstsqMethod::Svd)
         }
+        LstsqMethod::NormalEquations => normal_equations_solve(&aw, &bw)?,
     };
-    // Row weights, then column scaling to unit norm (zero columns keep 1).
+    for j in 0..n {
+        for c in 0..y.ncols() {
+            y[(j, c)] /= scale[j];
+        }
+    }
+    let residual_norm = residual_norms(a, b, y.as_ref(), &sw);
+    Ok(LstsqSolution {
+        x: y,
+        rank,
+        residual_norm,
+        condition,
+        method: used,
+    })
+}
+
+/// The square roots of the row weights (all 1 without weights): the rows
+/// of `A` and `b` are multiplied by them, so that an ordinary least-squares
+/// solve minimises the weighted norm. A negative or non-finite weight is
+/// refused: its square root would put a NaN or an infinity into the rows.
+fn sqrt_weights(weights: Option<&[f64]>, m: usize) -> Result<Vec<f64>, SolveError> {
+    let Some(w) = weights else {
+        return Ok(vec![1.0; m]);
+    };
+    if w.len() != m {
+        return Err(SolveError::Dimension {
+            what: "weights vs rows",
+            left: w.len(),
+            right: m,
+        });
+    }
+    if let Some((_, &bad)) = w
+        .iter()
+        .enumerate()
+        .find(|(_, x)| !(x.is_finite() && **x >= 0.0))
+    {
+        return Err(SolveError::InvalidOption {
+            name: "weight",
+            value: bad,
+            reason: "weights must be finite and >= 0",
+        });
+    }
+    Ok(w.iter().map(|x| x.sqrt()).collect())
+}
+
+/// The weighted design with its columns scaled to unit norm, the weighted
+/// right-hand sides, and the column scales (zero columns keep 1). Unit
+/// columns make the rank test `|R_kk| > tol |R_00|` independent of the
+/// units of the coefficients; the caller divides the solution by the scales.
+fn scaled_problem(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    sw: &[f64],
+) -> (Mat<f64>, Mat<f64>, Vec<f64>) {
+    let (m, n) = (a.nrows(), a.ncols());
     let mut aw = Mat::from_fn(m, n, |i, j| sw[i] * a[(i, j)]);
     let bw = Mat::from_fn(m, b.ncols(), |i, j| sw[i] * b[(i, j)]);
     let scale: Vec<f64> = (0..n)
@@ -125,50 +165,68 @@ pub fn lstsq(
             aw[(i, j)] /= scale[j];
         }
     }
-    let tol = (m.max(n) as f64) * f64::EPSILON;
-    let (mut y, rank, condition, used) = match method {
-        LstsqMethod::PivotedQr => {
-            let qr = aw.col_piv_qr();
-            let r = qr.thin_R();
-            let k = m.min(n);
-            let r0 = r[(0, 0)].abs();
-            let rank = (0..k).filter(|&i| r[(i, i)].abs() > tol * r0).count();
-            if rank == n {
-                let cond = if rank > 0 {
-                    r0 / r[(rank - 1, rank - 1)].abs()
-                } else {
-                    f64::INFINITY
-                };
-                (qr.solve_lstsq(&bw), rank, cond, LstsqMethod::PivotedQr)
-            } else {
-                let (y, rank, cond) = svd_solve(&aw, &bw, tol)?;
-                (y, rank, cond, LstsqMethod::Svd)
-            }
-        }
-        LstsqMethod::Svd => {
-            let (y, rank, cond) = svd_solve(&aw, &bw, tol)?;
-            (y, rank, cond, LstsqMethod::Svd)
-        }
-        LstsqMethod::NormalEquations => {
-            let ata = aw.transpose() * &aw;
-            let atb = aw.transpose() * &bw;
-            let llt = ata
-                .llt(Side::Lower)
-                .map_err(|e| SolveError::Factorisation {
-                    method: "Cholesky of the normal equations",
-                    reason: format!("{e:?}"),
-                })?;
-            use faer::linalg::solvers::Solve;
-            let y = llt.solve(&atb);
-            (y, n, f64::NAN, LstsqMethod::NormalEquations)
-        }
-    };
-    for j in 0..n {
-        for c in 0..y.ncols() {
-            y[(j, c)] /= scale[j];
-        }
+    (aw, bw, scale)
+}
+
+/// Column-pivoted QR of the scaled design, returning `(x, rank, condition,
+/// method)`. The rank is counted from `R`'s diagonal as `xGELSY` does; a
+/// rank-deficient design is re-solved by [`svd_solve`] for its minimum-norm
+/// solution (dividing by the negligible pivots would amplify rounding) and
+/// reported as SVD.
+fn pivoted_qr_solve(
+    aw: &Mat<f64>,
+    bw: &Mat<f64>,
+    tol: f64,
+) -> Result<(Mat<f64>, usize, f64, LstsqMethod), SolveError> {
+    let (m, n) = (aw.nrows(), aw.ncols());
+    let qr = aw.col_piv_qr();
+    let r = qr.thin_R();
+    let k = m.min(n);
+    let r0 = r[(0, 0)].abs();
+    let rank = (0..k).filter(|&i| r[(i, i)].abs() > tol * r0).count();
+    if rank == n {
+        let cond = if rank > 0 {
+            r0 / r[(rank - 1, rank - 1)].abs()
+        } else {
+            f64::INFINITY
+        };
+        Ok((qr.solve_lstsq(bw), rank, cond, LstsqMethod::PivotedQr))
+    } else {
+        let (y, rank, cond) = svd_solve(aw, bw, tol)?;
+        Ok((y, rank, cond, LstsqMethod::Svd))
     }
-    let residual_norm = (0..b.ncols())
+}
+
+/// Cholesky of `A^T A` on the scaled design, returning `(x, n, NaN,
+/// method)`: this method estimates neither the rank nor the condition
+/// number, so the rank is reported as full and the condition as unknown.
+fn normal_equations_solve(
+    aw: &Mat<f64>,
+    bw: &Mat<f64>,
+) -> Result<(Mat<f64>, usize, f64, LstsqMethod), SolveError> {
+    use faer::linalg::solvers::Solve;
+    let ata = aw.transpose() * aw;
+    let atb = aw.transpose() * bw;
+    let llt = ata
+        .llt(Side::Lower)
+        .map_err(|e| SolveError::Factorisation {
+            method: "Cholesky of the normal equations",
+            reason: format!("{e:?}"),
+        })?;
+    let y = llt.solve(&atb);
+    Ok((y, aw.ncols(), f64::NAN, LstsqMethod::NormalEquations))
+}
+
+/// `||W^(1/2)(A x - b)||` per right-hand side, from the unscaled `A` and
+/// `b`, so that the reported norm is that of the returned `x`.
+fn residual_norms(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    y: MatRef<'_, f64>,
+    sw: &[f64],
+) -> Vec<f64> {
+    let (m, n) = (a.nrows(), a.ncols());
+    (0..b.ncols())
         .map(|c| {
             (0..m)
                 .map(|i| {
@@ -179,14 +237,7 @@ pub fn lstsq(
                 .sum::<f64>()
                 .sqrt()
         })
-        .collect();
-    Ok(LstsqSolution {
-        x: y,
-        rank,
-        residual_norm,
-        condition,
-        method: used,
-    })
+        .collect()
 }
 
 /// Minimum-norm solution by thin SVD; returns `(x, rank, s_max/s_min_kept)`.
