@@ -1,7 +1,9 @@
-//! The README's quick-start times are the ones `benches/readme/quickstart.sh`
-//! measured and wrote into `results/quickstart.md`, for the commands the
-//! quick-start block holds now: a command edited without rerunning the
-//! script, or a time edited by hand, fails here.
+//! The README's times are the ones its scripts measured: the quick start's
+//! those `benches/readme/quickstart.sh` wrote into `results/quickstart.md`,
+//! the set-up commands' those `benches/readme/setup.sh` wrote into
+//! `results/setup.md`, each for the commands the README holds now: a
+//! command edited without rerunning the script, or a time edited by hand,
+//! fails here.
 
 use std::path::PathBuf;
 
@@ -33,23 +35,40 @@ fn quick_start_commands(readme: &str) -> Vec<String> {
         .collect()
 }
 
-#[test]
-fn quick_start_times_are_the_script_s_for_the_commands_shown() {
-    let readme = read("README.md");
-    let begin = "<!-- quickstart-times: benches/readme/quickstart.sh -->";
-    let end = "<!-- /quickstart-times -->";
+/// The commands of the set-up section's plain code blocks.
+fn set_up_commands(readme: &str) -> Vec<String> {
+    let start = readme.find("## Set-up").expect("a set-up section");
+    let section = &readme[start + 1..];
+    let section = &section[..section.find("\n## ").unwrap_or(section.len())];
+    section
+        .split("```")
+        .skip(1)
+        .step_by(2)
+        .map(|block| block.trim().to_string())
+        .collect()
+}
+
+/// Check that the README's table between the `marker` comments is the
+/// table of `results` and times exactly `commands`, each a number.
+fn check_timed_table(readme: &str, marker: &str, results: &str, commands: &[String]) {
+    let begin = format!("<!-- {marker}: benches/readme/");
+    let end = format!("<!-- /{marker} -->");
     let inside = readme
-        .split(begin)
+        .split(&begin)
         .nth(1)
-        .and_then(|r| r.split(end).next())
-        .expect("the README's quickstart-times markers");
-    let results = read("results/quickstart.md");
+        .and_then(|r| r.split(&end).next())
+        .unwrap_or_else(|| panic!("the README's {marker} markers"));
+    let script = format!(
+        "benches/readme/{}",
+        inside.split(" -->").next().unwrap_or("")
+    );
+    let results_text = read(results);
     assert_eq!(
         table_rows(inside),
-        table_rows(&results),
-        "README's times differ from results/quickstart.md: rerun benches/readme/quickstart.sh"
+        table_rows(&results_text),
+        "README's times differ from {results}: rerun {script}"
     );
-    let timed: Vec<String> = table_rows(&results)
+    let timed: Vec<String> = table_rows(&results_text)
         .iter()
         .skip(2)
         .map(|row| {
@@ -58,16 +77,35 @@ fn quick_start_times_are_the_script_s_for_the_commands_shown() {
         })
         .collect();
     assert_eq!(
-        timed,
-        quick_start_commands(&readme),
-        "the quick-start block changed: rerun benches/readme/quickstart.sh"
+        timed, commands,
+        "the README's commands changed: rerun {script}"
     );
-    for row in table_rows(&results).iter().skip(2) {
-        let secs: f64 = row
+    for row in table_rows(&results_text).iter().skip(2) {
+        let time: f64 = row
             .split('|')
             .nth(2)
             .and_then(|c| c.trim().parse().ok())
             .unwrap_or_else(|| panic!("no time in {row}"));
-        assert!(secs.is_finite() && secs >= 0.0, "{row}");
+        assert!(time.is_finite() && time >= 0.0, "{row}");
     }
+}
+
+#[test]
+fn quick_start_times_are_the_script_s_for_the_commands_shown() {
+    let readme = read("README.md");
+    let commands = quick_start_commands(&readme);
+    check_timed_table(
+        &readme,
+        "quickstart-times",
+        "results/quickstart.md",
+        &commands,
+    );
+}
+
+#[test]
+fn set_up_times_are_the_script_s_for_the_two_commands() {
+    let readme = read("README.md");
+    let commands = set_up_commands(&readme);
+    assert_eq!(commands.len(), 2, "the set-up section holds two commands");
+    check_timed_table(&readme, "setup-times", "results/setup.md", &commands);
 }
