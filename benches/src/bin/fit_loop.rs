@@ -16,47 +16,90 @@ use std::time::Instant;
 use brdf_benches::peers::process_cpu_seconds;
 use brdf_fit::{ChannelMode, FitOutcome, FitRequest, Material, Metric};
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut args = std::env::args().skip(1);
-    let usage = "fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--metric M] [--json]";
-    let data = args.next().ok_or(usage)?;
-    let model = args.next().ok_or(usage)?;
-    let (mut reps, mut grey, mut lobes) = (10usize, false, 1usize);
-    let mut lm = brdf_solve::LmOptions::default();
-    let mut search = None;
-    let mut json = false;
-    let mut metric = None;
-    while let Some(a) = args.next() {
-        match a.as_str() {
-            "--grey" => grey = true,
-            "--json" => json = true,
-            "--reps" => reps = args.next().ok_or(usage)?.parse()?,
-            "--lobes" => lobes = args.next().ok_or(usage)?.parse()?,
-            "--metric" => metric = Some(brdf_fit::Objective::parse(&args.next().ok_or(usage)?)?),
-            "--search-tol" => search = Some(args.next().ok_or(usage)?.parse()?),
-            "--tol" => {
-                let t: f64 = args.next().ok_or(usage)?.parse()?;
-                (lm.ftol, lm.xtol, lm.gtol) = (t, t, t);
-            }
-            _ => return Err(usage.into()),
+const USAGE: &str = "fit_loop DATA MODEL [--grey] [--reps N] [--lobes K] [--tol T] [--search-tol T] [--metric M] [--json]";
+
+/// The command line: the data, the model, the repetitions, JSON output,
+/// and the request's settings ([`Settings::apply`]).
+struct Args {
+    data: String,
+    model: String,
+    reps: usize,
+    json: bool,
+    settings: Settings,
+}
+
+/// What the command line changes in the fit request.
+#[derive(Default)]
+struct Settings {
+    grey: bool,
+    lobes: Option<usize>,
+    lm: brdf_solve::LmOptions,
+    search: Option<f64>,
+    metric: Option<brdf_fit::Objective>,
+}
+
+impl Settings {
+    fn apply(self, request: &mut FitRequest) {
+        if self.grey {
+            request.channels = ChannelMode::Grey;
+        }
+        if let Some(k) = self.lobes {
+            request.config.lobes = k;
+        }
+        request.lm = self.lm;
+        if let Some(o) = self.metric {
+            request.metric = Metric::Objective(o);
+        }
+        if let Some(t) = self.search {
+            request.search_tolerance = t;
         }
     }
+}
+
+fn parse_args() -> Result<Args, Box<dyn std::error::Error>> {
+    let mut args = std::env::args().skip(1);
+    let data = args.next().ok_or(USAGE)?;
+    let model = args.next().ok_or(USAGE)?;
+    let (mut reps, mut json, mut settings) = (10usize, false, Settings::default());
+    while let Some(a) = args.next() {
+        let mut value = || args.next().ok_or(USAGE);
+        match a.as_str() {
+            "--grey" => settings.grey = true,
+            "--json" => json = true,
+            "--reps" => reps = value()?.parse()?,
+            "--lobes" => settings.lobes = Some(value()?.parse()?),
+            "--metric" => settings.metric = Some(brdf_fit::Objective::parse(&value()?)?),
+            "--search-tol" => settings.search = Some(value()?.parse()?),
+            "--tol" => {
+                let t: f64 = value()?.parse()?;
+                let lm = &mut settings.lm;
+                (lm.ftol, lm.xtol, lm.gtol) = (t, t, t);
+            }
+            _ => return Err(USAGE.into()),
+        }
+    }
+    Ok(Args {
+        data,
+        model,
+        reps,
+        json,
+        settings,
+    })
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let Args {
+        data,
+        model,
+        reps,
+        json,
+        settings,
+    } = parse_args()?;
+    let grey = settings.grey;
     // The samples alone (no dense data): a fit's time, not the judge's.
     let material = Material::new(&data, brdf_io::load(&data)?, None);
     let mut request = FitRequest::new(&material, brdf_fit::resolve(&model)?);
-    request.channels = if grey {
-        ChannelMode::Grey
-    } else {
-        ChannelMode::Rgb
-    };
-    request.config.lobes = lobes;
-    request.lm = lm;
-    if let Some(o) = metric {
-        request.metric = Metric::Objective(o);
-    }
-    if let Some(t) = search {
-        request.search_tolerance = t;
-    }
+    settings.apply(&mut request);
     let mut times = Vec::with_capacity(reps);
     let mut last = None;
     let cpu0 = process_cpu_seconds();

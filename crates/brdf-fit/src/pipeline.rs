@@ -53,42 +53,12 @@ pub fn fit(
     opts: &FitOptions,
 ) -> Result<FitSummary, FitError> {
     let t0 = Instant::now();
-    if model.channels() != data.channels() {
-        return Err(FitError::ChannelMismatch {
-            model: model.name().to_string(),
-            model_channels: model.channels(),
-            data: data.name.clone(),
-            data_channels: data.channels(),
-        });
-    }
-    let specs = model.param_specs().to_vec();
-    let np = specs.len();
-    if data.len() * data.channels() <= np {
-        return Err(FitError::TooFewSamples {
-            samples: data.len(),
-            channels: data.channels(),
-            parameters: np,
-            model: model.name().to_string(),
-        });
-    }
-    let all_linear = specs.iter().all(|s| s.linear);
+    check_sizes(model, data)?;
+    let all_linear = model.param_specs().iter().all(|s| s.linear);
     let scales = opts.objective.row_scales(data);
     let values = data.values_channel_major();
-    let entry = brdf_models::entry(model.name());
-    let fact = |f: fn(&brdf_models::ModelEntry) -> bool| entry.as_ref().is_some_and(f);
-    let solver_kind = match opts.solver {
-        Solver::Auto if all_linear && fact(|e| e.linear_solver == LinearSolver::RobustIrls) => {
-            Solver::Irls(RobustWeight::Bisquare)
-        }
-        Solver::Auto if all_linear => Solver::Ols,
-        Solver::Auto if fact(|e| e.nonlinear_search == NonlinearSearch::AllParameters) => {
-            Solver::Lm
-        }
-        Solver::Auto => Solver::Sqp,
-        s => s,
-    };
     let opts = &FitOptions {
-        solver: solver_kind,
+        solver: resolve_solver(opts.solver, model.name(), all_linear),
         ..opts.clone()
     };
     // An iterative linear fit (IRLS) says how it ended; a direct solve
@@ -97,25 +67,11 @@ pub fn fit(
     let (p, solver, rep, starts_info) = if all_linear && !opts.objective.is_transformed() {
         let linear = fit_all_linear(model, data, &scales, opts)?;
         irls_end = linear.irls;
-        let (p, how) = (linear.params, linear.how);
-        (p, how, None, (1, 1, 1))
+        (linear.params, linear.how, None, (1, 1, 1))
     } else {
-        match opts.solver {
-            Solver::Ols | Solver::Irls(_) => {
-                return Err(FitError::NeedsAllLinear {
-                    model: model.name().to_string(),
-                    parameter: specs
-                        .iter()
-                        .find(|s| !s.linear)
-                        .map_or_else(|| "?".to_string(), |s| s.name.clone()),
-                });
-            }
-            Solver::Sopp => return Err(FitError::SoppNeedsGreyModel),
-            Solver::Sqp | Solver::Lm | Solver::Auto => {
-                let f = fit_nonlinear(model, data, &values, &scales, opts, false)?;
-                (f.params, f.how, Some(f.report), f.starts)
-            }
-        }
+        check_nonlinear_solver(model, opts.solver)?;
+        let f = fit_nonlinear(model, data, &values, &scales, opts, false)?;
+        (f.params, f.how, Some(f.report), f.starts)
     };
     model.set_params(&p)?;
     let mut summary = summarise(
@@ -135,6 +91,67 @@ pub fn fit(
         summary.termination = Termination::Irls(end.termination);
     }
     Ok(summary)
+}
+
+/// Refuse data whose channels differ from the model's, or too few values
+/// for its parameters.
+fn check_sizes(model: &dyn Parametric, data: &SampleSet) -> Result<(), FitError> {
+    if model.channels() != data.channels() {
+        return Err(FitError::ChannelMismatch {
+            model: model.name().to_string(),
+            model_channels: model.channels(),
+            data: data.name.clone(),
+            data_channels: data.channels(),
+        });
+    }
+    let np = model.param_specs().len();
+    if data.len() * data.channels() <= np {
+        return Err(FitError::TooFewSamples {
+            samples: data.len(),
+            channels: data.channels(),
+            parameters: np,
+            model: model.name().to_string(),
+        });
+    }
+    Ok(())
+}
+
+/// The solver `asked` means for model `name`: [`Solver::Auto`] resolved by
+/// the catalogue entry's facts (robust IRLS or direct least squares for an
+/// all-linear model, Levenberg-Marquardt on every parameter or the
+/// projected bounded search otherwise).
+fn resolve_solver(asked: Solver, name: &str, all_linear: bool) -> Solver {
+    let entry = brdf_models::entry(name);
+    let fact = |f: fn(&brdf_models::ModelEntry) -> bool| entry.as_ref().is_some_and(f);
+    match asked {
+        Solver::Auto if all_linear && fact(|e| e.linear_solver == LinearSolver::RobustIrls) => {
+            Solver::Irls(RobustWeight::Bisquare)
+        }
+        Solver::Auto if all_linear => Solver::Ols,
+        Solver::Auto if fact(|e| e.nonlinear_search == NonlinearSearch::AllParameters) => {
+            Solver::Lm
+        }
+        Solver::Auto => Solver::Sqp,
+        s => s,
+    }
+}
+
+/// Refuse a linear-only solver for a model with non-linear parameters (or
+/// a fit in a transformed objective), and Sopp's procedure, which needs
+/// the grey model of [`fit_sopp`].
+fn check_nonlinear_solver(model: &dyn Parametric, solver: Solver) -> Result<(), FitError> {
+    match solver {
+        Solver::Ols | Solver::Irls(_) => Err(FitError::NeedsAllLinear {
+            model: model.name().to_string(),
+            parameter: model
+                .param_specs()
+                .iter()
+                .find(|s| !s.linear)
+                .map_or_else(|| "?".to_string(), |s| s.name.clone()),
+        }),
+        Solver::Sopp => Err(FitError::SoppNeedsGreyModel),
+        Solver::Sqp | Solver::Lm | Solver::Auto => Ok(()),
+    }
 }
 
 /// Sopp's two-stage procedure: `grey` is a one-channel instance of the same

@@ -563,62 +563,13 @@ impl TabulatedMicrofacet {
         samples: &SampleSet,
         opts: &ExtractOptions,
     ) -> Result<Extraction, ParamError> {
-        let pairs = samples.pairs();
-        let nc = samples.channels();
-        let collect = |max_angle: f64| -> Vec<(f64, Vec<f64>)> {
-            let chord = if max_angle == 0.0 {
-                1e-6
-            } else {
-                2.0 * (0.5 * max_angle).sin()
-            };
-            let mut back: Vec<(f64, Vec<f64>)> = (0..samples.len())
-                .filter(|&j| {
-                    let (l, v) = (pairs.l(j), pairs.v(j));
-                    (l - v).norm() <= chord && l.z > 0.0 && v.z > 0.0
-                })
-                .map(|j| {
-                    let h = (pairs.l(j) + pairs.v(j)).normalize();
-                    (
-                        h.x.hypot(h.y).atan2(h.z),
-                        (0..nc).map(|c| samples.channel(c)[j]).collect(),
-                    )
-                })
-                .collect();
-            back.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let width = if max_angle == 0.0 {
-                1e-9
-            } else {
-                0.5f64.to_radians()
-            };
-            let mut merged: Vec<(f64, Vec<f64>)> = Vec::new();
-            let mut count = 0usize;
-            let mut first = f64::NEG_INFINITY;
-            for (t, vals) in back {
-                match merged.last_mut() {
-                    Some(m) if t - first <= width => {
-                        count += 1;
-                        let w = 1.0 / count as f64;
-                        m.0 += (t - m.0) * w;
-                        for (a, b) in m.1.iter_mut().zip(&vals) {
-                            *a += (b - *a) * w;
-                        }
-                    }
-                    _ => {
-                        first = t;
-                        count = 1;
-                        merged.push((t, vals));
-                    }
-                }
-            }
-            merged
-        };
-        let exact = collect(0.0);
+        let exact = back_scattering(samples, 0.0);
         let back = if exact.len() >= MIN_BACK_SAMPLES {
             exact
         } else {
             [2.0f64, 5.0]
                 .iter()
-                .map(|a| collect(a.to_radians()))
+                .map(|a| back_scattering(samples, a.to_radians()))
                 .find(|b| b.len() >= MIN_BACK_SAMPLES)
                 .unwrap_or(exact)
         };
@@ -626,19 +577,7 @@ impl TabulatedMicrofacet {
             return Err(no_back_scattering(samples, back.len()));
         }
         let theta = TabulatedNdf::nodes(opts.nodes)?;
-        let mut rho = vec![vec![0.0; theta.len()]; nc];
-        for (j, &t) in theta.iter().enumerate() {
-            let k = back.partition_point(|b| b.0 < t).clamp(1, back.len() - 1);
-            let (a, b) = (&back[k - 1], &back[k]);
-            let w = if b.0 > a.0 {
-                ((t - a.0) / (b.0 - a.0)).clamp(0.0, 1.0)
-            } else {
-                0.5
-            };
-            for c in 0..nc {
-                rho[c][j] = a.1[c] * (1.0 - w) + b.1[c] * w;
-            }
-        }
+        let rho = onto_nodes(&back, &theta, samples.channels());
         Self::extract(theta, &rho, opts)
     }
 
@@ -800,6 +739,86 @@ impl Brdf for Dupuy {
     fn eval(&self, l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.eval_at(&self.params, l, v, out)
     }
+}
+
+/// The back-scattering samples of `samples` (`L` within `max_angle` of
+/// `V`; 0: `|L - V| <= 1e-6`) as `(theta_h, values)`, sorted by
+/// `theta_h` and averaged in groups spanning at most `1e-9` rad (exact)
+/// or 0.5 deg (near).
+fn back_scattering(samples: &SampleSet, max_angle: f64) -> Vec<(f64, Vec<f64>)> {
+    let pairs = samples.pairs();
+    let nc = samples.channels();
+    let chord = if max_angle == 0.0 {
+        1e-6
+    } else {
+        2.0 * (0.5 * max_angle).sin()
+    };
+    let mut back: Vec<(f64, Vec<f64>)> = (0..samples.len())
+        .filter(|&j| {
+            let (l, v) = (pairs.l(j), pairs.v(j));
+            (l - v).norm() <= chord && l.z > 0.0 && v.z > 0.0
+        })
+        .map(|j| {
+            let h = (pairs.l(j) + pairs.v(j)).normalize();
+            (
+                h.x.hypot(h.y).atan2(h.z),
+                (0..nc).map(|c| samples.channel(c)[j]).collect(),
+            )
+        })
+        .collect();
+    back.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let width = if max_angle == 0.0 {
+        1e-9
+    } else {
+        0.5f64.to_radians()
+    };
+    merge_groups(back, width)
+}
+
+/// Sorted `(theta, values)` averaged in groups spanning at most `width`
+/// from each group's first angle (running means, in order).
+fn merge_groups(back: Vec<(f64, Vec<f64>)>, width: f64) -> Vec<(f64, Vec<f64>)> {
+    let mut merged: Vec<(f64, Vec<f64>)> = Vec::new();
+    let mut count = 0usize;
+    let mut first = f64::NEG_INFINITY;
+    for (t, vals) in back {
+        match merged.last_mut() {
+            Some(m) if t - first <= width => {
+                count += 1;
+                let w = 1.0 / count as f64;
+                m.0 += (t - m.0) * w;
+                for (a, b) in m.1.iter_mut().zip(&vals) {
+                    *a += (b - *a) * w;
+                }
+            }
+            _ => {
+                first = t;
+                count = 1;
+                merged.push((t, vals));
+            }
+        }
+    }
+    merged
+}
+
+/// The `nc` channels of `back` (at least two angles, sorted) interpolated
+/// linearly in `theta` onto the nodes `theta` (constant beyond the
+/// measured range): one row per channel.
+fn onto_nodes(back: &[(f64, Vec<f64>)], theta: &[f64], nc: usize) -> Vec<Vec<f64>> {
+    let mut rho = vec![vec![0.0; theta.len()]; nc];
+    for (j, &t) in theta.iter().enumerate() {
+        let k = back.partition_point(|b| b.0 < t).clamp(1, back.len() - 1);
+        let (a, b) = (&back[k - 1], &back[k]);
+        let w = if b.0 > a.0 {
+            ((t - a.0) / (b.0 - a.0)).clamp(0.0, 1.0)
+        } else {
+            0.5
+        };
+        for c in 0..nc {
+            rho[c][j] = a.1[c] * (1.0 - w) + b.1[c] * w;
+        }
+    }
+    rho
 }
 
 /// `(D G / (4 N.L N.V), (1 - V.H)^5)`, both 0 below the horizon.
