@@ -387,12 +387,16 @@ def users_wait_section(d):
            "report); `ngan` is one fit (`--metric ngan`).", ""]
     rgl = [r for r in runs if r["tag"]["kind"] == "rgl"]
     floor = {r["tag"]["file"]: r["cpu"] for r in runs if r["tag"]["kind"] == "floor"}
+    cold = {r["tag"]["file"]: r["cpu"] for r in runs if r["tag"]["kind"] == "floor_cold"}
     if rgl:
         out += ["### Renderer models on the RGL files (RGB, default options)", "",
                 "`floor`: the processor time of the same command with Lambert (one linear solve): loading, the "
-                "report-size (128 px) renders of data and fit, the output; `fit CPU` = CPU - floor.", "",
-                "| file | model | metric | CPU s | wall s | floor CPU s | fit CPU s | fit s (own clock) | Ngan L2 | objective error | goal (s) | met (command / fit) |",
-                "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"]
+                "report-size (128 px) renders of the fit (the data's read from the render cache, as on every "
+                "fit of a file after its first), the output; `floor, no cache`: the same with `--no-cache`, "
+                "the data rendered as on a file's first fit; `fit CPU` = CPU - floor. The fits in the table "
+                "read the data's renders from the cache.", "",
+                "| file | model | metric | CPU s | wall s | floor CPU s | floor, no cache CPU s | fit CPU s | fit s (own clock) | Ngan L2 | objective error | goal (s) | met (command / fit) |",
+                "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"]
         for r in rgl:
             t, f = r["tag"], (r["result"] or {}).get("fits", [{}])[0]
             goal = {"principled": 0.5, "gltf": 0.3}.get(t["model"]) if t["metric"] == "ngan" else 2.0
@@ -400,8 +404,10 @@ def users_wait_section(d):
             fit_cpu = r["cpu"] - fl if fl is not None else None
             met = ("yes" if r["cpu"] <= goal else "no") + " / " + \
                 ("-" if fit_cpu is None else "yes" if fit_cpu <= goal else "no")
+            fc = cold.get(t["file"])
             out.append(f"| {t['file']} | {t['model']} | {t['metric']} | {r['cpu']:.2f} | {r['wall']:.2f} | "
-                       f"{'-' if fl is None else f'{fl:.2f}'} | {'-' if fit_cpu is None else f'{fit_cpu:.2f}'} | "
+                       f"{'-' if fl is None else f'{fl:.2f}'} | {'-' if fc is None else f'{fc:.2f}'} | "
+                       f"{'-' if fit_cpu is None else f'{fit_cpu:.2f}'} | "
                        f"{f.get('seconds', float('nan')):.2f} | {f.get('ngan_l2', float('nan')):.6e} | "
                        f"{f.get('error', float('nan')):.6e} | {goal} | {met} |")
         out += ["", "Goals: one `--metric ngan` fit <= 0.5 s (principled) and <= 0.3 s (glTF) on one core; "
@@ -499,11 +505,13 @@ def users_wait_section(d):
             "hundreds of iterations (see `iterations` in the JSON), each a fused pass over 20,196 samples x 3 "
             "channels (kernel, then the 13-column Gram update `add_gram`). Left: a better step in such valleys "
             "(e.g. an active-set Gauss-Newton step once the bounds settle), the kernel below.",
-            "- The command floor: every `brdf fit` of an RGL file renders the data and the fit at 128 px for its "
-            "report (`floor` column); most of it is the RGL interpolation (`brdf_io::rgl`, the data's render), "
-            "so the command cannot meet 0.5 s even with a free fit; the goal is judged on `fit CPU` too.",
-            "- Default command (appearance pipeline): 8-9 candidate fits (3 objectives, optional lobes, 3-4 image "
-            "refinements), each ranked by its 32-px renders, then the 128-px image errors of the report. The "
+            "- The command floor: every `brdf fit` of an RGL file needs the data and the fit rendered at 128 px "
+            "for its report; the data's render, mostly the RGL interpolation (`brdf_io::rgl`), is made on a file's "
+            "first fit and then read from the render cache (`brdf_fit::render_cache`; `floor` against `floor, "
+            "no cache`); the goal is judged on `fit CPU` too.",
+            "- Default command (appearance pipeline): 3 objectives, optional lobes, then image refinements from "
+            "the winner and from the other lobe-less candidates within 1.4 times its 32-px image error (one to "
+            "three), each candidate ranked by its 32-px renders, then the 128-px image errors of the report. The "
             "image-objective refinements now run chunk by chunk over the shading terms with the normal equations "
             "in the same pass and stop at 30 iterations (`image_objective.rs`), so they cost about as much as the "
             "BRDF-space candidates (see the per-candidate seconds); 2 s needs fewer candidates (e.g. skipping the "
