@@ -157,3 +157,21 @@ fn real_files_info_and_resample() {
     assert_eq!(info(&grid)["samples"], 19 * 37 * 36);
     let _ = std::fs::remove_file(&merl);
 }
+
+/// A selection by image (the default on RGL data) has no use for
+/// `--tolerance`, but a bad value is refused before any fit, as by L2.
+#[test]
+#[ignore = "needs BRDF_DATA"]
+fn a_bad_tolerance_is_refused_before_a_selection_by_image() {
+    let data = common::data_file("rgl/paper_white_rgb.bsdf");
+    let (ok, out, err) = common::brdf(&[
+        "select",
+        "--data",
+        &data.display().to_string(),
+        "--tolerance",
+        "-1",
+        "--quiet",
+    ]);
+    assert!(!ok, "{out}");
+    assert!(err.contains("--tolerance -1 must be >= 0"), "{err}");
+}

@@ -120,6 +120,15 @@ impl<'a> SelectRequest<'a> {
 
     /// Run the selection.
     pub fn run(&self) -> Result<SelectOutcome, FitError> {
+        // Refused whichever way the choice is made: a selection by image
+        // has no use for it, but a bad value is a mistake to point out.
+        if !(self.tolerance >= 0.0 && self.tolerance.is_finite()) {
+            return Err(FitError::OutOfRange {
+                option: "--tolerance",
+                value: self.tolerance,
+                range: ">= 0",
+            });
+        }
         match self.by {
             SelectBy::Auto if self.material.is_renderable() => self.by_image(),
             SelectBy::Auto | SelectBy::L2 => self.by_l2(),
