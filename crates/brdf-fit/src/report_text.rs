@@ -109,7 +109,9 @@ pub fn image_error_lines(e: &ImageError) -> String {
 
 /// Names of the non-linear parameters a fit leaves undetermined: the
 /// shape parameters of a specular lobe whose strengths (`ks`, `ks1`,
-/// `ks_r`, ...) are all zero — the model does not depend on them then.
+/// `ks_r`, ...) are all zero and on which the fitted model then does not
+/// depend ([`FitSummary::inert`]; the coupled Ashikhmin-Shirley diffuse
+/// term still depends on `f0`).
 pub fn undetermined(summary: &FitSummary) -> Vec<String> {
     fn strength(n: &str) -> Option<&str> {
         let n = n.split('_').next().unwrap_or(n);
@@ -130,8 +132,7 @@ pub fn undetermined(summary: &FitSummary) -> Vec<String> {
         .parameters
         .iter()
         .filter(|p| !p.projected && strength(&p.name).is_none())
-        // The coupled Ashikhmin-Shirley diffuse term depends on F0 too.
-        .filter(|p| !(summary.model.contains("coupled") && p.name.starts_with("f0")))
+        .filter(|p| summary.inert.contains(&p.name))
         .filter(|p| {
             let lobe = lobe_number(&p.name);
             lobes

@@ -52,6 +52,10 @@ pub struct FitSummary {
     pub seconds: f64,
     /// Number of stored numbers (parameters).
     pub stored_numbers: usize,
+    /// Non-linear parameters the fitted model does not depend on at the
+    /// samples used (their Jacobian columns are exactly 0): the shape of a
+    /// lobe whose strength is 0, `specular` at `metallic = 1`.
+    pub inert: Vec<String>,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -77,6 +81,14 @@ pub(crate) fn summarise(
     let se = standard_errors(&mp, p).ok();
     let status = box_constraints(model)?.status(p);
     let specs = model.param_specs();
+    let plateau = rep
+        .as_ref()
+        .is_some_and(|r| r.termination == brdf_solve::Termination::SingularPlateau);
+    let inert_columns = if plateau || specs.iter().any(|s| !s.linear) {
+        inert_columns(&mp, p)
+    } else {
+        Vec::new()
+    };
     let parameters = specs
         .iter()
         .enumerate()
@@ -104,11 +116,29 @@ pub(crate) fn summarise(
         ngan_l2_per_channel: ngan.per_channel,
         solver,
         iterations: rep.as_ref().map(|r| r.iterations).unwrap_or(0),
-        termination: describe_termination(&mp, p, rep.as_ref(), &status, specs),
+        termination: describe_termination(rep.as_ref(), &status, specs, &inert_columns),
         starts,
         seconds,
         stored_numbers: specs.len(),
+        inert: inert_columns
+            .iter()
+            .filter(|k| !specs[**k].linear)
+            .map(|k| specs[*k].name.clone())
+            .collect(),
     })
+}
+
+/// Indices of the parameters whose Jacobian columns are exactly 0 at `p`.
+/// Asked only where it can matter (a non-linear parameter, or a plateau to
+/// explain): the Jacobians of all-linear models are the largest (Kurt's
+/// polynomials), and a linear strength at 0 is a bound, not a lost shape.
+fn inert_columns(mp: &ModelProblem<'_>, p: &[f64]) -> Vec<usize> {
+    let (m, n) = (mp.n_residuals(), p.len());
+    let mut jac = vec![0.0; m * n];
+    mp.jacobian(p, &mut jac);
+    (0..n)
+        .filter(|k| (0..m).all(|i| jac[i * n + k] == 0.0))
+        .collect()
 }
 
 /// Why the fit stopped. A plateau where some free parameters have no
@@ -119,11 +149,10 @@ pub(crate) fn summarise(
 /// that term used cannot be identified. It is reported as such, naming
 /// them, rather than as a failure; any other plateau stays "not converged".
 fn describe_termination(
-    mp: &ModelProblem<'_>,
-    p: &[f64],
     rep: Option<&SolverReport>,
     status: &[BoundStatus],
     specs: &[brdf_core::ParamSpec],
+    inert_columns: &[usize],
 ) -> Termination {
     let Some(rep) = rep else {
         return Termination::DirectSolve;
@@ -135,13 +164,10 @@ fn describe_termination(
         .iter()
         .zip(status)
         .any(|(s, b)| s.linear && s.lower == 0.0 && *b == BoundStatus::AtLower);
-    let (m, n) = (mp.n_residuals(), p.len());
-    let mut jac = vec![0.0; m * n];
-    mp.jacobian(p, &mut jac);
-    let lost: Vec<String> = (0..n)
-        .filter(|k| status[*k] == BoundStatus::Free)
-        .filter(|k| (0..m).all(|i| jac[i * n + k] == 0.0))
-        .map(|k| specs[k].name.clone())
+    let lost: Vec<String> = inert_columns
+        .iter()
+        .filter(|k| status[**k] == BoundStatus::Free)
+        .map(|k| specs[*k].name.clone())
         .collect();
     let on_bound = status.iter().any(|b| *b != BoundStatus::Free);
     if lost.is_empty() || !on_bound {

@@ -95,3 +95,29 @@ fn a_term_switched_off_by_a_bound_is_named() {
     assert!(t.starts_with("converged to a degenerate fit"), "{t}");
     assert!(t.contains("specular") && t.contains("spec_tint"), "{t}");
 }
+
+/// Ashikhmin-Shirley with its lobe held off (`ks = 0`) on Lambert data:
+/// the lobe's exponent and Fresnel are undetermined, except that the
+/// coupled diffuse term still depends on `f0`, which therefore stays
+/// determined there. Read off the fitted model's Jacobian, not its name.
+#[test]
+fn a_shape_the_diffuse_term_shares_stays_determined() {
+    let data = rgb_model("lambert");
+    let s = rgb_samples(data.as_ref(), 500);
+    let fit = |name: &str| {
+        rgb_fit(name)
+            .objective(Objective::Ngan)
+            .narrow("ks", 0.0, 0.0)
+            .starts(1)
+            .run(&s)
+            .expect("fit")
+    };
+    let plain = fit("ashikhmin-shirley");
+    assert_eq!(
+        brdf_fit::report_text::undetermined(&plain.summary),
+        ["n", "f0"]
+    );
+    let coupled = fit("ashikhmin-shirley-coupled");
+    assert_eq!(coupled.summary.inert, ["n"]);
+    assert_eq!(brdf_fit::report_text::undetermined(&coupled.summary), ["n"]);
+}

@@ -37,5 +37,6 @@ pub(crate) fn summary(termination: Termination, parameters: Vec<FittedParam>) ->
         starts: (0, 0, 0),
         seconds: 0.0,
         stored_numbers: 0,
+        inert: vec![],
     }
 }

@@ -153,12 +153,23 @@ mod tests {
     use brdf_core::nalgebra::Vector3;
     use brdf_fit::report_text::undetermined;
 
+    /// A summary whose model depends on none of its non-linear parameters
+    /// (as it would with every lobe off); [`undetermined`] names those of
+    /// the lobes actually off.
     fn summary(params: &[(&str, f64, bool)]) -> FitSummary {
+        let inert = params
+            .iter()
+            .filter(|(_, _, projected)| !projected)
+            .map(|(n, _, _)| n.to_string())
+            .collect();
         let params = params
             .iter()
             .map(|(n, v, projected)| crate::test_support::param(n, *v, None, *projected))
             .collect();
-        crate::test_support::summary(brdf_fit::Termination::DirectSolve, params)
+        FitSummary {
+            inert,
+            ..crate::test_support::summary(brdf_fit::Termination::DirectSolve, params)
+        }
     }
 
     #[test]
@@ -194,6 +205,16 @@ mod tests {
         // Oren-Nayar has no lobe: sigma stays determined.
         let on = summary(&[("kd", 0.3, true), ("sigma", 0.0, false)]);
         assert!(undetermined(&on).is_empty());
+        // A shape the model still depends on with its lobe off (the coupled
+        // Ashikhmin-Shirley diffuse term's `f0`) stays determined.
+        let mut coupled = summary(&[
+            ("kd", 0.3, true),
+            ("ks", 0.0, true),
+            ("n", 10.0, false),
+            ("f0", 0.04, false),
+        ]);
+        coupled.inert.retain(|n| n != "f0");
+        assert_eq!(undetermined(&coupled), vec!["n"]);
     }
 
     #[test]

@@ -107,21 +107,9 @@ mod tests {
 
     fn fit(e: f64) -> FitSummary {
         FitSummary {
-            model: String::new(),
-            data: String::new(),
-            samples: 0,
-            parameters: vec![],
-            objective: "ngan",
             error: e,
-            error_per_channel: vec![],
             ngan_l2: e,
-            ngan_l2_per_channel: vec![],
-            solver: String::new(),
-            iterations: 0,
-            termination: brdf_fit::Termination::DirectSolve,
-            starts: (0, 0, 0),
-            seconds: 0.0,
-            stored_numbers: 0,
+            ..crate::test_support::summary(brdf_fit::Termination::DirectSolve, vec![])
         }
     }
 
