@@ -2,6 +2,11 @@
 maintained implementations: HDR-FLIP from NVIDIA's `flip_evaluator`,
 CIEDE2000 from `colour-science`; PSNR is the textbook formula on images
 exposed by `1 / p99(reference)`, clipped to [0, 1] and gamma 2.2 encoded.
+
+Every metric reads both renders as a display shows them, negative channels
+clipped at 0: Mitsuba's `measured` plugin renders out-of-gamut colours with
+negative channels, and an error against a negative reference counts what
+no display can show.
 """
 
 import numpy as np
@@ -23,18 +28,19 @@ def sphere_mask(size):
     return disc > 0.0
 
 
+def shown(img):
+    """The render as a display shows it: negative channels clipped at 0."""
+    return np.ascontiguousarray(np.maximum(img, 0.0), dtype=np.float32)
+
+
 def flip(reference, test):
     """Mean HDR-FLIP over the whole image (background included)."""
-    _, mean, _ = flip_evaluator.evaluate(
-        np.ascontiguousarray(reference, dtype=np.float32),
-        np.ascontiguousarray(test, dtype=np.float32),
-        "HDR",
-    )
+    _, mean, _ = flip_evaluator.evaluate(shown(reference), shown(test), "HDR")
     return float(mean)
 
 
 def exposure(reference):
-    return 1.0 / max(float(np.percentile(reference, 99)), 1e-12)
+    return 1.0 / max(float(np.percentile(shown(reference), 99)), 1e-12)
 
 
 def ldr(img, exp):
@@ -49,7 +55,7 @@ def psnr(reference, test):
 
 def mean_colour(img):
     m = sphere_mask(img.shape[0])
-    return np.maximum(img[m].mean(axis=0), 0.0)
+    return shown(img)[m].mean(axis=0)
 
 
 def delta_e(reference, test):

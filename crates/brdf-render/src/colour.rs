@@ -20,14 +20,15 @@ use palette::white_point::D65;
 use palette::{FromColor, Lab, LinSrgb};
 
 use crate::Image;
-use crate::tonemap::rgb_at;
+use crate::tonemap::shown_rgb_at;
 
-/// Mean linear RGB of the pixels where `mask` is true (zero when none is).
+/// Mean linear RGB of the pixels where `mask` is true, each clipped at 0
+/// as a display shows it (zero when none is).
 pub fn mean_colour(image: &Image, mask: &[bool]) -> [f64; 3] {
     let mut sum = [0.0; 3];
     let mut n = 0usize;
     for p in (0..image.width * image.height).filter(|&p| mask.get(p).copied().unwrap_or(false)) {
-        let c = rgb_at(image, p);
+        let c = shown_rgb_at(image, p);
         for k in 0..3 {
             sum[k] += c[k];
         }

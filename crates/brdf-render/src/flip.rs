@@ -22,6 +22,10 @@
 //!   (FLIP's fit), clipped to `[0, 1]`, sRGB encoded, compared by LDR-FLIP;
 //! - the per-pixel maximum over exposures; its mean is HDR-FLIP.
 //!
+//! Both images are read as a display shows them, negative channels
+//! clipped at 0 ([`shown_rgb_at`]), before the exposures and the tone curve
+//! (whose rational fit turns large negative values bright).
+//!
 //! Differences from `flip_evaluator`: (1) each exposure's tone-mapped images
 //! are quantised to 8 bits before LDR-FLIP (the Rust crate takes 8-bit sRGB;
 //! `flip_evaluator` passes floats), which adds an error of up to half a
@@ -32,7 +36,7 @@
 
 use nv_flip::{DEFAULT_PIXELS_PER_DEGREE, FlipImageFloat, FlipImageRgb8, FlipPool};
 
-use crate::tonemap::{check_same_size, rgb_at, to_rgb8};
+use crate::tonemap::{check_same_size, shown_rgb_at, to_rgb8};
 use crate::{Image, RenderError};
 
 /// FLIP's ACES fit `(a, b, c, d, e, f)`: `(a x^2 + b x + c) / (d x^2 + e x + f)`
@@ -116,7 +120,9 @@ fn luminance(c: [f64; 3]) -> f64 {
 /// reference's luminance (see the module doc).
 pub fn hdr_exposures(reference: &Image) -> Result<Vec<f64>, RenderError> {
     let n = reference.width * reference.height;
-    let mut y: Vec<f64> = (0..n).map(|p| luminance(rgb_at(reference, p))).collect();
+    let mut y: Vec<f64> = (0..n)
+        .map(|p| luminance(shown_rgb_at(reference, p)))
+        .collect();
     y.sort_by(f64::total_cmp);
     let err =
         || RenderError::Invalid("hdr_flip: the reference is black: render a lit reference".into());
@@ -155,7 +161,7 @@ fn aces_rgb8(image: &Image, exposure: f64) -> Vec<u8> {
     let m = exposure.exp2();
     let [a, b, c, d, e, f] = ACES;
     (0..image.width * image.height)
-        .flat_map(|p| rgb_at(image, p))
+        .flat_map(|p| shown_rgb_at(image, p))
         .map(|v| {
             let x = v * m;
             let tm = ((a * x + b) * x + c) / ((d * x + e) * x + f);
@@ -226,5 +232,38 @@ mod tests {
         assert!(img.data[..3].iter().all(|&v| v < 0.01));
         assert!(img.data[3] > 0.9 && img.data[4] > 0.9);
         assert_eq!(map.mean(), 0.5);
+    }
+
+    /// A reference with out-of-gamut pixels (negative red, as the
+    /// measured plugin renders a saturated glaze) against the same image
+    /// clipped at 0: what a display shows of both is the same, so the
+    /// error is 0; unclipped, the tone curve would have turned -2 bright.
+    #[test]
+    fn negative_channels_are_clipped_before_the_comparison() -> Result<(), RenderError> {
+        let reference: Vec<f64> = (0..64)
+            .flat_map(|p| {
+                let v = 0.1 + 0.02 * p as f64;
+                [if p % 5 == 0 { -2.0 } else { v }, v, 0.5 * v]
+            })
+            .collect();
+        let image = |data: Vec<f64>| Image {
+            width: 8,
+            height: 8,
+            channels: 3,
+            data,
+        };
+        let shown = image(reference.iter().map(|v| v.max(0.0)).collect());
+        let reference = image(reference);
+        assert_eq!(hdr_flip(&reference, &shown)?, 0.0);
+        let zero_red = image(
+            shown
+                .data
+                .iter()
+                .enumerate()
+                .map(|(k, v)| if k % 3 == 0 { 0.0 } else { *v })
+                .collect(),
+        );
+        assert!(hdr_flip(&reference, &zero_red)? > 0.0);
+        Ok(())
     }
 }

@@ -20,13 +20,22 @@ pub fn rgb_at(image: &Image, p: usize) -> [f64; 3] {
     }
 }
 
+/// RGB of pixel `p` as a display shows it: negative channels clipped at 0.
+/// Every image metric reads pixels through this: renders of measured data
+/// hold out-of-gamut colours with negative channels (a saturated glaze's
+/// body under the sky), and an error measured against a negative
+/// reference would count a difference no display can show.
+pub fn shown_rgb_at(image: &Image, p: usize) -> [f64; 3] {
+    rgb_at(image, p).map(|v| v.max(0.0))
+}
+
 /// `1 / p99` of the channel values of `reference` at the pixels where `mask`
 /// is true (all pixels when `mask` is `None`).
 pub fn p99_exposure(reference: &Image, mask: Option<&[bool]>) -> Result<f64, RenderError> {
     let n = reference.width * reference.height;
     let mut values: Vec<f64> = (0..n)
         .filter(|&p| mask.is_none_or(|m| m.get(p).copied().unwrap_or(false)))
-        .flat_map(|p| rgb_at(reference, p))
+        .flat_map(|p| shown_rgb_at(reference, p))
         .collect();
     values.sort_by(f64::total_cmp);
     let rank = ((0.99 * values.len() as f64).ceil() as usize).max(1);
@@ -48,7 +57,7 @@ pub fn display(v: f64, exposure: f64) -> f64 {
 pub fn tone_map(image: &Image, exposure: f64) -> Image {
     let n = image.width * image.height;
     let data = (0..n)
-        .flat_map(|p| rgb_at(image, p).map(|v| display(v, exposure)))
+        .flat_map(|p| shown_rgb_at(image, p).map(|v| display(v, exposure)))
         .collect();
     Image {
         width: image.width,
