@@ -12,6 +12,9 @@ drjit's LLVM backend needs `DRJIT_LIBLLVM_PATH` (Debian's libllvm19:
 
     python benches/judge/peer_inverse.py --steps 150 \
         --out results/render_fidelity/peer.json
+
+`--rejudge` keeps the optimised parameters of an existing `--out` file and
+judges them again with the current metrics (no LLVM backend needed).
 """
 
 import argparse
@@ -91,7 +94,16 @@ def main():
     ap.add_argument("--steps", type=int, default=150)
     ap.add_argument("--spp", type=int, default=S.SPP)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--rejudge", action="store_true",
+                    help="judge the parameters already in --out again, optimising nothing")
     args = ap.parse_args()
+    if args.rejudge:
+        rows = json.loads(Path(args.out).read_text())
+        files = {d.stem: d for d in RF.data_dir()}
+        for row in rows:
+            row.update(judged(files[row["material"]], row["params"], args.spp))
+        Path(args.out).write_text(json.dumps(rows, indent=1))
+        return
     rows = []
     for data in RF.data_dir():
         print(f"{data.stem}: Adam x {args.steps}", file=sys.stderr)

@@ -19,6 +19,10 @@ mitsuba`: exactly, or converted to a model Mitsuba has) or
 measurement's grid by `brdf export --to mitsuba --tabulate-on` and rendered
 by the `measured` plugin: how the models Mitsuba lacks are judged).
 The objective `polish` is the default fit with `brdf fit --polish`.
+The configuration `for:mitsuba` is `brdf fit --for mitsuba`: the model
+Mitsuba renders exactly whose render is closest to the data, fitted for
+appearance and written as Mitsuba's material in one command (its row names
+the model chosen).
 `--add` renders only the configurations given and merges their rows into
 the existing table.json (a row of the same material, model and objective is
 replaced), then rewrites the markdown.
@@ -105,8 +109,22 @@ def export(fit_json, summary, route, data):
     return xml
 
 
+def fit_for(data, renderer, workdir):
+    """`brdf fit --for RENDERER`; returns (material file, the chosen model's
+    name, wall seconds)."""
+    out = Path(workdir) / f"{data.stem}.for.{renderer}.xml"
+    cmd = [brdf_bin(), "fit", "--data", str(data), "--for", renderer, "--out", str(out),
+           "--json", "--quiet"]
+    t0 = time.time()
+    done = subprocess.run(cmd, check=True, capture_output=True, text=True)
+    return out, json.loads(done.stdout)["choice"]["model"], time.time() - t0
+
+
 def fit_and_export(data, model, objective, workdir, route="exported"):
     """Fit, then export; returns (file Mitsuba loads, summary, fit seconds)."""
+    if model == "for":
+        path, chosen, wall = fit_for(data, objective, workdir)
+        return path, {"forced": False, "chosen": chosen}, wall
     fit_json, summary, wall = fit(data, model, objective, workdir)
     return export(fit_json, summary, route, data), summary, wall
 
@@ -131,6 +149,9 @@ def row_for(data, refs, model, objective, workdir, spp, pictures=None, route="ex
     label = objective + (FORCED if summary["forced"] else "")
     if route == "tabulated":
         label += " (tabulated)"
+    tag = f"{model}.{objective}{'.tabulated' if route == 'tabulated' else ''}"
+    if model == "for":
+        model, label = f"--for {objective}: {summary['chosen']}", "appearance"
     row = {"material": data.stem, "model": model, "objective": label, "seconds": wall}
     for light in S.LIGHTS:
         img = S.render(S.bsdf_of(path), light, seed=2, spp=spp)
@@ -140,7 +161,7 @@ def row_for(data, refs, model, objective, workdir, spp, pictures=None, route="ex
         if pictures is not None:
             M.tonemapped_png(
                 img,
-                pictures / f"{data.stem}.{model}.{objective}{'.tabulated' if route == 'tabulated' else ''}.{light}.png",
+                pictures / f"{data.stem}.{tag}.{light}.png",
                 M.exposure(refs[light]),
             )
     return row
@@ -209,6 +230,45 @@ def goals(rows):
             "than their bodies, and every principled render under the white studio light keeps",
             "its colours in one plane of white and its base colour: what that alone costs each",
             "material is in `results/colour_planes.md` (`python benches/judge/colour_planes.py`)."]
+    return out
+
+
+# The goals set for `brdf fit --for mitsuba` (FLIP sky, studio): the films
+# at what SGD fitted for appearance and tabulated reached, the others at the
+# default fit's goal; and never worse than the default `principled` export.
+FOR_GOALS = {
+    "paper_white_rgb": (0.06, 0.04),
+    "colodur_napoli_4f_rgb": (0.06, 0.04),
+    "cc_ibiza_sunset_rgb": (0.17, 0.085),
+    "cc_iris_purple_gem_rgb": (0.17, 0.085),
+    "vch_golden_yellow_rgb": (0.17, 0.085),
+}
+
+
+def for_goals(rows):
+    """Lines of the `--for` goals section: each bound of FOR_GOALS, and the
+    default `principled` fit's FLIP as a second bound, against the
+    `--for` row of each material."""
+    mine = [r for r in rows if r["model"].startswith("--for ")]
+    if not mine:
+        return []
+    out = ["", "## Goals of `brdf fit --for`", "",
+           "| material | route | goal | measured | met |", "| --- | --- | --- | --- | --- |"]
+    for r in mine:
+        default = next((d for d in rows if d["material"] == r["material"]
+                        and d["model"] == "principled" and d["objective"] == "default"), None)
+        bounds = FOR_GOALS.get(r["material"])
+        for i, light in enumerate(S.LIGHTS):
+            checks = []
+            if bounds:
+                checks.append((f"FLIP {light} <= {bounds[i]:.3f}", bounds[i]))
+            if default:
+                checks.append((f"FLIP {light} <= {default[light]['flip']:.3f} (default principled)",
+                               default[light]["flip"]))
+            value = r[light]["flip"]
+            for goal, bound in checks:
+                verdict = "yes" if value <= bound else f"no, by {value - bound:.3f}"
+                out.append(f"| {r['material']} | {r['model']} | {goal} | {value:.3f} | {verdict} |")
     return out
 
 
@@ -289,6 +349,7 @@ def markdown(rows, spp):
             f"| {r['sky']['delta_e']:.2f} | {r['studio']['delta_e']:.2f} | {t} |"
         )
     out += goals(rows)
+    out += for_goals(rows)
     out += new_models(rows)
     return "\n".join(out) + "\n"
 
