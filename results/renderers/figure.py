@@ -1,12 +1,13 @@
-"""The renderer figure of docs/export.md: a measured material rendered by Mitsuba 3's
-`measured` plugin (the judge's reference, docs/appearance.md), its
-principled fit exported to Mitsuba (`brdf export --to mitsuba`, exact)
-rendered by Mitsuba, and its glTF fit exported to Blender (`brdf export
---to blender`: Principled BSDF, single-scatter GGX) rendered by Blender
-Cycles (cycles_render.py's EXR, Gaussian pixel filter), in the judge scene under the
-studio light. Writes three PNG tiles (one exposure, 1 / p99 of the
-measurement, gamma 2.2) and renderers.md with the HDR-FLIP of each render
-against the measurement.
+"""The renderer figure of README.md and docs/export.md: a measured material
+rendered by Mitsuba 3's `measured` plugin (the judge's reference,
+docs/appearance.md), its `brdf fit --for mitsuba` material rendered by
+Mitsuba, and its `brdf fit --for blender` material rendered by Blender
+Cycles (cycles_render.py's EXR, Gaussian pixel filter), in the judge scene
+under the studio light. Writes three PNG tiles (one exposure, 1 / p99 of
+the measurement, gamma 2.2) and renderers.md with the HDR-FLIP of each
+render against the measurement (both clipped at 0, as the judge's). The
+models chosen are read from the fits saved beside the materials
+(MATERIAL.mitsuba.json, MATERIAL.blender.json).
 
     python figure.py MATERIAL.bsdf FIT.xml CYCLES.exr OUT_DIR
 Needs mitsuba, numpy, flip-evaluator (run by make.sh)."""
@@ -25,7 +26,7 @@ import scene as S  # noqa: E402
 
 
 def png(img, exposure, path):
-    ldr = np.clip(img * exposure, 0.0, 1.0) ** (1.0 / 2.2)
+    ldr = np.clip(np.maximum(img, 0.0) * exposure, 0.0, 1.0) ** (1.0 / 2.2)
     out = np.ascontiguousarray((ldr * 255.0 + 0.5).astype(np.uint8))
     mi.Bitmap(out, pixel_format=mi.Bitmap.PixelFormat.RGB).write(path)
 
@@ -37,19 +38,24 @@ def main():
     ref = S.render(S.bsdf_of(measured), "studio", seed=1)
     mitsuba = S.render(S.bsdf_of(xml), "studio", seed=2)
     cycles = np.array(mi.Bitmap(exr), dtype=np.float32)[:, :, :3]
+    ref, mitsuba, cycles = (np.ascontiguousarray(np.maximum(i, 0.0), dtype=np.float32)
+                            for i in (ref, mitsuba, cycles))
     exposure = 1.0 / float(np.percentile(ref, 99))
     tiles = {"measured": ref, "mitsuba": mitsuba, "cycles": cycles}
+    chosen = {k: json.load(open(os.path.join(out, f"{name}.{k}.json")))["model"]
+              for k in ("mitsuba", "blender")}
     for k, img in tiles.items():
         png(img, exposure, os.path.join(out, f"{name}.{k}.studio.png"))
     f = {k: float(flip.evaluate(ref, tiles[k], "HDR")[1]) for k in ("mitsuba", "cycles")}
-    md = f"""| measurement (Mitsuba `measured`) | Mitsuba 3: `brdf export --to mitsuba` | Blender Cycles: `brdf export --to blender` |
+    md = f"""| measurement (Mitsuba `measured`) | Mitsuba 3: `brdf fit --for mitsuba` | Blender Cycles: `brdf fit --for blender` |
 | --- | --- | --- |
 | ![measured](results/renderers/{name}.measured.studio.png) | ![Mitsuba](results/renderers/{name}.mitsuba.studio.png) | ![Blender](results/renderers/{name}.cycles.studio.png) |
-| `rgl/{name}.bsdf` | `principled` fit (exact): HDR-FLIP {f['mitsuba']:.3f} | `gltf` fit (Principled BSDF, GGX): HDR-FLIP {f['cycles']:.3f} |
+| `rgl/{name}.bsdf` | `{chosen['mitsuba']}`: HDR-FLIP {f['mitsuba']:.3f} | `{chosen['blender']}`: HDR-FLIP {f['cycles']:.3f} |
 """
     with open(os.path.join(out, "renderers.md"), "w") as fh:
         fh.write(md)
     json.dump({"material": name, "light": "studio", "exposure": exposure, "flip_vs_measured": f,
+               "models": chosen,
                "mitsuba": mi.__version__}, open(os.path.join(out, "renderers.json"), "w"), indent=1)
     print(md)
 

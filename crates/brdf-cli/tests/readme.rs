@@ -109,3 +109,30 @@ fn set_up_times_are_the_script_s_for_the_two_commands() {
     assert_eq!(commands.len(), 2, "the set-up section holds two commands");
     check_timed_table(&readme, "setup-times", "results/setup.md", &commands);
 }
+
+/// The rows between `<!-- renderers-figure: ... -->` and its end marker in
+/// `text`.
+fn figure_rows(text: &str) -> Vec<&str> {
+    let inside = text
+        .split("<!-- renderers-figure: results/renderers/renderers.md -->")
+        .nth(1)
+        .and_then(|r| r.split("<!-- /renderers-figure -->").next())
+        .expect("the renderers-figure markers");
+    table_rows(inside)
+}
+
+/// The renderer figure in the README and in docs/export.md is the table
+/// `results/renderers/make.sh` wrote (its image paths relative to each
+/// page), so its figures are the ones the renderers measured.
+#[test]
+fn the_renderer_figure_is_the_one_make_sh_wrote() {
+    let written = read("results/renderers/renderers.md");
+    let rows = table_rows(&written);
+    assert!(rows.len() >= 3, "{written}");
+    assert_eq!(figure_rows(&read("README.md")), rows);
+    let docs: Vec<String> = rows
+        .iter()
+        .map(|r| r.replace("](results/", "](../results/"))
+        .collect();
+    assert_eq!(figure_rows(&read("docs/export.md")), docs);
+}

@@ -184,16 +184,16 @@ fn other_file(name: &str) -> &'static str {
             "the renderer models' fit times before and after their fitting kernels were sped up (commit `9779d66` against `d3d78b3`; tables from `benches/peers/renderer_models.sh`)"
         }
         "render_fidelity.md" => {
-            "fits judged by their render in Mitsuba 3, written by `python benches/judge/render_fidelity.py` (its renders and `table.json` in `render_fidelity/`)"
+            "fits judged by their render in Mitsuba 3, written by `bash benches/judge/regenerate.sh` (every configuration; `render_fidelity.py` for some) (its renders and `table.json` in `render_fidelity/`)"
         }
         "render_fidelity/" => {
-            "the Mitsuba 3 renders behind `render_fidelity.md` (one PNG per material, fit and light set), its `table.json`, and the peer's rows `peer.json` (`python benches/judge/peer_inverse.py`)"
+            "the Mitsuba 3 renders behind `render_fidelity.md` (one PNG per material, fit and light set), its `table.json`, and the peer's rows `peer.json` (`python benches/judge/peer_inverse.py`; `--rejudge` judges its parameters again)"
         }
         "colour_planes.md" => {
             "what colour alone costs a renderer model with one base colour (principled, glTF) on each RGL measurement, written by `python benches/judge/colour_planes.py`"
         }
         "renderers/" => {
-            "one RGL material measured, in Mitsuba 3 and in Blender Cycles: its fits, exports, renders and `renderers.md`, written by `bash results/renderers/make.sh` (with `figure.py`)"
+            "one RGL film fitted `--for mitsuba` and `--for blender`, rendered by Mitsuba 3 and Blender Cycles beside its measurement: its fits, materials, renders and `renderers.md`, written by `bash results/renderers/make.sh` (with `figure.py`)"
         }
         "synthetic/" => {
             "the study on the built-in synthetic materials (`brdf reproduce` without measured data), with its own README.md"
