@@ -22,7 +22,11 @@ The objective `polish` is the default fit with `brdf fit --polish`.
 The configuration `for:mitsuba` is `brdf fit --for mitsuba`: the model
 Mitsuba renders exactly whose render is closest to the data, fitted for
 appearance and written as Mitsuba's material in one command (its row names
-the model chosen).
+the model chosen). `for:blender` is `brdf fit --for blender`, its script
+rendered by Blender Cycles in the judge's studio scene
+(`crates/brdf-export/tests/reference/cycles_render.py`, run by the python
+named by `BLENDER_PYTHON`, which has `bpy`) and judged against the same
+`measured` render; Cycles' scene has the studio light only.
 `--add` renders only the configurations given and merges their rows into
 the existing table.json (a row of the same material, model and objective is
 replaced), then rewrites the markdown.
@@ -41,6 +45,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import metrics as M  # noqa: E402
@@ -112,7 +118,7 @@ def export(fit_json, summary, route, data):
 def fit_for(data, renderer, workdir):
     """`brdf fit --for RENDERER`; returns (material file, the chosen model's
     name, wall seconds)."""
-    out = Path(workdir) / f"{data.stem}.for.{renderer}.xml"
+    out = Path(workdir) / f"{data.stem}.for.{renderer}.{'py' if renderer == 'blender' else 'xml'}"
     cmd = [brdf_bin(), "fit", "--data", str(data), "--for", renderer, "--out", str(out),
            "--json", "--quiet"]
     t0 = time.time()
@@ -127,6 +133,25 @@ def fit_and_export(data, model, objective, workdir, route="exported"):
         return path, {"forced": False, "chosen": chosen}, wall
     fit_json, summary, wall = fit(data, model, objective, workdir)
     return export(fit_json, summary, route, data), summary, wall
+
+
+CYCLES_RENDER = ROOT / "crates" / "brdf-export" / "tests" / "reference" / "cycles_render.py"
+
+
+def cycles_studio(script, spp):
+    """Blender Cycles' render of a `brdf export --to blender` script in the
+    judge's studio scene (Gaussian pixel filter, as the figure's), linear
+    radiance."""
+    import mitsuba as mi
+
+    blender = os.environ.get("BLENDER_PYTHON")
+    if not blender:
+        sys.exit("for:blender needs BLENDER_PYTHON, a python with bpy")
+    with tempfile.TemporaryDirectory() as out:
+        subprocess.run([blender, str(CYCLES_RENDER), out, "--spp", str(spp), "--antialias",
+                        script.name], check=True, capture_output=True, cwd=script.parent)
+        exr = Path(out) / f"{script.name}.studio.seed2.exr"
+        return np.array(mi.Bitmap(str(exr)), dtype=np.float32)[:, :, :3]
 
 
 def judge(reference, test):
@@ -151,10 +176,19 @@ def row_for(data, refs, model, objective, workdir, spp, pictures=None, route="ex
         label += " (tabulated)"
     tag = f"{model}.{objective}{'.tabulated' if route == 'tabulated' else ''}"
     if model == "for":
-        model, label = f"--for {objective}: {summary['chosen']}", "appearance"
+        model, label = f"--for {objective}", "appearance"
+        if objective != "blender":
+            model += f": {summary['chosen']}"
+    cycles = model == "--for blender"
     row = {"material": data.stem, "model": model, "objective": label, "seconds": wall}
+    if cycles:
+        model = f"{model}: {summary['chosen']} (Cycles)"
+        row["model"] = model
     for light in S.LIGHTS:
-        img = S.render(S.bsdf_of(path), light, seed=2, spp=spp)
+        if cycles and light != "studio":
+            row[light] = None
+            continue
+        img = cycles_studio(path, spp) if cycles else S.render(S.bsdf_of(path), light, seed=2, spp=spp)
         row[light] = judge(refs[light], img)
         if images is not None:
             images[light] = img
@@ -259,6 +293,8 @@ def for_goals(rows):
                         and d["model"] == "principled" and d["objective"] == "default"), None)
         bounds = FOR_GOALS.get(r["material"])
         for i, light in enumerate(S.LIGHTS):
+            if r[light] is None:
+                continue
             checks = []
             if bounds:
                 checks.append((f"FLIP {light} <= {bounds[i]:.3f}", bounds[i]))
@@ -335,6 +371,10 @@ def markdown(rows, spp):
         "exact export shows what the tabulation alone changes. `polish`: the default fit",
         "ended by `brdf fit --polish` (a compass search on the mean FLIP of brdf-render's",
         "32-px renders, the mean colour kept within CIEDE2000 2.3 or the start's).",
+        "`--for mitsuba`: `brdf fit --for mitsuba` (the model Mitsuba renders exactly whose",
+        "render is closest to the data, written as Mitsuba's material). `--for blender ... (Cycles)`:",
+        "`brdf fit --for blender`, its script rendered by Blender Cycles (bpy 5.0.1) in the same",
+        "scene, studio light only, against the same `measured` render.",
         "Time: wall-clock seconds of `brdf fit` (fit, image error included) on this machine.",
         "",
         "| material | model | objective | FLIP sky | FLIP studio | PSNR sky | PSNR studio | dE sky | dE studio | time (s) |",
@@ -342,11 +382,14 @@ def markdown(rows, spp):
     ]
     for r in rows:
         t = "-" if r.get("seconds") is None else f"{r['seconds']:.1f}"
+        def cell(light, key, digits):
+            return "-" if r[light] is None else f"{r[light][key]:.{digits}f}"
+
         out.append(
             f"| {r['material']} | {r['model']} | {r['objective']} "
-            f"| {r['sky']['flip']:.3f} | {r['studio']['flip']:.3f} "
-            f"| {r['sky']['psnr']:.1f} | {r['studio']['psnr']:.1f} "
-            f"| {r['sky']['delta_e']:.2f} | {r['studio']['delta_e']:.2f} | {t} |"
+            f"| {cell('sky', 'flip', 3)} | {cell('studio', 'flip', 3)} "
+            f"| {cell('sky', 'psnr', 1)} | {cell('studio', 'psnr', 1)} "
+            f"| {cell('sky', 'delta_e', 2)} | {cell('studio', 'delta_e', 2)} | {t} |"
         )
     out += goals(rows)
     out += for_goals(rows)
