@@ -82,6 +82,15 @@ pub enum RendererForm {
     ColouredLobes,
 }
 
+impl RendererForm {
+    /// Whether the form always has two widths (`ax`, `ay`), so that on
+    /// isotropic data it can only match its isotropic twin with one more
+    /// parameter. Principled's anisotropy is an optional lobe, not this.
+    pub fn is_anisotropic(&self) -> bool {
+        matches!(self, RendererForm::Ggx(g) if g.anisotropic)
+    }
+}
+
 /// The GGX lobes of a [`RendererForm::Ggx`] model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GgxForm {
