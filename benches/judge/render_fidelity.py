@@ -329,9 +329,11 @@ def new_models(rows):
            "| --- | --- | --- | --- | --- | --- | --- |"]
     means = {light: ([], []) for light in S.LIGHTS}
     for m in dict.fromkeys(r["material"] for r in new):
+        # Rendered by Mitsuba under both lights: the Cycles rows have the
+        # studio light only.
         classic = [r for r in rows if r["material"] == m and r["model"] not in NEW_MODELS
                    and r["model"] != "noise" and "Adam" not in r["model"]
-                   and "tabulated" not in r["objective"]]
+                   and "tabulated" not in r["objective"] and r["sky"] is not None]
         mine = [r for r in new if r["material"] == m]
         if not classic:
             continue
