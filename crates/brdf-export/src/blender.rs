@@ -114,7 +114,12 @@ if __name__ == "__main__":
 /// The Blender script for `fit`, with `note` in its docstring.
 pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
     if let Some(lobes) = fit.lobes()? {
-        return crate::lobes_blender::write(fit, &lobes, note, opts);
+        let terms = crate::lobes_blender::terms(fit, &lobes)?;
+        return crate::lobes_blender::write(fit, &terms, note, opts);
+    }
+    if fit.form == RendererForm::ThinFilm {
+        let terms = crate::lobes_blender::film_terms(fit)?;
+        return crate::lobes_blender::write(fit, &terms, note, opts);
     }
     let inputs = inputs(fit)?;
     let mut s =

@@ -44,6 +44,9 @@ pub struct ShaderTerm {
     pub props: Vec<(&'static str, &'static str)>,
     /// Socket inputs, `(name, Python value)`.
     pub inputs: Vec<(&'static str, String)>,
+    /// The term's weight, when not 1: a Mix Shader with nothing on its
+    /// other input scales the closure by its factor exactly.
+    pub weight: Option<f64>,
 }
 
 fn rgba(c: &[f64; 3]) -> String {
@@ -63,6 +66,7 @@ fn metallic(fresnel: &'static str, inputs: Vec<(&'static str, String)>) -> Shade
         node: "ShaderNodeBsdfMetallic",
         props: vec![("distribution", "GGX"), ("fresnel_type", fresnel)],
         inputs,
+        weight: None,
     }
 }
 
@@ -82,6 +86,7 @@ pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<ShaderTerm>, ExportEr
         node: "ShaderNodeBsdfDiffuse",
         props: vec![],
         inputs: vec![("Color", rgba(&lobes.kd)), ("Roughness", "0.0".to_string())],
+        weight: None,
     }];
     for lobe in &lobes.lobes {
         let r = roughness(lobe.alpha);
@@ -90,6 +95,7 @@ pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<ShaderTerm>, ExportEr
                 node: "ShaderNodeBsdfAnisotropic",
                 props: vec![("distribution", "GGX")],
                 inputs: vec![("Color", rgba(&ks)), r, ("Anisotropy", "0.0".into())],
+                weight: None,
             },
             LobeColour::Conductor { eta, kappa } => metallic(
                 "PHYSICAL_CONDUCTOR",
@@ -102,14 +108,61 @@ pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<ShaderTerm>, ExportEr
         });
     }
     if let Some(c) = lobes.coat {
-        v.push(metallic(
-            "PHYSICAL_CONDUCTOR",
-            vec![
-                ("IOR", vec3(&[c.ior; 3])),
-                ("Extinction", vec3(&[0.0; 3])),
-                roughness(c.alpha),
-            ],
+        v.push(coat(c.ior, c.alpha));
+    }
+    Ok(v)
+}
+
+/// The white dielectric coat: a conductor of zero extinction.
+fn coat(ior: f64, alpha: f64) -> ShaderTerm {
+    metallic(
+        "PHYSICAL_CONDUCTOR",
+        vec![
+            ("IOR", vec3(&[ior; 3])),
+            ("Extinction", vec3(&[0.0; 3])),
+            roughness(alpha),
+        ],
+    )
+}
+
+/// The BSDF nodes of a thin-film model (`brdf_models::thin_film`): the
+/// Lambert term, the film lobe as a Metallic BSDF of the base's index and
+/// zero extinction carrying Cycles' thin film, weighted by `w`, and the
+/// coat. A one-channel fit is the film's luminance, which no Cycles node
+/// shows: an error asking for an RGB fit.
+pub fn film_terms(fit: &Fitted) -> Result<Vec<ShaderTerm>, ExportError> {
+    if fit.channels != 3 {
+        return Err(fit.no_equivalent(
+            Target::Blender,
+            "a one-channel thin film is the film's luminance, Cycles' film is coloured; fit RGB data",
         ));
+    }
+    let n3 = fit.get("base_ior")?;
+    let mut film = metallic(
+        "PHYSICAL_CONDUCTOR",
+        vec![
+            ("IOR", vec3(&[n3; 3])),
+            ("Extinction", vec3(&[0.0; 3])),
+            roughness(fit.get("alpha")?),
+            ("Thin Film Thickness", format!("{:?}", fit.get("film_d")?)),
+            ("Thin Film IOR", format!("{:?}", fit.get("film_ior")?)),
+        ],
+    );
+    film.weight = Some(fit.get("w")?);
+    let mut v = vec![
+        ShaderTerm {
+            node: "ShaderNodeBsdfDiffuse",
+            props: vec![],
+            inputs: vec![
+                ("Color", rgba(&fit.colour("kd")?)),
+                ("Roughness", "0.0".to_string()),
+            ],
+            weight: None,
+        },
+        film,
+    ];
+    if fit.params.iter().any(|(n, _)| n == "coat_ior") {
+        v.push(coat(fit.get("coat_ior")?, fit.get("coat_alpha")?));
     }
     Ok(v)
 }
@@ -129,21 +182,30 @@ def build(name=NAME):
     out = tree.nodes.new("ShaderNodeOutputMaterial")
     out.location = (300 * (len(TERMS) + 1), 0)
     total = None
-    for i, (kind, props, inputs) in enumerate(TERMS):
+    for i, (kind, props, inputs, weight) in enumerate(TERMS):
         node = tree.nodes.new(kind)
         node.location = (300 * i, -250)
         for key, value in props.items():
             setattr(node, key, value)
         for key, value in inputs.items():
             node.inputs[key].default_value = value
+        term = node.outputs["BSDF"]
+        if weight is not None:
+            # Mix Shader is fac * B + (1 - fac) * A; with A unlinked it is
+            # the term scaled by fac.
+            mix = tree.nodes.new("ShaderNodeMixShader")
+            mix.location = (300 * i + 75, -450)
+            mix.inputs["Fac"].default_value = weight
+            tree.links.new(term, mix.inputs[2])
+            term = mix.outputs["Shader"]
         if total is None:
-            total = node.outputs["BSDF"]
+            total = term
             continue
         # Add Shader sums its two closures exactly.
         add = tree.nodes.new("ShaderNodeAddShader")
         add.location = (300 * i + 150, 0)
         tree.links.new(total, add.inputs[0])
-        tree.links.new(node.outputs["BSDF"], add.inputs[1])
+        tree.links.new(term, add.inputs[1])
         total = add.outputs["Shader"]
     tree.links.new(total, out.inputs["Surface"])
     return mat
@@ -159,14 +221,14 @@ if __name__ == "__main__":
         bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(argv[i + 1]))
 "#;
 
-/// The Blender script of `lobes`, with `note` in its docstring.
+/// The Blender script of `terms`, the BSDF nodes of `fit`, with `note` in
+/// its docstring.
 pub(crate) fn write(
     fit: &Fitted,
-    lobes: &LobesFit,
+    terms: &[ShaderTerm],
     note: Option<&str>,
     opts: &WriteOptions,
 ) -> Result<String, ExportError> {
-    let terms = terms(fit, lobes)?;
     let mut s = format!(
         "\"\"\"Cycles material of `{}` written by `brdf export --to blender`: the model's terms as Diffuse, Glossy (GGX) and Metallic (GGX) BSDFs joined by Add Shader nodes, exact in Cycles.\n\n",
         fit.name
@@ -177,10 +239,10 @@ pub(crate) fn write(
     }
     s += "\"\"\"\n\nimport os\nimport sys\n\nimport bpy\n\n";
     s += &format!(
-        "NAME = {}\n# (node type, properties, inputs) of each term of the sum.\nTERMS = [\n",
+        "NAME = {}\n# (node type, properties, inputs, weight) of each term of the sum.\nTERMS = [\n",
         py_str(&opts.name)
     );
-    for t in &terms {
+    for t in terms {
         s += &format!("    (\n        {},\n        {{", py_str(t.node));
         s += &t
             .props
@@ -195,7 +257,10 @@ pub(crate) fn write(
             .map(|(k, v)| format!("{}: {v}", py_str(k)))
             .collect::<Vec<_>>()
             .join(", ");
-        s += "},\n    ),\n";
+        s += &format!(
+            "}},\n        {},\n    ),\n",
+            t.weight.map_or("None".to_string(), |w| format!("{w:?}"))
+        );
     }
     s += "]";
     s += BODY;

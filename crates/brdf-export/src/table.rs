@@ -49,12 +49,18 @@ impl std::fmt::Display for Support {
 /// Whether `target` writes `model` as a mapping onto its own material
 /// rather than exactly: USD's and Blender's principled materials take the
 /// glTF parameters but evaluate their own BRDF; Blender's sums of closures
-/// for the coloured-lobe models are exact.
+/// for the coloured-lobe and thin-film models are exact (Cycles' film
+/// integrates the spectrum with its own table, within about 0.01-0.02 of
+/// the model's).
 fn maps(model: &str, target: Target) -> bool {
     match target {
         Target::Usd => true,
-        Target::Blender => brdf_models::entry(model)
-            .is_none_or(|e| e.form != brdf_models::RendererForm::ColouredLobes),
+        Target::Blender => brdf_models::entry(model).is_none_or(|e| {
+            !matches!(
+                e.form,
+                brdf_models::RendererForm::ColouredLobes | brdf_models::RendererForm::ThinFilm
+            )
+        }),
         _ => false,
     }
 }

@@ -159,7 +159,7 @@ pub(crate) fn fit_nonlinear(
     let (rows, transformed);
     let mp = ModelProblem::new(model, data.pairs(), values, scales)?;
     let nonlinear = mp.nonlinear_indices().to_vec();
-    let starts = nonlinear_starts(model, &nonlinear, opts)?;
+    let starts = nonlinear_starts(model, data, &nonlinear, opts)?;
     let nl_box = Constraints::boxed(
         nonlinear.iter().map(|k| full.lower()[*k]).collect(),
         nonlinear.iter().map(|k| full.upper()[*k]).collect(),
@@ -207,14 +207,15 @@ pub(crate) fn fit_nonlinear(
 }
 
 /// The starts of the search on the non-linear parameters: the model's
-/// own suggestions (its catalogue entry's) first, then the Halton points
-/// of its box.
+/// own suggestions for `data` (its catalogue entry's) first, then the
+/// Halton points of its box.
 fn nonlinear_starts(
     model: &dyn Parametric,
+    data: &SampleSet,
     nonlinear: &[usize],
     opts: &FitOptions,
 ) -> Result<Vec<Vec<f64>>, FitError> {
-    let mut starts: Vec<Vec<f64>> = brdf_models::suggested_starts(model)
+    let mut starts: Vec<Vec<f64>> = brdf_models::suggested_starts(model, data)
         .into_iter()
         .filter(|s| s.len() == model.n_params())
         .map(|s| nonlinear.iter().map(|k| s[*k]).collect())

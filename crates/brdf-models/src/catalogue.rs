@@ -38,9 +38,9 @@ pub fn channel_model(model: &dyn Parametric) -> Option<Box<dyn Parametric>> {
 /// The start points model `model` suggests (its catalogue entry's
 /// [`ModelEntry::starts`]); none for a model without, or not in the
 /// catalogue.
-pub fn suggested_starts(model: &dyn Parametric) -> Vec<Vec<f64>> {
+pub fn suggested_starts(model: &dyn Parametric, data: &SampleSet) -> Vec<Vec<f64>> {
     match entry(model.name()).and_then(|e| e.starts) {
-        Some(f) => f(model),
+        Some(f) => f(model, data),
         None => Vec::new(),
     }
 }
@@ -248,7 +248,7 @@ fn entries() -> Vec<ModelEntry> {
             build: |c| Ok(Box::new(crate::Sgd::with_channels(c.channels)?)),
             build_for_data: None,
             from_samples: None,
-            starts: Some(crate::sgd::suggested_starts),
+            starts: Some(|m, _| crate::sgd::suggested_starts(m)),
             polish_factor: 10,
             channel_model: Some(|| Ok(Box::new(crate::sgd::channel::SgdChannel::with_defaults()?))),
             renderer: false,
@@ -710,6 +710,8 @@ fn entries() -> Vec<ModelEntry> {
     }
     #[cfg(feature = "renderer")]
     v.extend(crate::coloured_lobes::entries());
+    #[cfg(feature = "renderer")]
+    v.extend(crate::thin_film::entries());
     v
 }
 

@@ -80,6 +80,9 @@ pub enum RendererForm {
     /// Lobes with colours of their own, one renderer's formula each
     /// ([`crate::coloured_lobes`]): their exporters read the variant.
     ColouredLobes,
+    /// A GGX lobe with a thin film's Fresnel over a dielectric base
+    /// ([`crate::thin_film`]): Cycles' thin film on a Metallic BSDF.
+    ThinFilm,
 }
 
 impl RendererForm {

@@ -87,6 +87,8 @@ pub mod saved_model;
 pub mod sgd;
 #[cfg(feature = "microfacet")]
 pub mod student_t;
+#[cfg(feature = "renderer")]
+pub mod thin_film;
 #[cfg(feature = "microfacet")]
 pub mod torrance_sparrow;
 #[cfg(feature = "ward")]

@@ -43,10 +43,11 @@ pub type BuildForData = fn(&ModelConfig, &DirPairs) -> Result<Box<dyn Parametric
 /// parameters are then fitted.
 pub type BuildFromSamples = fn(&ModelConfig, &SampleSet) -> Result<Box<dyn Parametric>, ParamError>;
 
-/// Start points a model proposes for its fit, beside the pipeline's own
-/// (full parameter vectors inside the box, for the model as built: the
-/// pipeline takes their non-linear entries).
-pub type SuggestStarts = fn(&dyn Parametric) -> Vec<Vec<f64>>;
+/// Start points a model proposes for its fit to the samples, beside the
+/// pipeline's own (full parameter vectors inside the box, for the model as
+/// built: the pipeline takes their non-linear entries). Most models read
+/// only their own structure; a thin film scans its thickness on the data.
+pub type SuggestStarts = fn(&dyn Parametric, &SampleSet) -> Vec<Vec<f64>>;
 
 /// Constructor of a one-channel model equivalent to one channel of a
 /// model whose channels share nothing ([`ModelEntry::channel_model`]).

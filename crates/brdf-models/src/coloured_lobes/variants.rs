@@ -206,7 +206,7 @@ pub fn entries() -> Vec<ModelEntry> {
             build,
             build_for_data: None,
             from_samples: None,
-            starts: Some(super::starts::suggested_starts),
+            starts: Some(|m, _| super::starts::suggested_starts(m)),
             polish_factor: 1,
             channel_model: None,
             // Renderers evaluate every lobe exactly: fitted for appearance
