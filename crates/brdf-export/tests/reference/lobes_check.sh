@@ -38,6 +38,7 @@ done
 render_files=(lobes/*.xml)
 if [ -n "${BLENDER_PYTHON:-}" ]; then
     "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 lobes/*.py >&2
+    "$BLENDER_PYTHON" film_cycles_mirror.py >&2 # film/cycles_mirror.json (tests/film_cycles.rs)
     render_files+=(lobes/*.py)
 else
     echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy"
