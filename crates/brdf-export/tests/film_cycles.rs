@@ -8,30 +8,31 @@
 //! Specular IOR Level 0.5, IOR `n3`, black base), for eight films (two
 //! without thickness: plain Fresnel), and compares each pixel within 0-70
 //! degrees with the NumPy `A_c(mu)` of
-//! `crates/brdf-models/tests/reference/thin_film.py` (exact spectral Airy,
-//! CIE 1931 CMFs under D65, linear sRGB).
+//! `crates/brdf-models/tests/reference/thin_film.py` (the formula: exact
+//! spectral Airy, CIE 1931 CMFs alone, i.e. under the equal-energy
+//! illuminant E, linear sRGB).
 //!
 //! Measured (Blender 5.0.1, 128 px, 128 samples): the largest per-pixel
-//! deviation up to 60 degrees is 0.0157 (a 250 nm film of index 2.2 on
-//! 1.5, red channel), against which render noise (two seeds differ by
-//! 1.5e-4) and plain Fresnel (1e-4) are small. Weighting the CMFs by the
-//! equal-energy illuminant instead of D65 brings the same pixels within
-//! 1.0e-3 to 70 degrees: Cycles' film is the exact Airy reflectance
-//! integrated against the CMFs alone (its Fourier-space table, truncated
-//! after three orders, adds the rest), and the gap to the models' formula
-//! is the illuminant. Both nodes honour the film and agree to 2.4e-7.
+//! deviation of a film is 9.3e-4 up to 60 degrees (a 250 nm film of index
+//! 2.2 on 1.5, blue channel) and 1.02e-3 up to 70 degrees (800 nm of 1.33
+//! on 1.8, red, at 70 degrees): Cycles' film is the exact Airy reflectance
+//! integrated against the CMFs alone, and what is left is its Fourier-space
+//! table, truncated after three orders. Without a film (plain Fresnel) the
+//! pixels are within 7.3e-5 up to 60 degrees and 3.7e-4 up to 70, where
+//! the reflectance changes fastest across a pixel; render noise (two seeds
+//! differ by 1.5e-4) is of that order. Both nodes honour the film (it
+//! changes pixels by 0.089 at least) and agree to 2.4e-7. With the CMFs
+//! weighted by daylight (D65), as the formula was first written, the same
+//! pixels were up to 0.0157 off.
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 
-/// Cycles against the formula (D65), any channel and pixel, up to 60
-/// degrees: Cycles' own gap (illuminant E against D65, 0.0157 measured)
-/// plus render noise.
-const GAP_TO_60_DEG: f64 = 0.02;
-/// Cycles against the formula with the CMFs under illuminant E, up to 70
-/// degrees (1.0e-3 measured): Cycles' table and truncation.
-const ILLUMINANT_E: f64 = 2e-3;
-/// Without a film (plain Fresnel), up to 60 degrees (1e-4 measured).
+/// Cycles against the formula, any film, channel and pixel, up to 70
+/// degrees (1.02e-3 measured): Cycles' table and its truncation, plus
+/// render noise.
+const FORMULA: f64 = 2e-3;
+/// Without a film (plain Fresnel), up to 60 degrees (7.3e-5 measured).
 const PLAIN_FRESNEL: f64 = 5e-4;
 /// Two seeds' renders of one film (1.5e-4 measured).
 const NOISE: f64 = 5e-4;
@@ -46,7 +47,6 @@ struct Angle {
     cycles: [f64; 3],
     deviation: [f64; 3],
     max_deviation: [f64; 3],
-    max_deviation_illuminant_e: [f64; 3],
 }
 
 #[derive(serde::Deserialize)]
@@ -62,6 +62,8 @@ struct Film {
 #[derive(serde::Deserialize)]
 struct Summary {
     max_deviation_to_60_deg: f64,
+    max_deviation_to_70_deg: f64,
+    max_deviation_plain_to_70_deg: f64,
     seed_difference: f64,
     principled_minus_metallic: f64,
 }
@@ -98,7 +100,7 @@ fn answers() -> Answers {
 }
 
 #[test]
-fn cycles_thin_film_is_the_formula_within_its_own_gap() {
+fn cycles_thin_film_is_the_formula() {
     let a = answers();
     assert!(
         a.blender.starts_with("5."),
@@ -106,7 +108,9 @@ fn cycles_thin_film_is_the_formula_within_its_own_gap() {
         a.blender
     );
     let mut seen = BTreeSet::new();
-    let mut worst = 0.0f64;
+    // Largest deviations with a film up to 60 and 70 degrees, and without
+    // one up to 70 degrees.
+    let (mut to_60, mut to_70, mut plain_to_70) = (0.0f64, 0.0f64, 0.0f64);
     for f in &a.films {
         let what = format!(
             "{} d {} n2 {} n3 {}",
@@ -118,6 +122,7 @@ fn cycles_thin_film_is_the_formula_within_its_own_gap() {
             [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0],
             "{what}"
         );
+        let plain = f.film_d == 0.0;
         for x in &f.angles {
             assert!(
                 x.pixels >= 4,
@@ -134,36 +139,34 @@ fn cycles_thin_film_is_the_formula_within_its_own_gap() {
                 );
                 assert!(x.deviation[c].abs() <= x.max_deviation[c] + 1e-12, "{what}");
                 assert!((0.0..=1.0).contains(&x.ours_at_mu[c]), "{what}");
+                let bound = if plain && x.theta_deg <= 60.0 {
+                    PLAIN_FRESNEL
+                } else {
+                    FORMULA
+                };
                 assert!(
-                    x.max_deviation_illuminant_e[c] <= ILLUMINANT_E,
-                    "{what} at {} deg ch {c}: Cycles {} vs the film under illuminant E, off by {}",
+                    x.max_deviation[c] <= bound,
+                    "{what} at {} deg ch {c}: Cycles {} vs the formula {}, off by up to {} (bound {bound})",
                     x.theta_deg,
                     x.cycles[c],
-                    x.max_deviation_illuminant_e[c]
+                    x.ours[c],
+                    x.max_deviation[c]
                 );
-                if x.theta_deg <= 60.0 {
-                    let bound = if f.film_d == 0.0 {
-                        PLAIN_FRESNEL
-                    } else {
-                        GAP_TO_60_DEG
-                    };
-                    assert!(
-                        x.max_deviation[c] <= bound,
-                        "{what} at {} deg ch {c}: Cycles {} vs ours {}, off by up to {} (bound {bound})",
-                        x.theta_deg,
-                        x.cycles[c],
-                        x.ours[c],
-                        x.max_deviation[c]
-                    );
-                    worst = worst.max(x.max_deviation[c]);
+                if plain {
+                    plain_to_70 = plain_to_70.max(x.max_deviation[c]);
+                } else {
+                    to_70 = to_70.max(x.max_deviation[c]);
+                    if x.theta_deg <= 60.0 {
+                        to_60 = to_60.max(x.max_deviation[c]);
+                    }
                 }
             }
         }
         // The node applies the film: the same node without it renders
-        // other pixels.
+        // other pixels, by far more than the deviations above.
         match f.film_changes_pixels_by {
             Some(change) => assert!(change > 0.05, "{what}: the film changes pixels by {change}"),
-            None => assert_eq!(f.film_d, 0.0, "{what}: no render without the film"),
+            None => assert!(plain, "{what}: no render without the film"),
         }
         seen.insert((f.node.clone(), f.film_d.to_bits(), f.film_ior.to_bits()));
     }
@@ -171,17 +174,17 @@ fn cycles_thin_film_is_the_formula_within_its_own_gap() {
     for node in ["metallic", "principled"] {
         assert_eq!(seen.iter().filter(|s| s.0 == node).count(), 8, "{node}");
     }
-    assert!((worst - a.summary.max_deviation_to_60_deg).abs() < 1e-12);
-    assert!(
-        worst > 0.005,
-        "the films' colours do differ from Cycles' ({worst})"
+    let s = &a.summary;
+    assert!((to_60 - s.max_deviation_to_60_deg).abs() < 1e-12);
+    assert!((to_70 - s.max_deviation_to_70_deg).abs() < 1e-12);
+    assert!((plain_to_70 - s.max_deviation_plain_to_70_deg).abs() < 1e-12);
+    eprintln!(
+        "largest |Cycles - formula|: {to_60:.2e} to 60 deg, {to_70:.2e} to 70 deg; \
+         {plain_to_70:.2e} without a film to 70 deg; seeds differ by {:.2e}",
+        s.seed_difference
     );
-    assert!(
-        a.summary.seed_difference <= NOISE,
-        "{}",
-        a.summary.seed_difference
-    );
-    assert!(a.summary.principled_minus_metallic <= 1e-5);
+    assert!(s.seed_difference <= NOISE, "{}", s.seed_difference);
+    assert!(s.principled_minus_metallic <= 1e-5);
 }
 
 #[test]

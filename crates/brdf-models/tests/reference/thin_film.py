@@ -13,10 +13,11 @@ shared with the Rust crate):
   (eta = n cos(theta) for s, n / cos(theta) for p; r_ij = (eta_i - eta_j) /
   (eta_i + eta_j)) and cosines from Snell's law in complex arithmetic; each
   R is checked against the characteristic (transfer) matrix of the film;
-- weights: CIE 1931 2-degree CMFs (1 nm) times D65 (5 nm, linearly
-  interpolated to 1 nm), 380..780 nm, plain sums at 1 nm, XYZ to linear sRGB
-  by the IEC 61966-2-1 matrix; each channel (and Y for one channel)
-  normalised so that R = 1 at every wavelength gives exactly 1;
+- weights: CIE 1931 2-degree CMFs (1 nm) alone, i.e. under the
+  equal-energy illuminant E (as Blender's Cycles integrates its thin film),
+  380..780 nm, plain sums at 1 nm, XYZ to linear sRGB by the IEC 61966-2-1
+  matrix; each channel (and Y for one channel) normalised so that R = 1 at
+  every wavelength gives exactly 1;
 - Fdiel: the exact unpolarised dielectric Fresnel reflectance, by the same
   admittance amplitudes at a single interface.
 
@@ -30,10 +31,9 @@ Parameter order: kd per channel (kd, or kd_r, kd_g, kd_b), w, alpha, film_d
 - `reflectance`: A alone at mu in {1, 0.9, 0.7, 0.5, 0.3} for several
   (d, n2, n3), with a mirror pair (H = N, V.H = mu) and the lobe S(alpha) there
   so that A = f / S for kd = 0, w = 1;
-- `weights`: the 1 nm weight tables (and those under the equal-energy
-  illuminant E, for comparison with Cycles, which integrates the CMFs
-  alone), so that `A` works without colour-science (Blender's Python
-  imports this module for the Cycles check).
+- `weights`: the 1 nm weight tables, so that `A` works without
+  colour-science (Blender's Python imports this module for the Cycles
+  check).
 
 Run with numpy and colour-science 0.4.6: python3 thin_film.py
 """
@@ -62,9 +62,8 @@ MODELS = {"film-cycles": False, "film-coat-cycles": True}
 
 
 def weights_from_colour_science():
-    """Per-wavelength weights, each row summing to 1: Y, r, g, b under D65
-    (the formula's), and E_Y, E_r, E_g, E_b under the equal-energy
-    illuminant E (CMFs alone), which the Cycles check also reports."""
+    """Per-wavelength weights Y, r, g, b, each row summing to 1: the CMFs
+    alone (equal-energy illuminant E), mapped to linear sRGB."""
     import warnings
 
     with warnings.catch_warnings():
@@ -73,15 +72,10 @@ def weights_from_colour_science():
 
     cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
     xyz = np.array([cmfs[lam] for lam in LAMBDA])  # tabulated at 1 nm
-    d65 = colour.SDS_ILLUMINANTS["D65"]
-    d65_1nm = np.interp(LAMBDA, d65.wavelengths, d65.values)
-    table = {}
-    for prefix, illuminant in (("", d65_1nm), ("E_", np.ones_like(LAMBDA))):
-        xyz_w = xyz * illuminant[:, None]
-        rgb_w = xyz_w @ XYZ_TO_SRGB.T
-        table[prefix + "Y"] = xyz_w[:, 1] / xyz_w[:, 1].sum()
-        for k, c in enumerate("rgb"):
-            table[prefix + c] = rgb_w[:, k] / rgb_w[:, k].sum()
+    rgb = xyz @ XYZ_TO_SRGB.T
+    table = {"Y": xyz[:, 1] / xyz[:, 1].sum()}
+    for k, c in enumerate("rgb"):
+        table[c] = rgb[:, k] / rgb[:, k].sum()
     return table
 
 
@@ -164,14 +158,12 @@ def transfer_matrix(mu, d, n2, n3, lam=LAMBDA):
     return 0.5 * total
 
 
-def A(mu, d, n2, n3, channels=3, clamp=True, illuminant="D65"):
+def A(mu, d, n2, n3, channels=3, clamp=True):
     """Film colour A_c(mu): a list of `channels` values (3: linear sRGB r, g,
     b; 1: Y), each clamped to [0, 1] unless clamp is False; for an array of
-    mu, an array of such lists. The formula's illuminant is D65; "E" (the
-    CMFs alone) is for comparisons."""
-    prefix = {"D65": "", "E": "E_"}[illuminant]
+    mu, an array of such lists. Illuminant E: the CMFs alone."""
     w = weights()
-    rows = np.array([w[prefix + c] for c in (("r", "g", "b") if channels == 3 else ("Y",))])
+    rows = np.array([w[c] for c in (("r", "g", "b") if channels == 3 else ("Y",))])
     mu = np.asarray(mu, float)
     out = airy(mu[..., None], d, n2, n3) @ rows.T
     if clamp:
