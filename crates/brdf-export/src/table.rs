@@ -50,8 +50,8 @@ impl std::fmt::Display for Support {
 /// rather than exactly: USD's and Blender's principled materials take the
 /// glTF parameters but evaluate their own BRDF; Blender's sums of closures
 /// for the coloured-lobe and thin-film models are exact (Cycles' film
-/// integrates the spectrum with its own table, within about 0.01-0.02 of
-/// the model's).
+/// integrates the spectrum with its own table, within 1e-3 of the
+/// model's).
 fn maps(model: &str, target: Target) -> bool {
     match target {
         Target::Usd => true,
