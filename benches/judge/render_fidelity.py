@@ -206,7 +206,12 @@ def merged(old, new):
     model and objective, the others inserted after their material's rows."""
     # A conversion that became refused (or accepted) is the same
     # configuration: its row replaces the other label's.
-    key = lambda r: (r["material"], r["model"], r["objective"].removesuffix(FORCED))  # noqa: E731
+    # A `--for` row names the model it chose: the renderer is its
+    # configuration, whichever model is chosen.
+    def key(r):
+        model = r["model"].split(":")[0] if r["model"].startswith("--for ") else r["model"]
+        return (r["material"], model, r["objective"].removesuffix(FORCED))
+
     rows = list(old)
     for r in new:
         same = [i for i, o in enumerate(rows) if key(o) == key(r)]

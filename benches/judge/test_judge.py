@@ -182,10 +182,10 @@ FOR_MITSUBA_BOUNDS = {
     "vch_golden_yellow_rgb": (0.214, 0.156),  # 0.203 / 0.148, lobes-conductor-mitsuba
 }
 FOR_BLENDER_BOUNDS = {
-    "cc_ibiza_sunset_rgb": 0.183,  # 0.174, lobes-conductor-cycles
-    "cc_iris_purple_gem_rgb": 0.230,  # 0.218, lobes-f82-cycles
+    "cc_ibiza_sunset_rgb": 0.140,  # 0.133, film-cycles
+    "cc_iris_purple_gem_rgb": 0.165,  # 0.157, film-coat-cycles
     "colodur_napoli_4f_rgb": 0.055,  # 0.049, lobes-conductor-coat-cycles
-    "paper_white_rgb": 0.042,  # 0.036, lobes-conductor-cycles
+    "paper_white_rgb": 0.040,  # 0.035, film-cycles
     "vch_golden_yellow_rgb": 0.131,  # 0.124, lobes-f82-coat-cycles
 }
 

@@ -317,6 +317,49 @@ fn blender_script_sets_each_nodes_values() {
     assert!(!py.contains("MULTI_GGX"));
 }
 
+/// A thin film goes to Cycles as a Metallic BSDF of the base's index and
+/// zero extinction carrying the film, scaled by `w` through a Mix Shader;
+/// the rest of the renderers have no film and convert; a one-channel film
+/// (its luminance) has no Cycles node.
+#[test]
+fn blender_script_carries_the_film_and_its_weight() {
+    let mut p = rgb("kd", [0.02, 0.03, 0.2]);
+    p.extend([
+        ("w".into(), 0.6),
+        ("alpha".into(), 0.09),
+        ("film_d".into(), 210.0),
+        ("film_ior".into(), 1.7),
+        ("base_ior".into(), 1.4),
+        ("coat_ior".into(), 1.5),
+        ("coat_alpha".into(), 0.04),
+    ]);
+    let m = model("film-coat-cycles", 1, &named(&p));
+    let py = export(m.as_ref(), Target::Blender).unwrap();
+    for want in [
+        r#""ShaderNodeBsdfMetallic",
+        {"distribution": "GGX", "fresnel_type": "PHYSICAL_CONDUCTOR"},
+        {"IOR": (1.4, 1.4, 1.4), "Extinction": (0.0, 0.0, 0.0), "Roughness": 0.3, "Thin Film Thickness": 210.0, "Thin Film IOR": 1.7},
+        0.6,"#,
+        // The coat: unweighted, no film.
+        r#"{"IOR": (1.5, 1.5, 1.5), "Extinction": (0.0, 0.0, 0.0), "Roughness": 0.2},
+        None,"#,
+        "ShaderNodeMixShader",
+    ] {
+        assert!(py.contains(want), "missing {want} in\n{py}");
+    }
+    assert!(matches!(
+        export(m.as_ref(), Target::Mitsuba),
+        Err(ExportError::NoEquivalent { .. })
+    ));
+    let grey = brdf_models::build("film-cycles", &brdf_models::ModelConfig::default()).unwrap();
+    match export(grey.as_ref(), Target::Blender) {
+        Err(ExportError::NoEquivalent { reason, .. }) => {
+            assert!(reason.contains("fit RGB data"), "{reason}")
+        }
+        other => panic!("{:?}", other.map(|_| ())),
+    }
+}
+
 #[test]
 fn each_renderer_refuses_the_other_masking_naming_the_variant_to_fit() {
     let m = model("lobes-cycles", 2, &named(&plain_params()));

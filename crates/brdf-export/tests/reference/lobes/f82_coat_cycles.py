@@ -9,27 +9,31 @@ import sys
 import bpy
 
 NAME = "fitted"
-# (node type, properties, inputs) of each term of the sum.
+# (node type, properties, inputs, weight) of each term of the sum.
 TERMS = [
     (
         "ShaderNodeBsdfDiffuse",
         {},
         {"Color": (0.3, 0.12, 0.1, 1.0), "Roughness": 0.0},
+        None,
     ),
     (
         "ShaderNodeBsdfMetallic",
         {"distribution": "GGX", "fresnel_type": "F82"},
         {"Base Color": (0.95, 0.64, 0.54, 1.0), "Edge Tint": (0.9, 0.75, 0.6, 1.0), "Roughness": 0.34641016151377546},
+        None,
     ),
     (
         "ShaderNodeBsdfAnisotropic",
         {"distribution": "GGX"},
         {"Color": (0.04, 0.1, 0.25, 1.0), "Roughness": 0.6708203932499369, "Anisotropy": 0.0},
+        None,
     ),
     (
         "ShaderNodeBsdfMetallic",
         {"distribution": "GGX", "fresnel_type": "PHYSICAL_CONDUCTOR"},
         {"IOR": (1.5, 1.5, 1.5), "Extinction": (0.0, 0.0, 0.0), "Roughness": 0.1414213562373095},
+        None,
     ),
 ]
 
@@ -46,21 +50,30 @@ def build(name=NAME):
     out = tree.nodes.new("ShaderNodeOutputMaterial")
     out.location = (300 * (len(TERMS) + 1), 0)
     total = None
-    for i, (kind, props, inputs) in enumerate(TERMS):
+    for i, (kind, props, inputs, weight) in enumerate(TERMS):
         node = tree.nodes.new(kind)
         node.location = (300 * i, -250)
         for key, value in props.items():
             setattr(node, key, value)
         for key, value in inputs.items():
             node.inputs[key].default_value = value
+        term = node.outputs["BSDF"]
+        if weight is not None:
+            # Mix Shader is fac * B + (1 - fac) * A; with A unlinked it is
+            # the term scaled by fac.
+            mix = tree.nodes.new("ShaderNodeMixShader")
+            mix.location = (300 * i + 75, -450)
+            mix.inputs["Fac"].default_value = weight
+            tree.links.new(term, mix.inputs[2])
+            term = mix.outputs["Shader"]
         if total is None:
-            total = node.outputs["BSDF"]
+            total = term
             continue
         # Add Shader sums its two closures exactly.
         add = tree.nodes.new("ShaderNodeAddShader")
         add.location = (300 * i + 150, 0)
         tree.links.new(total, add.inputs[0])
-        tree.links.new(node.outputs["BSDF"], add.inputs[1])
+        tree.links.new(term, add.inputs[1])
         total = add.outputs["Shader"]
     tree.links.new(total, out.inputs["Surface"])
     return mat
