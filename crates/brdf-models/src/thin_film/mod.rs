@@ -32,13 +32,17 @@
 //! | `w` | weight of the film lobe | `[0, 1]` | 1 | yes |
 //! | `alpha` | GGX width of the film lobe | `[0.002, 1]` | 0.1 | no |
 //! | `film_d` | film thickness, nm | `[0, 1500]` | 250 | no |
-//! | `film_ior` | film index `n2` | `[1.05, 3]` | 1.6 | no |
-//! | `base_ior` | base index `n3` | `[1.05, 3]` | 1.5 | no |
+//! | `film_ior` | film index `n2` | `[1.05, 5]` | 1.6 | no |
+//! | `base_ior` | base index `n3` | `[1.05, 5]` | 1.5 | no |
 //! | `coat_ior` (coat) | coat index | `[1.2, 2]` | 1.5 | no |
 //! | `coat_alpha` (coat) | coat GGX width | `[0.002, 1]` | 0.05 | no |
 //!
 //! `alpha` is the distribution's width (Cycles' Roughness is
-//! `sqrt(alpha)`). Indices start at 1.05: at 1 the film's refraction
+//! `sqrt(alpha)`). The indices reach 5, beyond common dielectrics (a base
+//! of index 5 reflects 0.44 at normal incidence, as a metal might): the
+//! colour-shifting paints' flakes reflect more than glass, and on
+//! cc_ibiza_sunset a fit at the earlier limit of 3 sat on it (studio FLIP
+//! 0.132 there, 0.115 with the base at 4.0). Indices start at 1.05: at 1 the film's refraction
 //! cosine vanishes at grazing incidence, and so would the derivatives'
 //! denominators.
 //!
