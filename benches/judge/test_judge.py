@@ -182,10 +182,10 @@ FOR_MITSUBA_BOUNDS = {
     "vch_golden_yellow_rgb": (0.214, 0.156),  # 0.203 / 0.148, lobes-conductor-mitsuba
 }
 FOR_BLENDER_BOUNDS = {
-    "cc_ibiza_sunset_rgb": 0.140,  # 0.133, film-cycles
-    "cc_iris_purple_gem_rgb": 0.165,  # 0.157, film-coat-cycles
+    "cc_ibiza_sunset_rgb": 0.125,  # 0.119, film-cycles
+    "cc_iris_purple_gem_rgb": 0.152,  # 0.145, film-coat-cycles
     "colodur_napoli_4f_rgb": 0.055,  # 0.049, lobes-conductor-coat-cycles
-    "paper_white_rgb": 0.040,  # 0.035, film-cycles
+    "paper_white_rgb": 0.041,  # 0.036, film-coat-cycles
     "vch_golden_yellow_rgb": 0.131,  # 0.124, lobes-f82-coat-cycles
 }
 
