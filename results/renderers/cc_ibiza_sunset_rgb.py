@@ -1,4 +1,4 @@
-"""Cycles material of `lobes-conductor-cycles` written by `brdf export --to blender`: the model's terms as Diffuse, Glossy (GGX) and Metallic (GGX) BSDFs joined by Add Shader nodes, exact in Cycles.
+"""Cycles material of `film-cycles` written by `brdf export --to blender`: the model's terms as Diffuse, Glossy (GGX) and Metallic (GGX) BSDFs joined by Add Shader nodes, exact in Cycles.
 
 Run: blender -b -P THIS.py [-- --blend OUT.blend], or python THIS.py [--blend OUT.blend] with bpy.
 """
@@ -9,17 +9,19 @@ import sys
 import bpy
 
 NAME = "cc_ibiza_sunset_rgb"
-# (node type, properties, inputs) of each term of the sum.
+# (node type, properties, inputs, weight) of each term of the sum.
 TERMS = [
     (
         "ShaderNodeBsdfDiffuse",
         {},
-        {"Color": (0.00207024513736914, 0.0005469464684677171, 4.336808689942018e-17, 1.0), "Roughness": 0.0},
+        {"Color": (0.0014353152174876576, 0.0008316635991286686, 0.0, 1.0), "Roughness": 0.0},
+        None,
     ),
     (
         "ShaderNodeBsdfMetallic",
         {"distribution": "GGX", "fresnel_type": "PHYSICAL_CONDUCTOR"},
-        {"IOR": (2.505405006878358, 1.2762676252099057, 2.0154839058440808), "Extinction": (1.6473606885866192, 0.7937423939677422, 0.0), "Roughness": 0.30744158027848517},
+        {"IOR": (4.024093933121024, 4.024093933121024, 4.024093933121024), "Extinction": (0.0, 0.0, 0.0), "Roughness": 0.30736798027072193, "Thin Film Thickness": 150.0921345208024, "Thin Film IOR": 2.4984013671276366},
+        1.0,
     ),
 ]
 
@@ -36,21 +38,30 @@ def build(name=NAME):
     out = tree.nodes.new("ShaderNodeOutputMaterial")
     out.location = (300 * (len(TERMS) + 1), 0)
     total = None
-    for i, (kind, props, inputs) in enumerate(TERMS):
+    for i, (kind, props, inputs, weight) in enumerate(TERMS):
         node = tree.nodes.new(kind)
         node.location = (300 * i, -250)
         for key, value in props.items():
             setattr(node, key, value)
         for key, value in inputs.items():
             node.inputs[key].default_value = value
+        term = node.outputs["BSDF"]
+        if weight is not None:
+            # Mix Shader is fac * B + (1 - fac) * A; with A unlinked it is
+            # the term scaled by fac.
+            mix = tree.nodes.new("ShaderNodeMixShader")
+            mix.location = (300 * i + 75, -450)
+            mix.inputs["Fac"].default_value = weight
+            tree.links.new(term, mix.inputs[2])
+            term = mix.outputs["Shader"]
         if total is None:
-            total = node.outputs["BSDF"]
+            total = term
             continue
         # Add Shader sums its two closures exactly.
         add = tree.nodes.new("ShaderNodeAddShader")
         add.location = (300 * i + 150, 0)
         tree.links.new(total, add.inputs[0])
-        tree.links.new(node.outputs["BSDF"], add.inputs[1])
+        tree.links.new(term, add.inputs[1])
         total = add.outputs["Shader"]
     tree.links.new(total, out.inputs["Surface"])
     return mat
