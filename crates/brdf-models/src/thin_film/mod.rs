@@ -20,7 +20,7 @@
 //! colour-matching functions under the equal-energy illuminant (as Cycles
 //! integrates its film) and mapped to linear sRGB (luminance
 //! for one channel), clamped to `[0, 1]` ([`airy`]), interpolated
-//! linearly between 1025 nodes of `mu` ([`table`]). A film of zero
+//! between 257 nodes of `mu` ([`table`]). A film of zero
 //! thickness, or of the base's index, leaves the base's Fresnel in every
 //! channel. The coat is as the coloured lobes' ([`crate::coloured_lobes`]).
 //!

@@ -2,13 +2,19 @@
 //! direction pairs costs one spectral integration per node of the table
 //! rather than one per pair.
 //!
-//! The model's film colour *is* the piecewise-linear interpolant of
-//! [`film_colour`] on [`INTERVALS`] equal steps of `V.H` in `[0, 1]`, for
-//! single pairs and batches alike, so that both paths give the same value
-//! to the last bit; its derivatives in the film's parameters are those of
-//! the interpolant (the interpolation weights depend on `V.H` alone). At
-//! 1024 steps the interpolant is within about 1e-5 of the integral itself
-//! for films up to 1500 nm (the phase turns by at most 0.03 rad per step).
+//! The model's film colour *is* the Catmull-Rom interpolant of
+//! [`film_colour`] on [`INTERVALS`] equal steps of `V.H` in `[0, 1]` (the
+//! ends extended by quadratic extrapolation, the result clamped to
+//! `[0, 1]`), for single pairs and batches alike, so that both paths give
+//! the same value to the last bit; its derivatives in the film's parameters
+//! are those of the interpolant (the weights depend on `V.H` alone). At 256
+//! steps the interpolant is within 4e-6 of the integral itself for films
+//! up to 1400 nm of index up to 2.2, 2e-5 for 1500 nm of index 5, and 3e-4
+//! at the box's corner, 1500 nm of index 1.05, where the phase turns
+//! fastest near grazing (`tests::interpolant_follows_the_integral`; Cycles'
+//! own film is 1e-3 from the integral). Linear interpolation on 1024 steps
+//! was no closer, and building its tables took a third of a thin-film
+//! fit's time.
 //!
 //! A table depends only on `(d, n2, n3)` and the channel count: the few
 //! most recent are kept in the model, shared by the threads that evaluate
@@ -20,7 +26,7 @@ use std::sync::{Arc, Mutex};
 use super::airy::{FilmColour, film_colour};
 
 /// Steps of `V.H` in the table.
-pub const INTERVALS: usize = 1024;
+pub const INTERVALS: usize = 256;
 /// Tables kept (parallel multi-start fits evaluate a few parameter vectors
 /// at once).
 const KEPT: usize = 4;
@@ -46,19 +52,57 @@ impl FilmTable {
         }
     }
 
+    /// Node `i` of the table, for `i` in `-1..=INTERVALS + 1`: the ends
+    /// extended by the quadratic through the three nearest nodes.
+    #[inline]
+    fn node(&self, i: isize) -> FilmColour {
+        let n = INTERVALS as isize;
+        let (a, b, c) = match i {
+            -1 => (0, 1, 2),
+            _ if i > n => (INTERVALS, INTERVALS - 1, INTERVALS - 2),
+            _ => return self.nodes[i as usize],
+        };
+        let (a, b, c) = (&self.nodes[a], &self.nodes[b], &self.nodes[c]);
+        let ex = |x: f64, y: f64, z: f64| 3.0 * x - 3.0 * y + z;
+        let mut out = FilmColour::default();
+        for ch in 0..self.channels {
+            out.value[ch] = ex(a.value[ch], b.value[ch], c.value[ch]);
+            for k in 0..3 {
+                out.grad[ch][k] = ex(a.grad[ch][k], b.grad[ch][k], c.grad[ch][k]);
+            }
+        }
+        out
+    }
+
     /// The interpolated colour and derivatives at `mu` in `[0, 1]`.
     #[inline]
     pub fn at(&self, mu: f64) -> FilmColour {
         let x = mu.clamp(0.0, 1.0) * INTERVALS as f64;
         let i = (x as usize).min(INTERVALS - 1);
         let t = x - i as f64;
-        let (a, b) = (&self.nodes[i], &self.nodes[i + 1]);
-        let lerp = |p: f64, q: f64| p + t * (q - p);
+        let (t2, t3) = (t * t, t * t * t);
+        // Catmull-Rom weights of nodes i - 1, i, i + 1, i + 2.
+        let w = [
+            0.5 * (-t3 + 2.0 * t2 - t),
+            0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+            0.5 * (-3.0 * t3 + 4.0 * t2 + t),
+            0.5 * (t3 - t2),
+        ];
+        let i = i as isize;
+        let p = [
+            self.node(i - 1),
+            self.node(i),
+            self.node(i + 1),
+            self.node(i + 2),
+        ];
         let mut out = FilmColour::default();
-        for c in 0..self.channels {
-            out.value[c] = lerp(a.value[c], b.value[c]);
-            for k in 0..3 {
-                out.grad[c][k] = lerp(a.grad[c][k], b.grad[c][k]);
+        for ch in 0..self.channels {
+            let v: f64 = (0..4).map(|k| w[k] * p[k].value[ch]).sum();
+            out.value[ch] = v.clamp(0.0, 1.0);
+            if (0.0..=1.0).contains(&v) {
+                for g in 0..3 {
+                    out.grad[ch][g] = (0..4).map(|k| w[k] * p[k].grad[ch][g]).sum();
+                }
             }
         }
         out
@@ -98,5 +142,42 @@ impl TableCache {
         }
         kept.push(Arc::clone(&t));
         t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The interpolant against the integral itself between the nodes, over
+    /// films across the box (thickness to 1500 nm, indices 1.05 to 5): the
+    /// gaps, printed, within those the module doc states.
+    #[test]
+    fn interpolant_follows_the_integral() {
+        let mut worst: f64 = 0.0;
+        for &(d, n2, n3) in &[
+            (0.0, 1.6, 1.5),
+            (250.0, 2.2, 1.5),
+            (800.0, 1.33, 1.8),
+            (1400.0, 2.0, 1.33),
+            (1500.0, 1.05, 3.0),
+            (1500.0, 5.0, 1.05),
+        ] {
+            let t = FilmTable::new([d, n2, n3], 3);
+            let mut here: f64 = 0.0;
+            for j in 0..2000 {
+                let mu = (j as f64 + 0.37) / 2000.0;
+                let (a, b) = (t.at(mu), film_colour(mu, d, n2, n3, 3));
+                for c in 0..3 {
+                    here = here.max((a.value[c] - b.value[c]).abs());
+                }
+            }
+            println!("film ({d}, {n2}, {n3}): {here:e}");
+            // The box's corner (index 1.05) turns fastest near grazing.
+            let bound = if n2 < 1.1 { 5e-4 } else { 5e-5 };
+            assert!(here < bound, "film ({d}, {n2}, {n3}): {here}");
+            worst = worst.max(here);
+        }
+        println!("largest gap {worst:e}");
     }
 }
