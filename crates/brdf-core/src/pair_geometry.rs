@@ -6,7 +6,10 @@
 //! (`= L.H`), `cos2_phi_h = H_x^2/(H_x^2 + H_y^2)` (1/2 when `H = N`);
 //! and the parameter-free factors of the Ashikhmin-Shirley lobe, Schlick's
 //! `(1 - V.H)^5` and `1 / (V.H max(N.L, N.V))`, so its kernel does no
-//! division per sample and iteration.
+//! division per sample and iteration; the polar angles of `L` and `V`
+//! (`atan2(|w_xy|, w_z)`, accurate at the pole), whose arc tangents the
+//! shadowing terms of Bagher's SGD would otherwise take at every
+//! iteration (a sixth of its fit's time).
 //! A pair with `L + V = 0` or either direction at or below the horizon is
 //! marked invalid (`valid[j] == false`); models return 0 there.
 
@@ -30,6 +33,10 @@ pub struct PairGeometry {
     pub schlick5: Vec<f64>,
     /// `1 / (V.H max(N.L, N.V))` (0 for an invalid pair).
     pub inv_vh_max_cos: Vec<f64>,
+    /// Polar angle of `L`, `atan2(|L_xy|, L_z)`.
+    pub theta_i: Vec<f64>,
+    /// Polar angle of `V`, `atan2(|V_xy|, V_z)`.
+    pub theta_o: Vec<f64>,
 }
 
 impl PairGeometry {
@@ -44,6 +51,12 @@ impl PairGeometry {
             valid: vec![false; n],
             schlick5: vec![1.0; n],
             inv_vh_max_cos: vec![0.0; n],
+            theta_i: (0..n)
+                .map(|j| polar(pairs.lx[j], pairs.ly[j], pairs.lz[j]))
+                .collect(),
+            theta_o: (0..n)
+                .map(|j| polar(pairs.vx[j], pairs.vy[j], pairs.vz[j]))
+                .collect(),
         };
         for j in 0..n {
             let (sx, sy, sz) = (
@@ -81,5 +94,43 @@ impl PairGeometry {
     /// True when there are no pairs.
     pub fn is_empty(&self) -> bool {
         self.nh.is_empty()
+    }
+}
+
+/// Polar angle of a unit direction (`atan2(|w_xy|, w_z)`, accurate at the
+/// pole, where `acos(w_z)` is not).
+fn polar(x: f64, y: f64, z: f64) -> f64 {
+    (x * x + y * y).sqrt().atan2(z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PairGeometry;
+    use crate::samples::DirPairs;
+
+    /// The polar angles are the directions' arc cosines, computed
+    /// independently, from the pole to the horizon.
+    #[test]
+    fn polar_angles_are_the_arc_cosines_of_the_z_components() {
+        let mut pairs = DirPairs::with_capacity(8);
+        for k in 0..8 {
+            let (ti, to) = (0.2 * k as f64, 1.5 - 0.19 * k as f64);
+            let (pi, po) = (0.7 * k as f64, 2.0 + 0.3 * k as f64);
+            let l = [ti.sin() * pi.cos(), ti.sin() * pi.sin(), ti.cos()];
+            let v = [to.sin() * po.cos(), to.sin() * po.sin(), to.cos()];
+            pairs.push(&l.into(), &v.into());
+        }
+        let g = PairGeometry::new(&pairs);
+        for k in 0..8 {
+            assert!(
+                (g.theta_i[k] - pairs.lz[k].acos()).abs() < 1e-7,
+                "theta_i {k}"
+            );
+            assert!(
+                (g.theta_o[k] - pairs.vz[k].acos()).abs() < 1e-7,
+                "theta_o {k}"
+            );
+            assert!((g.theta_i[k] - 0.2 * k as f64).abs() < 1e-12, "theta_i {k}");
+        }
     }
 }

@@ -148,13 +148,6 @@ impl Hoisted {
     }
 }
 
-/// Polar angle of a unit direction (`atan2(|w_xy|, w_z)`, accurate at the
-/// pole, where `acos(w_z)` is not).
-#[inline(always)]
-fn polar(x: f64, y: f64, z: f64) -> f64 {
-    (x * x + y * y).sqrt().atan2(z)
-}
-
 /// The lobe `S` of every pair into `s[j]` and, when `ds` is given, its
 /// derivatives `ds[u * n + j]` in the lobe parameters `q`; 0 where the
 /// pair is invalid or `D` underflows.
@@ -196,8 +189,7 @@ fn lobe_batch(
             continue;
         }
         let (nl, nv) = (pairs.lz[j], pairs.vz[j]);
-        let theta_i = polar(pairs.lx[j], pairs.ly[j], nl);
-        let theta_o = polar(pairs.vx[j], pairs.vy[j], nv);
+        let (theta_i, theta_o) = (geom.theta_i[j], geom.theta_o[j]);
         // Fresnel as `sgd_fresnel`, (1 - V.H)^5 from the geometry.
         let (vh, m5) = (geom.vh[j], geom.schlick5[j]);
         let f = h.f0 + (1.0 - h.f0) * m5 - h.f1 * vh;
