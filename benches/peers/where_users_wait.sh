@@ -19,7 +19,12 @@
 # 3. `brdf select` on one RGL file, 1 and 2 threads;
 # 4. `brdf batch` over the RGL folder x 5 models, 1 and 2 threads, and
 #    `brdf report --batch` of it, one thread;
-# 5. criterion: the principled and glTF batch kernels.
+# 5. criterion: the principled and glTF batch kernels;
+# 6. Bagher's SGD as `brdf fit --model sgd` fits it by default (`--metric
+#    ngan`, per channel) on every RGL file, one thread, and for appearance
+#    on cc_iris_purple_gem, two threads; with PEERS_LONG=1 also SGD for
+#    appearance on every RGL file and `brdf reproduce` with the data, two
+#    threads (each about half an hour on the shared 2-core machine).
 #
 # Called by run.sh; PEERS_ONLY=where_users_wait runs it alone (about 15 minutes of
 # processor time on the shared 2-core machine).
@@ -145,4 +150,25 @@ for f in "$target"/criterion/renderer_kernels/*/new; do
 	cp "$f/estimates.json" "$d/kernels/$name.estimates.json"
 	cp "$f/benchmark.json" "$d/kernels/$name.benchmark.json"
 done
+
+# 6. Bagher's SGD.
+echo 'RAYON_NUM_THREADS=1 brdf fit --data $BRDF_DATA/rgl/FILE.bsdf --model sgd --json --quiet' >>"$cmds"
+for f in $files; do
+	RAYON_NUM_THREADS=1 timed "{\"kind\": \"sgd\", \"file\": \"$f\", \"metric\": \"ngan\", \"threads\": 1}" \
+		"$brdf" fit --data "$BRDF_DATA/rgl/$f.bsdf" --model sgd --json --quiet
+done
+appearance_files="cc_iris_purple_gem_rgb"
+if [ "${PEERS_LONG:-0}" = 1 ]; then
+	appearance_files="$files"
+fi
+echo "RAYON_NUM_THREADS=2 brdf fit --data \$BRDF_DATA/rgl/FILE.bsdf --model sgd --metric appearance --json --quiet (FILE: $appearance_files)" >>"$cmds"
+for f in $appearance_files; do
+	RAYON_NUM_THREADS=2 timed "{\"kind\": \"sgd\", \"file\": \"$f\", \"metric\": \"appearance\", \"threads\": 2}" \
+		"$brdf" fit --data "$BRDF_DATA/rgl/$f.bsdf" --model sgd --metric appearance --json --quiet
+done
+if [ "${PEERS_LONG:-0}" = 1 ]; then
+	echo 'RAYON_NUM_THREADS=2 brdf reproduce --out $PEERS_OUT/where_users_wait/reproduce --quiet' >>"$cmds"
+	/usr/bin/time -f '%U %S %e' -o "$d/time.txt" env RAYON_NUM_THREADS=2 "$brdf" reproduce --out "$d/reproduce" --quiet >/dev/null
+	"$py" -c "import json,sys; u,s,e=open(sys.argv[1]).read().split()[-3:]; print(json.dumps({'tag': {'kind': 'reproduce', 'threads': 2}, 'cpu': float(u)+float(s), 'wall': float(e), 'result': None}))" "$d/time.txt" >>"$d/runs.jsonl"
+fi
 rm -f "$d/time.txt" "$d/out.json"
