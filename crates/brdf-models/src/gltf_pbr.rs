@@ -56,6 +56,7 @@
 //! assert!((f[0] - expect).abs() < 1e-12 * expect);
 //! ```
 
+mod ext_kernel;
 mod kernel;
 
 use std::f64::consts::FRAC_1_PI;
@@ -231,6 +232,16 @@ impl DualFormula for GltfExtFormula {
         out: &mut [Dual<N>],
     ) {
         gltf_eval(p, nc, l, v, true, out)
+    }
+    fn batch(
+        p: &[f64],
+        nc: usize,
+        pairs: &DirPairs,
+        out: &mut [f64],
+        jac: Option<&mut [f64]>,
+    ) -> bool {
+        ext_kernel::batch(p, nc, pairs, out, jac);
+        true
     }
     fn reciprocal() -> bool {
         false
