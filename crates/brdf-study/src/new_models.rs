@@ -27,6 +27,7 @@
 //! studio light is the judge's faithful one; the sky light of brdf-render
 //! is being matched to Mitsuba's, so its FLIP is printed but not judged.
 
+use brdf_core::SampleSet;
 use brdf_core::format::number as fmt_sig;
 use brdf_fit::{FitOutcome, FitReport, FitRequest, Material, Metric, Objective};
 use rayon::prelude::*;
@@ -50,6 +51,9 @@ struct Outcome {
     /// What the fit was made for: `Ngan L2` or `appearance`.
     fitted_for: &'static str,
     ngan_l2: f64,
+    /// Ngan's L2 on every node of the grid within 80 deg (the fit saw
+    /// every 5th).
+    ngan_l2_every_node: f64,
     flip_sky: f64,
     flip_studio: f64,
     shape_on_bound: Vec<String>,
@@ -59,8 +63,13 @@ struct Outcome {
     seconds: f64,
 }
 
-fn outcome(entry: &Entry, r: Result<FitReport, brdf_fit::FitError>) -> Result<Outcome, String> {
+fn outcome(
+    entry: &Entry,
+    r: Result<FitReport, brdf_fit::FitError>,
+    every_node: &SampleSet,
+) -> Result<Outcome, String> {
     let r = r.map_err(|e| e.to_string())?;
+    let ngan_l2_every_node = ngan_l2_on(r.model.as_ref(), every_node).map_err(|e| e.to_string())?;
     let flip = |light: &str| {
         r.image_error
             .as_ref()
@@ -86,6 +95,7 @@ fn outcome(entry: &Entry, r: Result<FitReport, brdf_fit::FitError>) -> Result<Ou
         name: entry.name,
         fitted_for,
         ngan_l2: r.summary.ngan_l2,
+        ngan_l2_every_node,
         flip_sky: flip("sky"),
         flip_studio: flip("studio"),
         shape_on_bound,
@@ -97,6 +107,18 @@ fn outcome(entry: &Entry, r: Result<FitReport, brdf_fit::FitError>) -> Result<Ou
             .map_or_else(|| r.summary.objective.to_string(), |c| c.objective.clone()),
         seconds: r.summary.seconds,
     })
+}
+
+/// Ngan's L2 of `model` at its parameters on `samples`.
+fn ngan_l2_on(
+    model: &dyn brdf_core::Parametric,
+    samples: &SampleSet,
+) -> Result<f64, brdf_core::CoreError> {
+    let mut fitted = vec![0.0; samples.len() * model.channels()];
+    model.eval_batch_at(model.params(), samples.pairs(), &mut fitted);
+    let values = samples.values_channel_major();
+    let l2 = brdf_core::metrics::ngan_l2(&values, &fitted, &samples.pairs().lz, samples.weights())?;
+    Ok(l2.total)
 }
 
 /// One fit of the study: a model of the catalogue, fitted for appearance
@@ -149,11 +171,12 @@ fn reduction(classic: f64, new: f64) -> f64 {
 }
 
 /// The columns of `new_models_fits`: every fit.
-const FIT_COLUMNS: [&str; 11] = [
+const FIT_COLUMNS: [&str; 12] = [
     "material",
     "model",
     "group",
     "Ngan L2",
+    "Ngan L2 (every node)",
     "FLIP studio",
     "FLIP sky",
     "shape parameters on a bound",
@@ -252,7 +275,7 @@ fn fit_material(
     name: &str,
     fits: &[Entry],
 ) -> Result<Vec<Result<Outcome, String>>, StudyError> {
-    let (dense, samples) = crate::context::rgl_material(rgl_dir, name)?;
+    let (dense, samples, every_node) = crate::context::rgl_material_and_grid(rgl_dir, name)?;
     let material = Material::new(name, samples, Some(Box::new(dense)));
     let bar = progress::bar(fits.len(), name);
     let outcomes = fits
@@ -272,7 +295,7 @@ fn fit_material(
                 .and_then(FitOutcome::into_report)
             });
             bar.inc(1);
-            outcome(e, r)
+            outcome(e, r, &every_node)
         })
         .collect();
     bar.finish_and_clear();
@@ -298,6 +321,7 @@ fn fit_row(material: &str, e: &Entry, o: &Result<Outcome, String>) -> Vec<Cell> 
     match o {
         Ok(o) => row.extend([
             Cell::Num(o.ngan_l2, 4),
+            Cell::Num(o.ngan_l2_every_node, 4),
             Cell::Num(o.flip_studio, 3),
             Cell::Num(o.flip_sky, 3),
             Cell::Text(o.shape_on_bound.join(", ")),
@@ -307,7 +331,7 @@ fn fit_row(material: &str, e: &Entry, o: &Result<Outcome, String>) -> Vec<Cell> 
             Cell::Num(o.seconds, 3),
         ]),
         Err(err) => {
-            row.extend(std::iter::repeat_n(Cell::Empty, 6));
+            row.extend(std::iter::repeat_n(Cell::Empty, 7));
             row.push(Cell::Text(format!("failed: {err}")));
             row.push(Cell::Empty);
         }
@@ -426,7 +450,7 @@ impl Tally {
     fn note(&self) -> String {
         let verdict = |b: bool| if b { "met" } else { "NOT met" };
         format!(
-            "Every model fitted as `brdf fit --model NAME` fits it by default (`--metric auto`: Ngan's L2 for the classic analytic models, the appearance fit for the renderer models GGX, principled, glTF), and the renderer and new models also the other way: `--metric ngan` and `--metric appearance` (candidates under Ngan's L2, log and cube root, each refined in the image objective, the least image error kept; `fitted for` and `objective kept` in `new_models_fits.md`), to the RGL samples (Sopp's grid within 80 deg, every 5th node as in the Table 9.3 stand-in, cell weights, RGB), then judged as `brdf fit` judges: Ngan's L2 and the HDR-FLIP of brdf-render's judge sphere (128 px) under the studio and sky light sets against the measured RGL data. New models: {}; classic and renderer models: the rest. Per material the best fit of each group is taken for each error separately (a user fits for the error they need: `for Ngan L2` or `for appearance` in the labels). Goal: mean L2 reduction {}% (>= {}%: {}), mean studio-FLIP reduction {}% (>= {}%: {}); on the materials where the classic/renderer fit of lowest L2 ends with a shape parameter on a bound ({}), the best new model has the lower L2 and the lower studio FLIP: {} ({}). The sky light of brdf-render is being matched to Mitsuba's; its FLIP is printed, not judged. Written by `brdf reproduce` (part `new_models`).",
+            "Every model fitted as `brdf fit --model NAME` fits it by default (`--metric auto`: Ngan's L2 for the classic analytic models, the appearance fit for the renderer models GGX, principled, glTF), and the renderer and new models also the other way: `--metric ngan` and `--metric appearance` (candidates under Ngan's L2, log and cube root, each refined in the image objective, the least image error kept; `fitted for` and `objective kept` in `new_models_fits.md`), to the RGL samples (Sopp's grid within 80 deg, every 5th node as in the Table 9.3 stand-in, cell weights, RGB), then judged as `brdf fit` judges: Ngan's L2 (on the nodes fitted; `Ngan L2 (every node)` in `new_models_fits.md` is the same fit's on every node within 80 deg, which `brdf fit` fits and reports, the four fifths the fit never saw included: a model with many parameters can match the fitted nodes better than the grid) and the HDR-FLIP of brdf-render's judge sphere (128 px) under the studio and sky light sets against the measured RGL data. New models: {}; classic and renderer models: the rest. Per material the best fit of each group is taken for each error separately (a user fits for the error they need: `for Ngan L2` or `for appearance` in the labels). Goal: mean L2 reduction {}% (>= {}%: {}), mean studio-FLIP reduction {}% (>= {}%: {}); on the materials where the classic/renderer fit of lowest L2 ends with a shape parameter on a bound ({}), the best new model has the lower L2 and the lower studio FLIP: {} ({}). The sky light of brdf-render is being matched to Mitsuba's; its FLIP is printed, not judged. Written by `brdf reproduce` (part `new_models`).",
             NEW_MODELS.join(", "),
             fmt_sig(100.0 * self.reduction(0), 3),
             100.0 * GOAL_REDUCTION,
@@ -452,4 +476,43 @@ impl Tally {
 /// A reduction as a percentage cell.
 fn percent(r: f64) -> Cell {
     Cell::Text(format!("{}%", fmt_sig(100.0 * r, 3)))
+}
+
+#[cfg(test)]
+mod tests {
+    use brdf_core::direction::Direction;
+    use brdf_core::{Parametric, SampleSet};
+    use brdf_models::Lambert;
+
+    use super::ngan_l2_on;
+
+    /// On data 1.25 times a Lambertian surface's values, the error of that
+    /// surface is the hand-derived `0.25 kd / pi` times the weighted root
+    /// mean square of `cos theta_i`, per channel, then over the channels.
+    #[test]
+    fn every_node_error_is_ngan_l2_of_the_model_on_those_samples() {
+        let kd = [0.2, 0.5];
+        let model = Lambert::new(&kd).expect("albedos in the box");
+        let mut set = SampleSet::new("two-channel", "test", vec!["a".into(), "b".into()]);
+        let (mut num, mut den) = (0.0, 0.0);
+        for (k, (ti, w)) in [(0.1, 1.0), (0.7, 2.0), (1.2, 0.5), (0.4, 3.0)]
+            .into_iter()
+            .enumerate()
+        {
+            let l = Direction::from_spherical(ti, 0.3 * k as f64).expect("a direction");
+            let v = Direction::from_spherical(0.5, 1.0 + k as f64).expect("a direction");
+            let values: Vec<f64> = kd.iter().map(|a| 1.25 * a / std::f64::consts::PI).collect();
+            set.push(&l, &v, &values, w).expect("a sample");
+            num += w * f64::cos(ti).powi(2);
+            den += w;
+        }
+        let rms_cos = (num / den).sqrt();
+        let per: Vec<f64> = kd
+            .iter()
+            .map(|a| 0.25 * a / std::f64::consts::PI * rms_cos)
+            .collect();
+        let expect = ((per[0] * per[0] + per[1] * per[1]) / 2.0).sqrt();
+        let got = ngan_l2_on(&model as &dyn Parametric, &set).expect("an error");
+        assert!((got - expect).abs() <= 1e-14 * expect, "{got} vs {expect}");
+    }
 }

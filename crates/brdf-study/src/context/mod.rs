@@ -27,10 +27,21 @@ use spec::StudySpec;
 /// degrees, cell weights, every 5th node (about 4,000 samples). Shared by
 /// the dense tables and the figures.
 pub fn rgl_material(dir: &Path, name: &str) -> Result<(brdf_io::rgl::Rgl, SampleSet), StudyError> {
+    let (rgl, every, _) = rgl_material_and_grid(dir, name)?;
+    Ok((rgl, every))
+}
+
+/// [`rgl_material`] and every node of the grid within 80 deg (the four
+/// fifths the study does not fit included), on which a fit's error is
+/// measured beside its error on the nodes it was fitted to.
+pub fn rgl_material_and_grid(
+    dir: &Path,
+    name: &str,
+) -> Result<(brdf_io::rgl::Rgl, SampleSet, SampleSet), StudyError> {
     let rgl = brdf_io::rgl::Rgl::read(&dir.join(format!("{name}.bsdf")))?;
     let full = brdf_io::sopp_grid::SoppGrid::resample(&rgl).to_samples(name, 80.0, true);
     let keep: Vec<bool> = (0..full.len()).map(|j| j % 5 == 0).collect();
-    Ok((rgl, full.select(&keep)))
+    Ok((rgl, full.select(&keep), full))
 }
 
 /// One file the study wrote, for `results/README.md`.
