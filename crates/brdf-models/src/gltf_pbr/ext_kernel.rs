@@ -21,6 +21,7 @@ use std::f64::consts::FRAC_1_PI;
 
 use brdf_core::DirPairs;
 
+use super::kernel::zero_pair;
 use crate::dual_model::MAX_CHANNELS;
 use crate::ggx::{Masking, ggx_specular};
 use crate::principled::schlick_weight;
@@ -95,12 +96,7 @@ pub(crate) fn batch(
             })
             .flatten();
         let Some((g, gc)) = lobes else {
-            for c in 0..nc {
-                out[c * n + j] = 0.0;
-                if let Some(jac) = jac.as_deref_mut() {
-                    jac[(c * n + j) * np..(c * n + j + 1) * np].fill(0.0);
-                }
-            }
+            zero_pair(out, jac.as_deref_mut(), (j, n, nc, np));
             continue;
         };
         let w = schlick_weight(v.dot(&g.h).abs());

@@ -38,12 +38,7 @@ pub(crate) fn batch(
             .then(|| ggx_specular(&l, &v, alpha, alpha, Masking::HeightCorrelated))
             .flatten();
         let Some(g) = lobe else {
-            for c in 0..nc {
-                out[c * n + j] = 0.0;
-                if let Some(jac) = jac.as_deref_mut() {
-                    jac[(c * n + j) * np..(c * n + j + 1) * np].fill(0.0);
-                }
-            }
+            zero_pair(out, jac.as_deref_mut(), (j, n, nc, np));
             continue;
         };
         let w = schlick_weight(v.dot(&g.h).abs());
@@ -65,6 +60,23 @@ pub(crate) fn batch(
             row[c] = (1.0 - m) * (1.0 - fd) * FRAC_1_PI + m * s * (1.0 - w);
             row[nc] = s * metal_f - dielectric;
             row[nc + 1] = ((1.0 - m) * fd + m * metal_f) * ds;
+        }
+    }
+}
+
+/// Pair `j` of `n` (below the horizon) as 0 with zero derivatives on
+/// every channel of `nc`, `np` parameters a row.
+pub(super) fn zero_pair(
+    out: &mut [f64],
+    jac: Option<&mut [f64]>,
+    (j, n, nc, np): (usize, usize, usize, usize),
+) {
+    for c in 0..nc {
+        out[c * n + j] = 0.0;
+    }
+    if let Some(jac) = jac {
+        for c in 0..nc {
+            jac[(c * n + j) * np..(c * n + j + 1) * np].fill(0.0);
         }
     }
 }
