@@ -588,9 +588,9 @@ def users_wait_section(d):
             "and refines every one in the image objective (the fitted-data models are not pruned by "
             "`REFINE_REACH`), so its wall time is several times the `ngan` row's. Left: fewer, better starts (the "
             "per-channel widths of a one-lobe fit), the step in flat valleys of the renderer fits above. The "
-            "study's `new_models` table fits every 5th node of Sopp's grid and reports Ngan's L2 on those nodes; "
-            "`brdf fit` fits and reports on every node within 80 degrees, so the two L2 figures are of different "
-            "sample sets and are not compared here.",
+            "study's `new_models` table fits every 5th node of Sopp's grid; `brdf fit` fits every node within 80 "
+            "degrees, and `new_models_fits.md` gives each study fit's L2 on both sets: the `ngan` rows here compare "
+            "with its `Ngan L2 (every node)` column.",
             batch_obstacle(d, bat), ""]
     return out
 
