@@ -69,7 +69,9 @@ fn outcome(
     every_node: &SampleSet,
 ) -> Result<Outcome, String> {
     let r = r.map_err(|e| e.to_string())?;
-    let ngan_l2_every_node = ngan_l2_on(r.model.as_ref(), every_node).map_err(|e| e.to_string())?;
+    let ngan_l2_every_node = brdf_fit::scaling::ngan_l2_rescaled(r.model.as_ref(), every_node)
+        .map_err(|e| e.to_string())?
+        .total;
     let flip = |light: &str| {
         r.image_error
             .as_ref()
@@ -107,18 +109,6 @@ fn outcome(
             .map_or_else(|| r.summary.objective.to_string(), |c| c.objective.clone()),
         seconds: r.summary.seconds,
     })
-}
-
-/// Ngan's L2 of `model` at its parameters on `samples`.
-fn ngan_l2_on(
-    model: &dyn brdf_core::Parametric,
-    samples: &SampleSet,
-) -> Result<f64, brdf_core::CoreError> {
-    let mut fitted = vec![0.0; samples.len() * model.channels()];
-    model.eval_batch_at(model.params(), samples.pairs(), &mut fitted);
-    let values = samples.values_channel_major();
-    let l2 = brdf_core::metrics::ngan_l2(&values, &fitted, &samples.pairs().lz, samples.weights())?;
-    Ok(l2.total)
 }
 
 /// One fit of the study: a model of the catalogue, fitted for appearance
@@ -484,8 +474,6 @@ mod tests {
     use brdf_core::{Parametric, SampleSet};
     use brdf_models::Lambert;
 
-    use super::ngan_l2_on;
-
     /// On data 1.25 times a Lambertian surface's values, the error of that
     /// surface is the hand-derived `0.25 kd / pi` times the weighted root
     /// mean square of `cos theta_i`, per channel, then over the channels.
@@ -512,7 +500,9 @@ mod tests {
             .map(|a| 0.25 * a / std::f64::consts::PI * rms_cos)
             .collect();
         let expect = ((per[0] * per[0] + per[1] * per[1]) / 2.0).sqrt();
-        let got = ngan_l2_on(&model as &dyn Parametric, &set).expect("an error");
+        let got = brdf_fit::scaling::ngan_l2_rescaled(&model as &dyn Parametric, &set)
+            .expect("an error")
+            .total;
         assert!((got - expect).abs() <= 1e-14 * expect, "{got} vs {expect}");
     }
 }
