@@ -30,6 +30,9 @@ pub struct LobeGeometry {
     pub cos_d: f64,
     /// `1 / (4 cos_i cos_o)`.
     pub inv_4_cos: f64,
+    /// `N.L` of the first direction (the viewer's in renderers' order, the
+    /// `N.V` of MaterialX's energy compensation).
+    pub cos_first: f64,
 }
 
 impl LobeGeometry {
@@ -51,6 +54,7 @@ impl LobeGeometry {
             tan2_o: tan2(v.z),
             cos_d,
             inv_4_cos: 0.25 / (l.z * v.z),
+            cos_first: l.z,
         })
     }
 

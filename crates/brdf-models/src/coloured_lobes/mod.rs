@@ -42,7 +42,7 @@
 //! | parameter | meaning | box | default | linear |
 //! | --- | --- | --- | --- | --- |
 //! | `kd_c` | diffuse albedo | `[0, 1]` | 0.3 | yes |
-//! | `ks{k}_c` (law none) | colour of lobe `k` | `[0, 1]` | 0.1 | yes |
+//! | `ks{k}_c` (law none) | colour of lobe `k` | `[0, 1]` | 0.1 | yes (no in `-materialx`) |
 //! | `f0{k}_c` (F82 tint) | reflectance at normal incidence | `[0, 1]` | 0.9 | no |
 //! | `tint{k}_c` (F82 tint) | value at 82 deg over Schlick's | `[25/49, 1]` | 1 | no |
 //! | `eta{k}_c` (conductor) | real part of the complex index | `[0.01, 5]` | 0.2 | no |
@@ -58,7 +58,8 @@
 //! ## Properties
 //!
 //! - Reciprocal: `V.H = L.H`, and `D`, both forms of `G` and `cos_i cos_o`
-//!   are symmetric in `L`, `V`.
+//!   are symmetric in `L`, `V` (not the `-materialx` forms: their
+//!   compensation depends on the first direction).
 //! - Non-negative inside the box (every Fresnel law is in `[0, 1]` there);
 //!   0 when either direction is on or below the horizon.
 //! - Finite above the horizon: `G / cos` stays bounded near the horizon
@@ -98,10 +99,16 @@
 //! modeling, and Kutz, Hasan & Edmondson 2021, "Novel aspects of the Adobe
 //! Standard Material" (F82 tint).
 //!
-//! Not included: MaterialX's GGX energy-compensation factor
-//! `1 + F (1 - E) / E`, which needs the lobe's directional albedo `E`; a
-//! MaterialX export of these lobes is therefore not exact.
+//! The `-materialx` configurations multiply every term (lobes and coat)
+//! by MaterialX's GGX energy compensation `1 + C (1 - E) / E`, `E` the
+//! directional albedo of a white lobe seen from the first direction, by
+//! MaterialX's rational fit ([`compensation`]): `C` becomes
+//! `C (1 + C k)`, `k = 1/E - 1`, so a plain lobe's `ks` is not linear there,
+//! and the model is not reciprocal (the first direction is the viewer's).
+//! Turquin 2019, "Practical multiple scattering compensation for microfacet
+//! models" (the factor).
 
+pub mod compensation;
 pub mod fresnel_laws;
 pub mod geometry;
 pub mod model;

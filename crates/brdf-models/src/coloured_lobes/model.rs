@@ -9,6 +9,7 @@ use brdf_core::params::per_channel_specs;
 use brdf_core::{DirPairs, ParamError, ParamSpec, Parametric};
 use nalgebra::Vector3;
 
+use super::compensation;
 use super::fresnel_laws::{F82_TINT_MIN, f82_tint};
 use super::geometry::LobeGeometry;
 use crate::ggx::Masking;
@@ -58,6 +59,9 @@ pub struct ColouredLobes {
     lobes: Vec<LobeLayout>,
     /// Index of `coat_ior` (`coat_alpha` follows), if there is a coat.
     coat: Option<usize>,
+    /// Whether every lobe carries MaterialX's energy compensation
+    /// ([`compensation`]).
+    compensated: bool,
     specs: Vec<ParamSpec>,
     params: Vec<f64>,
 }
@@ -202,9 +206,30 @@ impl ColouredLobes {
             masking,
             lobes,
             coat,
+            compensated: false,
             specs,
             params,
         })
+    }
+
+    /// The model with MaterialX's GGX energy compensation on every lobe and
+    /// the coat ([`compensation`]): each term's Fresnel `F` becomes
+    /// `F (1 + F k)`, so plain lobes' colours are no longer linear.
+    pub fn compensated(mut self) -> Self {
+        self.compensated = true;
+        for l in &self.lobes {
+            if l.fresnel == LobeFresnel::None {
+                for s in &mut self.specs[l.start..l.alpha] {
+                    s.linear = false;
+                }
+            }
+        }
+        self
+    }
+
+    /// Whether the lobes carry MaterialX's energy compensation.
+    pub fn is_compensated(&self) -> bool {
+        self.compensated
     }
 
     /// The model with parameters `p` (checked against the box).
@@ -261,7 +286,9 @@ impl ColouredLobes {
         }
         let mu = geo.cos_d;
         for lobe in &self.lobes {
-            let (s, ds) = geo.lobe(p[lobe.alpha], self.masking);
+            let alpha = p[lobe.alpha];
+            let (s, ds) = geo.lobe(alpha, self.masking);
+            let k = self.excess(&geo, alpha);
             let (a, b) = (lobe.start, lobe.start + nc);
             for c in 0..nc {
                 // Value F s and the derivatives of F in its (up to two)
@@ -271,29 +298,50 @@ impl ColouredLobes {
                     LobeFresnel::F82Tint => f82_tint(p[a + c], p[b + c], mu),
                     LobeFresnel::Conductor => fresnel_conductor_grad(mu, p[a + c], p[b + c]),
                 };
-                out[c * os] += f * s;
+                let (w, dw_df, dw_da) = weighted(f, k);
+                out[c * os] += w * s;
                 if let Some((g, gs)) = grad.as_mut() {
                     let row = &mut g[c * *gs..c * *gs + np];
-                    row[a + c] = d1 * s;
+                    row[a + c] = d1 * dw_df * s;
                     if lobe.fresnel != LobeFresnel::None {
-                        row[b + c] = d2 * s;
+                        row[b + c] = d2 * dw_df * s;
                     }
-                    row[lobe.alpha] = f * ds;
+                    row[lobe.alpha] = w * ds + dw_da * s;
                 }
             }
         }
         if let Some(at) = self.coat {
-            let (s, ds) = geo.lobe(p[at + 1], self.masking);
+            let alpha = p[at + 1];
+            let (s, ds) = geo.lobe(alpha, self.masking);
             let (f, df) = fresnel_dielectric_d_eta(mu, p[at]);
+            let (w, dw_df, dw_da) = weighted(f, self.excess(&geo, alpha));
             for c in 0..nc {
-                out[c * os] += f * s;
+                out[c * os] += w * s;
                 if let Some((g, gs)) = grad.as_mut() {
-                    g[c * *gs + at] = df * s;
-                    g[c * *gs + at + 1] = f * ds;
+                    g[c * *gs + at] = df * dw_df * s;
+                    g[c * *gs + at + 1] = w * ds + dw_da * s;
                 }
             }
         }
     }
+
+    /// MaterialX's `(k, dk/d alpha)` for a lobe of width `alpha` at this
+    /// pair, `(0, 0)` without compensation.
+    #[inline]
+    fn excess(&self, geo: &LobeGeometry, alpha: f64) -> (f64, f64) {
+        if self.compensated {
+            compensation::excess(geo.cos_first, alpha)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+}
+
+/// A term's weight `F (1 + F k)` for Fresnel `F` and compensation excess
+/// `(k, dk/d alpha)`, with its derivatives in `F` and in `alpha`.
+#[inline]
+fn weighted(f: f64, (k, dk): (f64, f64)) -> (f64, f64, f64) {
+    (f * (1.0 + f * k), 1.0 + 2.0 * f * k, f * f * dk)
 }
 
 brdf_core::impl_brdf_via_params!(ColouredLobes);
@@ -304,6 +352,11 @@ impl Parametric for ColouredLobes {
     }
 
     brdf_core::param_accessors!();
+
+    fn is_reciprocal(&self) -> bool {
+        // The compensation depends on the first direction alone.
+        !self.compensated
+    }
 
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.kernel(p, l, v, (out, 1), None);

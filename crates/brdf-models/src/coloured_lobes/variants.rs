@@ -20,6 +20,9 @@ pub struct Variant {
     pub first: LobeFresnel,
     /// Whether the white dielectric coat lobe is added.
     pub coat: bool,
+    /// Whether every lobe carries MaterialX's energy compensation
+    /// ([`super::compensation`]).
+    pub compensated: bool,
     /// One-line summary for the catalogue.
     pub summary: &'static str,
 }
@@ -39,6 +42,25 @@ const fn variant(
         masking,
         first,
         coat,
+        compensated: false,
+        summary,
+    }
+}
+
+/// A configuration as MaterialX evaluates it: height-correlated masking
+/// and its energy compensation.
+const fn materialx(
+    name: &'static str,
+    first: LobeFresnel,
+    coat: bool,
+    summary: &'static str,
+) -> Variant {
+    Variant {
+        name,
+        masking: Masking::HeightCorrelated,
+        first,
+        coat,
+        compensated: true,
         summary,
     }
 }
@@ -46,8 +68,10 @@ const fn variant(
 /// Every configuration in the catalogue. `-mitsuba`: separable Smith
 /// masking (Mitsuba 3 `roughconductor` with `distribution = "ggx"`);
 /// `-cycles`: height-correlated (Cycles' Glossy and Metallic BSDFs with the
-/// plain `GGX` distribution). F82 tint has no Mitsuba counterpart, so it
-/// comes in the Cycles form only.
+/// plain `GGX` distribution); `-materialx`: height-correlated with
+/// MaterialX's energy compensation (its `generalized_schlick_bsdf`,
+/// `conductor_bsdf` and `dielectric_bsdf`). F82 tint has no Mitsuba
+/// counterpart, so it comes in the Cycles and MaterialX forms only.
 ///
 /// Export notes: Cycles sums the terms exactly with Add Shader nodes
 /// (Roughness is `sqrt(alpha)`; a coat is a Metallic BSDF, physical
@@ -55,8 +79,9 @@ const fn variant(
 /// but `blendbsdf`'s convex weights, so nesting reproduces the model
 /// exactly only when the weights can absorb the amplitudes:
 /// `max_c kd_c + sum_k max_c ks{k}_c (+ 1 per Fresnel-coloured lobe or
-/// coat) <= 1`, the terms then scaled back by their weights.
-pub const VARIANTS: [Variant; 10] = [
+/// coat) <= 1`, the terms then scaled back by their weights. MaterialX
+/// sums BSDFs exactly with `add_bsdf`.
+pub const VARIANTS: [Variant; 16] = [
     variant(
         "lobes-mitsuba",
         Sep,
@@ -127,6 +152,42 @@ pub const VARIANTS: [Variant; 10] = [
         true,
         "lobes-f82-cycles plus a white dielectric GGX coat lobe",
     ),
+    materialx(
+        "lobes-materialx",
+        Plain,
+        false,
+        "kd/pi + sum_k ks_k (1 + ks_k k) D G2 / (4 N.L N.V): K coloured GGX lobes with MaterialX's energy compensation k = 1/E(N.V) - 1",
+    ),
+    materialx(
+        "lobes-coat-materialx",
+        Plain,
+        true,
+        "lobes-materialx plus a white compensated GGX coat lobe with exact dielectric Fresnel",
+    ),
+    materialx(
+        "lobes-conductor-materialx",
+        Conductor,
+        false,
+        "lobes-materialx with an exact per-channel conductor Fresnel (eta, kappa) on lobe 1 (MaterialX conductor_bsdf)",
+    ),
+    materialx(
+        "lobes-conductor-coat-materialx",
+        Conductor,
+        true,
+        "lobes-conductor-materialx plus a white compensated dielectric GGX coat lobe",
+    ),
+    materialx(
+        "lobes-f82-materialx",
+        F82Tint,
+        false,
+        "lobes-materialx with an F82-tint Fresnel (colours f0, tint) on lobe 1 (MaterialX generalized_schlick_bsdf with color82)",
+    ),
+    materialx(
+        "lobes-f82-coat-materialx",
+        F82Tint,
+        true,
+        "lobes-f82-materialx plus a white compensated dielectric GGX coat lobe",
+    ),
 ];
 
 /// The configuration named `name`.
@@ -147,13 +208,18 @@ impl ColouredLobes {
                 reason: format!("takes 1 to {MAX_LOBES} GGX lobes, not {lobes}"),
             });
         }
-        ColouredLobes::custom(
+        let m = ColouredLobes::custom(
             variant.name,
             variant.masking,
             &fresnels[..k],
             variant.coat,
             channels,
-        )
+        )?;
+        Ok(if variant.compensated {
+            m.compensated()
+        } else {
+            m
+        })
     }
 }
 
@@ -182,7 +248,7 @@ const PAPER: &str = "Walter, Marschner, Li & Torrance 2007 (GGX); Heitz 2014, JC
 pub fn entries() -> Vec<ModelEntry> {
     // A catalogue constructor is a plain `fn`: one non-capturing closure per
     // configuration, each naming its index.
-    let builds: [Build; 10] = [
+    let builds: [Build; 16] = [
         |c| build_index(0, c),
         |c| build_index(1, c),
         |c| build_index(2, c),
@@ -193,6 +259,12 @@ pub fn entries() -> Vec<ModelEntry> {
         |c| build_index(7, c),
         |c| build_index(8, c),
         |c| build_index(9, c),
+        |c| build_index(10, c),
+        |c| build_index(11, c),
+        |c| build_index(12, c),
+        |c| build_index(13, c),
+        |c| build_index(14, c),
+        |c| build_index(15, c),
     ];
     VARIANTS
         .iter()
@@ -216,7 +288,8 @@ pub fn entries() -> Vec<ModelEntry> {
             colour: crate::ColourStructure::PerLobe,
             optional_lobes: &[],
             linear_solver: crate::LinearSolver::Direct,
-            nonlinear_search: if v.first == Plain {
+            // A compensated plain lobe's colour is not linear.
+            nonlinear_search: if v.first == Plain && !v.compensated {
                 crate::NonlinearSearch::Projected
             } else {
                 crate::NonlinearSearch::AllParameters

@@ -8,7 +8,10 @@ the formulas with NumPy alone (no code shared with the Rust crate):
   mu = 1/7 being tint times Schlick's there;
 - conductor: Snell's law in complex arithmetic (complex refraction cosine),
   s and p amplitudes averaged in intensity;
-- coat: the dielectric's sin/tan (Fresnel's original) amplitude ratios.
+- coat: the dielectric's sin/tan (Fresnel's original) amplitude ratios;
+- `-materialx`: each term's colour C times MaterialX 1.39's energy
+  compensation 1 + C (1 - E) / E, E the white GGX albedo seen from wi
+  (the first direction) by MaterialX's rational fit in (cos, alpha).
 
 Parameter order, per the model's documentation: kd per channel; per lobe k
 its colour block(s) (ks; f0 then tint; eta then kappa), each per channel,
@@ -22,7 +25,7 @@ import json
 import numpy as np
 
 VARIANTS = {
-    # name: (separable masking, Fresnel law of lobe 1, coat)
+    # name: (separable masking, Fresnel law of lobe 1, coat[, compensated])
     "lobes-mitsuba": (True, "none", False),
     "lobes-cycles": (False, "none", False),
     "lobes-coat-mitsuba": (True, "none", True),
@@ -33,7 +36,40 @@ VARIANTS = {
     "lobes-conductor-coat-cycles": (False, "conductor", True),
     "lobes-f82-cycles": (False, "f82", False),
     "lobes-f82-coat-cycles": (False, "f82", True),
+    "lobes-materialx": (False, "none", False, True),
+    "lobes-coat-materialx": (False, "none", True, True),
+    "lobes-conductor-materialx": (False, "conductor", False, True),
+    "lobes-conductor-coat-materialx": (False, "conductor", True, True),
+    "lobes-f82-materialx": (False, "f82", False, True),
+    "lobes-f82-coat-materialx": (False, "f82", True, True),
 }
+
+# MaterialX's fit of the GGX directional albedo (mx_ggx_dir_albedo_analytic):
+# numerator / denominator pairs, rows per monomial.
+MX_FIT = np.array([
+    [0.1003, 0.9345, 1.0, 1.0],
+    [-0.6303, -2.323, -1.765, 0.2281],
+    [9.748, 2.229, 8.263, 15.94],
+    [-2.038, -3.748, 11.53, -55.83],
+    [29.34, 1.424, 28.96, 13.08],
+    [-8.245, -0.7684, -7.507, 41.26],
+    [-26.44, 1.436, -36.11, 54.9],
+    [19.99, 0.2913, 15.86, 300.2],
+    [-5.448, 0.6286, 33.37, -285.1],
+])
+
+
+def mx_albedo(x, y):
+    mono = np.array([1, x, y, x * y, x * x, y * y, x * x * y, x * y * y, x * x * y * y])
+    r = mono @ MX_FIT
+    return float(np.clip(r[0] / r[2], 0, 1) + np.clip(r[1] / r[3], 0, 1))
+
+
+def compensate(colour, wi, a, compensated):
+    if not compensated:
+        return colour
+    e = mx_albedo(wi[2], a)
+    return colour * (1.0 + colour * (1.0 - e) / e)
 
 SUFFIX = {1: [""], 3: ["_r", "_g", "_b"]}
 
@@ -139,7 +175,8 @@ RANGES = {
 
 
 def evaluate(name, nc, lobes, p, wi, wo):
-    separable, law1, coat = VARIANTS[name]
+    separable, law1, coat, *rest = VARIANTS[name]
+    comp = bool(rest and rest[0])
     names, _ = layout(law1, coat, nc, lobes)
     val = dict(zip(names, p))
     if wi[2] <= 0.0 or wo[2] <= 0.0:
@@ -157,9 +194,12 @@ def evaluate(name, nc, lobes, p, wi, wo):
                 colour = f82_tint(val[f"f0{k}{s}"], val[f"tint{k}{s}"], mu)
             else:
                 colour = conductor(mu, val[f"eta{k}{s}"], val[f"kappa{k}{s}"])
-            f += colour * lobe(wi, wo, h, val[f"alpha{k}"], separable)
+            a = val[f"alpha{k}"]
+            f += compensate(colour, wi, a, comp) * lobe(wi, wo, h, a, separable)
         if coat:
-            f += dielectric(mu, val["coat_ior"]) * lobe(wi, wo, h, val["coat_alpha"], separable)
+            a = val["coat_alpha"]
+            colour = compensate(dielectric(mu, val["coat_ior"]), wi, a, comp)
+            f += colour * lobe(wi, wo, h, a, separable)
         out.append(float(f))
     return out
 
@@ -181,7 +221,7 @@ def main():
     rng = np.random.default_rng(20261205)
     cases = []
     for name in VARIANTS:
-        separable, law1, coat = VARIANTS[name]
+        separable, law1, coat, *_ = VARIANTS[name]
         for nc, lobes in [(1, 1), (3, 2), (3, 3)]:
             names, kinds = layout(law1, coat, nc, lobes)
             for _ in range(2):
