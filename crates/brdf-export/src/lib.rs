@@ -16,7 +16,7 @@
 //! | Mitsuba 3 | [`mitsuba`] | `principled`; `lambert`; `ggx*-separable` (blend of `diffuse`, `roughconductor`, metallic `principled`); `lobes*-mitsuba` ([`lobes_mitsuba`]) |
 //! | pbrt-v4 | [`pbrt`] | `lambert`; `ggx-conductor*` / `ggx-dielectric*` (height-correlated; `mix` of `diffuse` and `conductor`) |
 //! | glTF 2.0 | [`gltf`] | `gltf`, `gltf-ext` (with `KHR_materials_ior`, `_specular`, `_clearcoat`); `lambert` |
-//! | MaterialX | [`materialx`] | `gltf`, `gltf-ext`, `lambert` as `gltf_pbr` (mapped as `standard_surface`, `open_pbr_surface`) |
+//! | MaterialX | [`materialx`] | `gltf`, `gltf-ext`, `lambert` as `gltf_pbr` (mapped as `standard_surface`, `open_pbr_surface`); `lobes*-materialx`, `film*-materialx` exact ([`lobes_materialx`]: pbrlib BSDF nodes summed by `add`) |
 //! | USD | [`usd`] | `gltf`, `gltf-ext`, `lambert` mapped to `UsdPreviewSurface` |
 //! | Blender | [`blender`] | `gltf`, `gltf-ext`, `lambert` mapped to the Principled BSDF; `lobes*-cycles` exact ([`lobes_blender`]: Diffuse, Glossy, Metallic BSDFs summed) |
 //!
@@ -64,6 +64,7 @@ pub mod for_renderer;
 pub mod gltf;
 pub mod lobes_blender;
 pub mod lobes_fit;
+pub mod lobes_materialx;
 pub mod lobes_mitsuba;
 pub mod materialx;
 pub mod measured;

@@ -82,6 +82,15 @@ pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<ShaderTerm>, ExportEr
             ),
         ));
     }
+    if lobes.variant.compensated {
+        let twin = lobes.variant.name.replace("-materialx", "-cycles");
+        return Err(fit.no_equivalent(
+            Target::Blender,
+            format!(
+                "this configuration carries MaterialX's GGX energy compensation, which Cycles' GGX nodes lack; fit `{twin}` for an exact Blender export"
+            ),
+        ));
+    }
     let mut v = vec![ShaderTerm {
         node: "ShaderNodeBsdfDiffuse",
         props: vec![],
@@ -131,6 +140,14 @@ fn coat(ior: f64, alpha: f64) -> ShaderTerm {
 /// coat. A one-channel fit is the film's luminance, which no Cycles node
 /// shows: an error asking for an RGB fit.
 pub fn film_terms(fit: &Fitted) -> Result<Vec<ShaderTerm>, ExportError> {
+    if let Some(stem) = fit.name.strip_suffix("-materialx") {
+        return Err(fit.no_equivalent(
+            Target::Blender,
+            format!(
+                "this is MaterialX's film (its Airy series and GGX energy compensation), not Cycles'; fit `{stem}-cycles` for an exact Blender export"
+            ),
+        ));
+    }
     if fit.channels != 3 {
         return Err(fit.no_equivalent(
             Target::Blender,

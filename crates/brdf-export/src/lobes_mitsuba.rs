@@ -84,7 +84,11 @@ fn max3(c: &[f64; 3]) -> f64 {
 /// documentation); an error for a configuration Mitsuba lacks.
 pub fn terms(fit: &Fitted, lobes: &LobesFit) -> Result<Vec<Term>, ExportError> {
     if !lobes.separable() {
-        let twin = lobes.variant.name.replace("-cycles", "-mitsuba");
+        let twin = lobes
+            .variant
+            .name
+            .replace("-cycles", "-mitsuba")
+            .replace("-materialx", "-mitsuba");
         let reason = if brdf_models::coloured_lobes::variant_named(&twin).is_some() {
             format!(
                 "Mitsuba 3's GGX uses the separable Smith G, this configuration the height-correlated one; fit `{twin}` for an exact Mitsuba export"

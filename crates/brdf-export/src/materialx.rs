@@ -18,6 +18,11 @@
 //!   Oren-Nayar at roughness 0): the mapping keeps the parameters, not the
 //!   BRDF, and its difference is not measured here.
 //!
+//! The coloured-lobe and thin-film models as MaterialX evaluates them
+//! (`lobes*-materialx`, `film*-materialx`) are written as a graph of its
+//! BSDF nodes instead, exactly
+//! ([`crate::lobes_materialx`]; `surface` does not apply to them).
+//!
 //! No equivalent (an error): every other model (converted by fitting
 //! `gltf`).
 
@@ -141,6 +146,12 @@ fn shader_inputs(fit: &Fitted, g: &Gltf, surface: Surface) -> (&'static str, Vec
 
 /// The MaterialX document for `fit`, with `note` as a comment before it.
 pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+    if let Some(lobes) = fit.lobes()? {
+        return crate::lobes_materialx::write(fit, &lobes, note, opts);
+    }
+    if fit.form == RendererForm::ThinFilm {
+        return crate::lobes_materialx::write_film(fit, note, opts);
+    }
     let g = gltf_params(fit)?;
     let (kind, inputs) = shader_inputs(fit, &g, opts.surface);
     let shader_name = format!("{}_shader", opts.name);

@@ -31,6 +31,14 @@ impl Node {
         self
     }
 
+    /// The `name` attribute ("" when there is none).
+    pub(crate) fn name(&self) -> &str {
+        self.attrs
+            .iter()
+            .find(|(k, _)| k == "name")
+            .map_or("", |(_, v)| v.as_str())
+    }
+
     /// This element with `other`'s attributes and children appended.
     pub(crate) fn attr_from(mut self, other: &Node) -> Self {
         self.attrs.extend(other.attrs.iter().cloned());

@@ -6,12 +6,15 @@
 #   lobes/mitsuba_values.json  mitsuba_check.py: Mitsuba's eval of each M.xml
 #                              at 300 direction pairs and at the normal
 #   lobes/render_check.json    render_check.py: Mitsuba's render of each M.xml
-#                              on the judge sphere (studio and sky), and with
+#                              on the judge sphere (studio and sky), with
 #                              BLENDER_PYTHON (a python with bpy) Cycles' render
-#                              of each M.py (cycles_render.py, studio), beside
+#                              of each M.py (cycles_render.py, studio), and
+#                              with an X display (xvfb-run) MaterialX's GLSL
+#                              render of each M.mtlx (materialx_render.py,
+#                              studio), beside
 #                              brdf-render's (examples/judge_exr.rs) of M.json,
 #                              by HDR-FLIP
-# Needs PYTHON with mitsuba, numpy, flip-evaluator. JUDGE_EXR: the judge_exr
+# Needs PYTHON with mitsuba, numpy, materialx, flip-evaluator. JUDGE_EXR: the judge_exr
 # example's binary (default: cargo run --release). A few minutes.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -42,6 +45,12 @@ if [ -n "${BLENDER_PYTHON:-}" ]; then
     render_files+=(lobes/*.py)
 else
     echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy"
+fi
+if command -v xvfb-run >/dev/null && xvfb-run -a "$py" materialx_render.py --probe 2>/dev/null; then
+    xvfb-run -a "$py" materialx_render.py "$exr_dir" lobes/*.mtlx >&2
+    render_files+=(lobes/*.mtlx)
+else
+    echo "MaterialX render checks skipped: no OpenGL context (install xvfb for xvfb-run)"
 fi
 "$py" render_check.py "$exr_dir" --lights "${RENDER_LIGHTS:-studio,sky}" --spp 1024 "${render_files[@]}" >lobes/render_check.json.new
 mv lobes/render_check.json.new lobes/render_check.json

@@ -48,7 +48,9 @@
 //!
 //! ## Properties
 //!
-//! - Reciprocal (`V.H = L.H`; `D`, `G2` and `cos_i cos_o` are symmetric).
+//! - Reciprocal (`V.H = L.H`; `D`, `G2` and `cos_i cos_o` are symmetric),
+//!   except the `-materialx` forms (their compensation depends on the
+//!   first direction).
 //! - Non-negative and finite inside the box; 0 below the horizon.
 //! - Energy: `A_c`, `F_diel` lie in `[0, 1]` and each `S` has directional
 //!   albedo at most 1, so the albedo is at most `kd_c + w + 1` (coat).
@@ -64,6 +66,16 @@
 //! film with its own table of sensitivities and three orders of Airy's
 //! series rather than this module's quadrature; its mirror sphere renders
 //! within 1e-3 of [`airy`] up to 70 degrees.
+//!
+//! MaterialX evaluates its own film: the `film*-materialx` models take
+//! `A_c` from its two-order series with fitted sensitivities
+//! ([`materialx_airy`]) and carry its GGX energy compensation on the film
+//! lobe and the coat (each term's Fresnel `F` becomes `F (1 + F k)`, `k =
+//! 1/E - 1` by [`crate::coloured_lobes::compensation`], the first
+//! direction the viewer's; so those two are not reciprocal). MaterialX
+//! sums with `add`: an `oren_nayar_diffuse_bsdf` of roughness 0, a
+//! `dielectric_bsdf` (reflection, IOR `n3`, weight `w`, `thinfilm_thickness`
+//! `d`, `thinfilm_ior` `n2`) and the coat's `dielectric_bsdf`.
 //!
 //! ```
 //! use brdf_core::{Brdf, Parametric};
@@ -88,12 +100,13 @@
 //! Heitz 2014 (height-correlated masking).
 
 pub mod airy;
+pub mod materialx_airy;
 pub mod model;
 pub mod scan;
 pub mod spectral;
 pub mod table;
 
-pub use model::{THICKNESS_MAX, ThinFilm};
+pub use model::{FilmRenderer, THICKNESS_MAX, ThinFilm};
 
 use brdf_core::{ParamError, Parametric};
 
@@ -128,8 +141,13 @@ fn entry(name: &'static str, summary: &'static str, build: Build) -> ModelEntry 
     }
 }
 
-/// The catalogue entries: the film alone and under a coat, both in Cycles'
-/// form.
+/// The film as MaterialX evaluates it.
+fn materialx(name: &'static str, channels: usize, coat: bool) -> Result<ThinFilm, ParamError> {
+    ThinFilm::new(name, channels, coat).map(|m| m.for_renderer(FilmRenderer::MaterialX))
+}
+
+/// The catalogue entries: the film alone and under a coat, in Cycles' and
+/// in MaterialX's form.
 pub fn entries() -> Vec<ModelEntry> {
     vec![
         entry(
@@ -143,6 +161,22 @@ pub fn entries() -> Vec<ModelEntry> {
             |c| {
                 Ok(Box::new(ThinFilm::new(
                     "film-coat-cycles",
+                    c.channels,
+                    true,
+                )?))
+            },
+        ),
+        entry(
+            "film-materialx",
+            "kd/pi + w A (1 + A k) D G2 / (4 N.L N.V): the film lobe as MaterialX renders it (two-order Airy series, energy compensation k)",
+            |c| Ok(Box::new(materialx("film-materialx", c.channels, false)?)),
+        ),
+        entry(
+            "film-coat-materialx",
+            "film-materialx plus a white compensated GGX coat lobe with exact dielectric Fresnel",
+            |c| {
+                Ok(Box::new(materialx(
+                    "film-coat-materialx",
                     c.channels,
                     true,
                 )?))

@@ -8,8 +8,9 @@ use brdf_core::params::per_channel_specs;
 use brdf_core::{DirPairs, ParamError, ParamSpec, Parametric};
 use nalgebra::Vector3;
 
-use super::table::{FilmTable, TableCache};
+use super::table::{FilmFormula, FilmTable, TableCache};
 use crate::coloured_lobes::ALPHA_MIN;
+use crate::coloured_lobes::compensation;
 use crate::coloured_lobes::geometry::LobeGeometry;
 use crate::ggx::Masking;
 
@@ -25,9 +26,21 @@ pub struct ThinFilm {
     name: &'static str,
     channels: usize,
     coat: bool,
+    renderer: FilmRenderer,
     specs: Vec<ParamSpec>,
     params: Vec<f64>,
     tables: TableCache,
+}
+
+/// The renderer whose evaluation of the film lobe the model is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilmRenderer {
+    /// Cycles: the spectral Airy reflectance, single-scattering GGX.
+    Cycles,
+    /// MaterialX: its two-order series ([`super::materialx_airy`]) and its
+    /// GGX energy compensation on the film lobe and the coat
+    /// ([`crate::coloured_lobes::compensation`]).
+    MaterialX,
 }
 
 /// Where the parameters after the diffuse colour sit, counted from the
@@ -126,10 +139,32 @@ impl ThinFilm {
             name,
             channels,
             coat,
+            renderer: FilmRenderer::Cycles,
             specs,
             params,
             tables: TableCache::default(),
         })
+    }
+
+    /// The model as `renderer` evaluates it.
+    pub fn for_renderer(mut self, renderer: FilmRenderer) -> Self {
+        self.renderer = renderer;
+        self
+    }
+
+    /// The renderer whose film the model is.
+    pub fn renderer(&self) -> FilmRenderer {
+        self.renderer
+    }
+
+    /// MaterialX's `(k, dk/d alpha)` for a lobe of width `alpha` at this
+    /// pair, `(0, 0)` for Cycles.
+    #[inline]
+    fn excess(&self, geo: &LobeGeometry, alpha: f64) -> (f64, f64) {
+        match self.renderer {
+            FilmRenderer::Cycles => (0.0, 0.0),
+            FilmRenderer::MaterialX => compensation::excess(geo.cos_first, alpha),
+        }
     }
 
     /// The model with parameters `p` (checked against the box).
@@ -158,6 +193,10 @@ impl ThinFilm {
             p[at(Layout::FILM_IOR)],
             p[at(Layout::BASE_IOR)],
             self.channels,
+            match self.renderer {
+                FilmRenderer::Cycles => FilmFormula::Spectral,
+                FilmRenderer::MaterialX => FilmFormula::MaterialX,
+            },
         )
     }
 
@@ -189,18 +228,33 @@ impl ThinFilm {
         };
         let at = |k: usize| nc + k;
         let w = p[at(Layout::WEIGHT)];
-        let (s, ds) = geo.lobe(p[at(Layout::ALPHA)], Masking::HeightCorrelated);
+        let alpha = p[at(Layout::ALPHA)];
+        let (s, ds) = geo.lobe(alpha, Masking::HeightCorrelated);
+        let (k, dk) = self.excess(&geo, alpha);
         let film = table.at(geo.cos_d);
         let coat = self.coat.then(|| {
-            let (cs, cds) = geo.lobe(p[at(Layout::COAT_ALPHA)], Masking::HeightCorrelated);
+            let coat_alpha = p[at(Layout::COAT_ALPHA)];
+            let (cs, cds) = geo.lobe(coat_alpha, Masking::HeightCorrelated);
             let (f, df) = fresnel_dielectric_d_eta(geo.cos_d, p[at(Layout::COAT_IOR)]);
-            (f, df, cs, cds)
+            // The coat's weight F (1 + F k) and its derivatives (as the
+            // film's below).
+            let (ck, cdk) = self.excess(&geo, coat_alpha);
+            let cw = f * (1.0 + f * ck);
+            (
+                cw,
+                df * (1.0 + 2.0 * f * ck),
+                cs,
+                cds * cw + cs * f * f * cdk,
+            )
         });
         for c in 0..nc {
+            // MaterialX's compensation turns the film's colour A into
+            // A (1 + A k); without it k = 0.
             let a = film.value[c];
-            let mut value = p[c] * FRAC_1_PI + w * a * s;
-            if let Some((f, _, cs, _)) = coat {
-                value += f * cs;
+            let ac = a * (1.0 + a * k);
+            let mut value = p[c] * FRAC_1_PI + w * ac * s;
+            if let Some((cw, _, cs, _)) = coat {
+                value += cw * cs;
             }
             out[c * os] = value;
             let Some((g, gs)) = grad.as_mut() else {
@@ -208,14 +262,15 @@ impl ThinFilm {
             };
             let row = &mut g[c * *gs..c * *gs + np];
             row[c] = FRAC_1_PI;
-            row[at(Layout::WEIGHT)] = a * s;
-            row[at(Layout::ALPHA)] = w * a * ds;
-            for (k, dk) in film.grad[c].iter().enumerate() {
-                row[at(Layout::THICKNESS + k)] = w * s * dk;
+            row[at(Layout::WEIGHT)] = ac * s;
+            row[at(Layout::ALPHA)] = w * ac * ds + w * a * a * dk * s;
+            let dac = 1.0 + 2.0 * a * k;
+            for (j, da) in film.grad[c].iter().enumerate() {
+                row[at(Layout::THICKNESS + j)] = w * s * da * dac;
             }
-            if let Some((f, df, cs, cds)) = coat {
-                row[at(Layout::COAT_IOR)] = df * cs;
-                row[at(Layout::COAT_ALPHA)] = f * cds;
+            if let Some((_, dcw, cs, d_alpha)) = coat {
+                row[at(Layout::COAT_IOR)] = dcw * cs;
+                row[at(Layout::COAT_ALPHA)] = d_alpha;
             }
         }
     }
@@ -229,6 +284,11 @@ impl Parametric for ThinFilm {
     }
 
     brdf_core::param_accessors!();
+
+    fn is_reciprocal(&self) -> bool {
+        // MaterialX's compensation depends on the first direction alone.
+        self.renderer == FilmRenderer::Cycles
+    }
 
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         self.kernel(p, &self.table(p), l, v, (out, 1), None);

@@ -24,6 +24,27 @@
 use std::sync::{Arc, Mutex};
 
 use super::airy::{FilmColour, film_colour};
+use super::materialx_airy;
+
+/// Whose formula gives the film's colour at the table's nodes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilmFormula {
+    /// Airy's reflectance integrated over the spectrum ([`film_colour`]),
+    /// as Cycles integrates its film.
+    Spectral,
+    /// MaterialX's two-order series with fitted sensitivities
+    /// ([`materialx_airy`]).
+    MaterialX,
+}
+
+impl FilmFormula {
+    fn colour(self, mu: f64, d: f64, n2: f64, n3: f64, channels: usize) -> FilmColour {
+        match self {
+            FilmFormula::Spectral => film_colour(mu, d, n2, n3, channels),
+            FilmFormula::MaterialX => materialx_airy::film_colour(mu, d, n2, n3, channels),
+        }
+    }
+}
 
 /// Steps of `V.H` in the table.
 pub const INTERVALS: usize = 256;
@@ -36,18 +57,20 @@ const KEPT: usize = 4;
 pub struct FilmTable {
     key: [f64; 3],
     channels: usize,
+    formula: FilmFormula,
     nodes: Vec<FilmColour>,
 }
 
 impl FilmTable {
-    fn new(key: [f64; 3], channels: usize) -> Self {
+    fn new(key: [f64; 3], channels: usize, formula: FilmFormula) -> Self {
         let [d, n2, n3] = key;
         let nodes = (0..=INTERVALS)
-            .map(|i| film_colour(i as f64 / INTERVALS as f64, d, n2, n3, channels))
+            .map(|i| formula.colour(i as f64 / INTERVALS as f64, d, n2, n3, channels))
             .collect();
         FilmTable {
             key,
             channels,
+            formula,
             nodes,
         }
     }
@@ -127,16 +150,26 @@ impl PartialEq for TableCache {
 }
 
 impl TableCache {
-    /// The table of film `(d, n2, n3)` in `channels` channels.
-    pub fn get(&self, d: f64, n2: f64, n3: f64, channels: usize) -> Arc<FilmTable> {
+    /// The table of film `(d, n2, n3)` in `channels` channels by `formula`.
+    pub fn get(
+        &self,
+        d: f64,
+        n2: f64,
+        n3: f64,
+        channels: usize,
+        formula: FilmFormula,
+    ) -> Arc<FilmTable> {
         let key = [d, n2, n3];
         // A poisoned lock only means another thread panicked mid-build;
         // the tables it holds are complete, so carry on with them.
         let mut kept = self.0.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(t) = kept.iter().find(|t| t.key == key && t.channels == channels) {
+        if let Some(t) = kept
+            .iter()
+            .find(|t| t.key == key && t.channels == channels && t.formula == formula)
+        {
             return Arc::clone(t);
         }
-        let t = Arc::new(FilmTable::new(key, channels));
+        let t = Arc::new(FilmTable::new(key, channels, formula));
         if kept.len() == KEPT {
             kept.remove(0);
         }
@@ -163,7 +196,7 @@ mod tests {
             (1500.0, 1.05, 3.0),
             (1500.0, 5.0, 1.05),
         ] {
-            let t = FilmTable::new([d, n2, n3], 3);
+            let t = FilmTable::new([d, n2, n3], 3, FilmFormula::Spectral);
             let mut here: f64 = 0.0;
             for j in 0..2000 {
                 let mu = (j as f64 + 0.37) / 2000.0;
