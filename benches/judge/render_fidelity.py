@@ -26,7 +26,10 @@ the model chosen). `for:blender` is `brdf fit --for blender`, its script
 rendered by Blender Cycles in the judge's studio scene
 (`crates/brdf-export/tests/reference/cycles_render.py`, run by the python
 named by `BLENDER_PYTHON`, which has `bpy`) and judged against the same
-`measured` render; Cycles' scene has the studio light only.
+`measured` render; Cycles' scene has the studio light only. `for:materialx`
+is `brdf fit --for materialx`, its document rendered by MaterialX's GLSL
+renderer (`crates/brdf-export/tests/reference/materialx_render.py`, Mesa's
+llvmpipe under `xvfb-run`) in the studio scene, judged the same way.
 `--add` renders only the configurations given and merges their rows into
 the existing table.json (a row of the same material, model and objective is
 replaced), then rewrites the markdown.
@@ -118,7 +121,8 @@ def export(fit_json, summary, route, data):
 def fit_for(data, renderer, workdir):
     """`brdf fit --for RENDERER`; returns (material file, the chosen model's
     name, wall seconds)."""
-    out = Path(workdir) / f"{data.stem}.for.{renderer}.{'py' if renderer == 'blender' else 'xml'}"
+    ext = {"blender": "py", "materialx": "mtlx"}.get(renderer, "xml")
+    out = Path(workdir) / f"{data.stem}.for.{renderer}.{ext}"
     cmd = [brdf_bin(), "fit", "--data", str(data), "--for", renderer, "--out", str(out),
            "--json", "--quiet"]
     t0 = time.time()
@@ -154,6 +158,30 @@ def cycles_studio(script, spp):
         return np.array(mi.Bitmap(str(exr)), dtype=np.float32)[:, :, :3]
 
 
+MATERIALX_RENDER = ROOT / "crates" / "brdf-export" / "tests" / "reference" / "materialx_render.py"
+
+
+def materialx_studio(document):
+    """MaterialX's GLSL render (Mesa's llvmpipe under xvfb-run) of a
+    `brdf export --to materialx` document in the judge's studio scene,
+    linear radiance."""
+    import mitsuba as mi
+
+    with tempfile.TemporaryDirectory() as out:
+        subprocess.run(["xvfb-run", "-a", sys.executable, str(MATERIALX_RENDER), out, document.name],
+                       check=True, capture_output=True, cwd=document.parent)
+        exr = Path(out) / f"{document.name}.studio.seed2.exr"
+        return np.array(mi.Bitmap(str(exr)), dtype=np.float32)[:, :, :3]
+
+
+# `--for` routes rendered by the target renderer itself (studio light only):
+# the row's label and the renderer's function.
+OWN_RENDERERS = {
+    "--for blender": ("Cycles", lambda path, spp: cycles_studio(path, spp)),
+    "--for materialx": ("MaterialX GLSL", lambda path, spp: materialx_studio(path)),
+}
+
+
 def judge(reference, test):
     return {
         "flip": M.flip(reference, test),
@@ -177,18 +205,18 @@ def row_for(data, refs, model, objective, workdir, spp, pictures=None, route="ex
     tag = f"{model}.{objective}{'.tabulated' if route == 'tabulated' else ''}"
     if model == "for":
         model, label = f"--for {objective}", "appearance"
-        if objective != "blender":
+        if model not in OWN_RENDERERS:
             model += f": {summary['chosen']}"
-    cycles = model == "--for blender"
+    own = OWN_RENDERERS.get(model)
     row = {"material": data.stem, "model": model, "objective": label, "seconds": wall}
-    if cycles:
-        model = f"{model}: {summary['chosen']} (Cycles)"
+    if own:
+        model = f"{model}: {summary['chosen']} ({own[0]})"
         row["model"] = model
     for light in S.LIGHTS:
-        if cycles and light != "studio":
+        if own and light != "studio":
             row[light] = None
             continue
-        img = cycles_studio(path, spp) if cycles else S.render(S.bsdf_of(path), light, seed=2, spp=spp)
+        img = own[1](path, spp) if own else S.render(S.bsdf_of(path), light, seed=2, spp=spp)
         row[light] = judge(refs[light], img)
         if images is not None:
             images[light] = img
@@ -306,6 +334,12 @@ def for_goals(rows):
             if default:
                 checks.append((f"FLIP {light} <= {default[light]['flip']:.3f} (default principled)",
                                default[light]["flip"]))
+            # MaterialX (OpenPBR's renderer family) within 0.02 of Cycles.
+            blender = next((b for b in rows if b["material"] == r["material"]
+                            and b["model"].startswith("--for blender")), None)
+            if r["model"].startswith("--for materialx") and blender and blender[light]:
+                bound = blender[light]["flip"] + 0.02
+                checks.append((f"FLIP {light} <= {bound:.3f} (--for blender + 0.02)", bound))
             value = r[light]["flip"]
             for goal, bound in checks:
                 verdict = "yes" if value <= bound else f"no, by {value - bound:.3f}"
@@ -381,7 +415,9 @@ def markdown(rows, spp):
         "`--for mitsuba`: `brdf fit --for mitsuba` (the model Mitsuba renders exactly whose",
         "render is closest to the data, written as Mitsuba's material). `--for blender ... (Cycles)`:",
         "`brdf fit --for blender`, its script rendered by Blender Cycles (bpy 5.0.1) in the same",
-        "scene, studio light only, against the same `measured` render.",
+        "scene, studio light only, against the same `measured` render. `--for materialx ...",
+        "(MaterialX GLSL)`: `brdf fit --for materialx`, its document rendered by MaterialX 1.39.5's",
+        "GLSL renderer (Mesa's llvmpipe) in the same scene, studio light only.",
         "Time: wall-clock seconds of `brdf fit` (fit, image error included) on this machine.",
         "",
         "| material | model | objective | FLIP sky | FLIP studio | PSNR sky | PSNR studio | dE sky | dE studio | time (s) |",
