@@ -1,6 +1,7 @@
 //! `brdf fit --for RENDERER` and `brdf select --for RENDERER` (needs
-//! BRDF_DATA): among the models the renderer renders exactly (for glTF,
-//! `gltf` and `gltf-ext`), the one of least image error, fitted for
+//! BRDF_DATA): among the models the renderer renders exactly (for glTF on
+//! grey paper, `gltf` and `gltf-ext`: its film only where the data's hue
+//! leaves every colour plane), the one of least image error, fitted for
 //! appearance; `fit` writes it exactly, `select` names it, and the two
 //! choose alike from the same candidates.
 

@@ -45,7 +45,7 @@
 //! | --- | --- | --- |
 //! | Mitsuba 3 | `principled` | Mitsuba's own BSDF, written exactly |
 //! | pbrt-v4 | `ggx-dielectric` | a `mix` of `diffuse` and `conductor` with `k = 0`, written exactly once `ks` is grey |
-//! | glTF 2.0 | `gltf` | the metallic-roughness material |
+//! | glTF 2.0 | `gltf` (`gltf-iridescence` for a thin film) | the metallic-roughness material (with glTF's own film) |
 //! | MaterialX | `gltf` | written as `gltf_pbr` |
 //!
 //! pbrt-v4's `mix` takes one amount for all channels and a diffuse
@@ -72,7 +72,7 @@ use crate::{ExportError, Target};
 /// How to convert.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConvertOptions {
-    /// The target's model to fit (`None`: [`default_via`]).
+    /// The target's model to fit (`None`: [`via_for`]).
     pub via: Option<String>,
     /// Direction pairs sampled from the source (default 2048).
     pub pairs: usize,
@@ -216,6 +216,18 @@ pub fn default_via(target: Target) -> &'static str {
     }
 }
 
+/// The model a conversion of `source` to `target` fits unless told: the
+/// target's [`default_via`], except that a thin film goes to glTF as glTF's
+/// own film (`KHR_materials_iridescence`).
+pub fn via_for(source: &dyn Parametric, target: Target) -> &'static str {
+    let film = brdf_models::entry(source.name()).is_some_and(|e| e.form == RendererForm::ThinFilm);
+    if film && target == Target::Gltf {
+        "gltf-iridescence"
+    } else {
+        default_via(target)
+    }
+}
+
 /// Fit the target's model to `source` (see the module doc).
 pub fn convert(
     source: &dyn Parametric,
@@ -224,7 +236,7 @@ pub fn convert(
 ) -> Result<Conversion, ExportError> {
     // Forgiving names (`--via GGX_Dielectric`), resolved as wherever a
     // model is named.
-    let via_name = opts.via.as_deref().unwrap_or(default_via(target));
+    let via_name = opts.via.as_deref().unwrap_or(via_for(source, target));
     let via_entry = brdf_fit::resolve(via_name).map_err(|e| ExportError::Conversion {
         model: source.name().to_string(),
         target,

@@ -11,10 +11,11 @@
 //! ([`brdf_fit::SelectRequest`]); the least mean FLIP wins.
 
 use brdf_core::progress::Progress;
+use brdf_fit::judged::COLOUR_PLANE_NOTE;
 use brdf_fit::select::Among;
 use brdf_fit::select_by_image::ImageChoice;
 use brdf_fit::{FitReport, Material, SelectBy, SelectOutcome, SelectRequest};
-use brdf_models::catalogue;
+use brdf_models::{RendererForm, catalogue};
 
 use crate::convert::{Conversion, DELTA_E_WARN, FLIP_WARN};
 use crate::table::{Support, support};
@@ -79,14 +80,34 @@ pub struct ForSelection {
 /// tie, at the price of a fit; on cc_iris_purple_gem the three took 14 s
 /// of the 88 s of processor time of `--for mitsuba` and rendered within
 /// 0.001 of their isotropic twins).
+///
+/// glTF's thin film (`gltf-iridescence`) is a candidate only where the
+/// data's colours leave every plane of white and one colour (beyond
+/// [`COLOUR_PLANE_NOTE`], as the colour-plane note says): there a film
+/// can follow the hue the single-colour materials cannot, elsewhere it can
+/// only tie with `gltf-ext` at many times its fit's cost (its formula is
+/// evaluated over dual numbers, about 190 s of wall time on
+/// cc_iris_purple_gem against 12 s for `gltf-ext`).
 pub fn candidates_for(material: &Material, target: Target) -> Vec<&'static str> {
     let isotropic = material
         .dense()
         .is_some_and(brdf_fit::isotropy::is_isotropic);
+    let off_plane = || {
+        material
+            .judge()
+            .ok()
+            .flatten()
+            .and_then(|j| j.data_colour_plane())
+            .is_some_and(|c| c.outside > COLOUR_PLANE_NOTE)
+    };
     exact_models(target)
         .into_iter()
         .filter(|name| {
-            !(isotropic && catalogue::entry(name).is_some_and(|e| e.form.is_anisotropic()))
+            let Some(e) = catalogue::entry(name) else {
+                return true;
+            };
+            !(isotropic && e.form.is_anisotropic())
+                && (e.form != RendererForm::GltfIridescence || off_plane())
         })
         .collect()
 }

@@ -5,6 +5,9 @@
 //! - `gltf-ext`: the same plus `KHR_materials_ior`, `KHR_materials_specular`
 //!   and `KHR_materials_clearcoat`, each written where it differs from the
 //!   core material (the extension's defaults leave the BRDF unchanged).
+//! - `gltf-iridescence`: `gltf-ext`'s plus `KHR_materials_iridescence`
+//!   (`iridescenceFactor`, `iridescenceIor`, `iridescenceThicknessMaximum`;
+//!   no thickness texture, so the film is that thick everywhere).
 //! - `lambert`: a dielectric with `KHR_materials_specular.specularFactor = 0`
 //!   (then `F_d = 0` and the material is `base_color / pi`).
 //!
@@ -27,7 +30,7 @@ use brdf_models::RendererForm;
 /// The material object and the extensions it uses.
 pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError> {
     let (base, metallic, roughness) = match fit.form {
-        RendererForm::Gltf { .. } => (
+        RendererForm::Gltf { .. } | RendererForm::GltfIridescence => (
             fit.colour("base_color")?,
             fit.get("metallic")?,
             fit.get("roughness")?,
@@ -36,7 +39,7 @@ pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError>
         _ => {
             return Err(fit.no_equivalent(
                 Target::Gltf,
-                "glTF's BRDF is the metallic-roughness material; export the `gltf` or `gltf-ext` fit",
+                "glTF's BRDF is the metallic-roughness material; export the `gltf`, `gltf-ext` or `gltf-iridescence` fit",
             ));
         }
     };
@@ -57,7 +60,11 @@ pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError>
         );
         used.push("KHR_materials_specular");
     }
-    if fit.form == (RendererForm::Gltf { extended: true }) {
+    let extended = matches!(
+        fit.form,
+        RendererForm::Gltf { extended: true } | RendererForm::GltfIridescence
+    );
+    if extended {
         let ior = fit.get("ior")?;
         if ior != 1.5 {
             ext.insert("KHR_materials_ior".into(), json!({ "ior": ior }));
@@ -79,6 +86,18 @@ pub fn material(fit: &Fitted) -> Result<(Value, Vec<&'static str>), ExportError>
             );
             used.push("KHR_materials_clearcoat");
         }
+    }
+    if fit.form == RendererForm::GltfIridescence {
+        // Without a thickness texture the film is the maximum thick.
+        ext.insert(
+            "KHR_materials_iridescence".into(),
+            json!({
+                "iridescenceFactor": fit.get("iridescence")?,
+                "iridescenceIor": fit.get("iridescence_ior")?,
+                "iridescenceThicknessMaximum": fit.get("iridescence_thickness")?,
+            }),
+        );
+        used.push("KHR_materials_iridescence");
     }
     if !ext.is_empty() {
         m["extensions"] = Value::Object(ext);

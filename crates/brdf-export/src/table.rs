@@ -19,7 +19,7 @@
 
 use brdf_models::ModelConfig;
 
-use crate::convert::default_via;
+use crate::convert::{default_via, via_for};
 use crate::{ExportError, Target, export};
 
 /// How a target writes a model.
@@ -79,7 +79,9 @@ pub fn support(model: &str, target: Target) -> Support {
     match export(m.as_ref(), target) {
         Ok(_) if maps(model, target) => Support::Mapped,
         Ok(_) => Support::Exact,
-        Err(ExportError::NoEquivalent { .. }) => Support::Converted(default_via(target).into()),
+        Err(ExportError::NoEquivalent { .. }) => {
+            Support::Converted(via_for(m.as_ref(), target).into())
+        }
         Err(e) => Support::No(e.to_string()),
     }
 }

@@ -134,36 +134,76 @@ fn without_the_mesh_the_material_alone_is_written() {
     assert_eq!(a["materials"], asset(true)["materials"]);
 }
 
+/// The Khronos validator's answer on `tests/reference/mesh/FILE`
+/// (`check_exports.sh`), checked to be on the file as it is.
+fn validated(file: &str, text: &str) -> Value {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference");
+    let answers = std::fs::read_to_string(dir.join("mesh/gltf_validation.json")).unwrap();
+    let v: Value = serde_json::from_str(&answers).unwrap();
+    let entry = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["file"] == format!("mesh/{file}"))
+        .unwrap_or_else(|| panic!("no validator answer for {file}: rerun check_exports.sh"))
+        .clone();
+    assert_eq!(
+        entry["text"].as_str().unwrap(),
+        text,
+        "rerun check_exports.sh"
+    );
+    entry["issues"].clone()
+}
+
+/// `tests/reference/mesh/NAME.gltf` is what the exporter writes for the
+/// model `model` (a saved model under `tests/reference`), named `NAME`.
+fn current_export(model: &str, name: &str) -> String {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference");
+    let saved = brdf_models::saved_model::SavedModel::load_model(&dir.join(model)).unwrap();
+    let opts = WriteOptions {
+        name: name.into(),
+        ..WriteOptions::default()
+    };
+    let text = std::fs::read_to_string(dir.join(format!("mesh/{name}.gltf"))).unwrap();
+    assert_eq!(
+        export_with(saved.as_ref(), Target::Gltf, None, &opts).unwrap(),
+        text
+    );
+    text
+}
+
 /// `tests/reference/mesh/paper_white_rgb.gltf` (paper_white's `make.sh`:
 /// principled's glTF conversion with its preview sphere) is what the
 /// exporter writes, and the Khronos validator (`check_exports.sh`) found
 /// no error, warning or note in it as it is.
 #[test]
 fn khronos_validator_accepts_the_file_with_the_sphere() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference");
-    let read = |p: &str| std::fs::read_to_string(dir.join(p)).unwrap();
-    let saved = brdf_models::saved_model::SavedModel::load_model(
-        &dir.join("paper_white/principled.gltf.json"),
-    )
-    .unwrap();
-    let opts = WriteOptions {
-        name: "paper_white_rgb".into(),
-        ..WriteOptions::default()
-    };
-    let text = read("mesh/paper_white_rgb.gltf");
-    assert_eq!(
-        export_with(saved.as_ref(), Target::Gltf, None, &opts).unwrap(),
-        text
+    let text = current_export("paper_white/principled.gltf.json", "paper_white_rgb");
+    let issues = validated("paper_white_rgb.gltf", &text);
+    assert_eq!(issues["numErrors"], 0, "{issues}");
+    assert_eq!(issues["numWarnings"], 0, "{issues}");
+    assert_eq!(issues["messages"], serde_json::json!([]), "{issues}");
+}
+
+/// glTF's thin film: `mesh/film_iridescence.gltf`, the export of a
+/// `gltf-iridescence` model, carries `KHR_materials_iridescence` with the
+/// model's film (a texture-free film is `iridescenceThicknessMaximum`
+/// thick), and the Khronos validator found nothing to report in it.
+#[test]
+fn khronos_validator_accepts_the_iridescent_film() {
+    let text = current_export("mesh/film_iridescence.json", "film_iridescence");
+    let a: Value = serde_json::from_str(&text).unwrap();
+    let film = &a["materials"][0]["extensions"]["KHR_materials_iridescence"];
+    assert_eq!(film["iridescenceFactor"], 1.0);
+    assert_eq!(film["iridescenceIor"], 2.09);
+    assert_eq!(film["iridescenceThicknessMaximum"], 281.0);
+    assert!(
+        a["extensionsUsed"]
+            .as_array()
+            .unwrap()
+            .contains(&Value::from("KHR_materials_iridescence"))
     );
-    let v: Value = serde_json::from_str(&read("mesh/gltf_validation.json")).unwrap();
-    let v = v.as_array().unwrap();
-    assert_eq!(v.len(), 1);
-    assert_eq!(
-        v[0]["text"].as_str().unwrap(),
-        text,
-        "rerun check_exports.sh"
-    );
-    let issues = &v[0]["issues"];
+    let issues = validated("film_iridescence.gltf", &text);
     assert_eq!(issues["numErrors"], 0, "{issues}");
     assert_eq!(issues["numWarnings"], 0, "{issues}");
     assert_eq!(issues["messages"], serde_json::json!([]), "{issues}");

@@ -707,6 +707,26 @@ fn entries() -> Vec<ModelEntry> {
             nonlinear_search: NonlinearSearch::Projected,
             form: RendererForm::Gltf { extended: true },
         });
+        v.push(ModelEntry {
+            name: <crate::gltf_pbr::iridescence::GltfIridescenceFormula as crate::dual_model::DualFormula>::NAME,
+            family: "renderer",
+            summary: "gltf-ext with KHR_materials_iridescence: its Fresnel mixed with a thin film's (Schlick interfaces, Fourier-domain spectral sum)",
+            paper: "Khronos glTF 2.0 specification, Appendix B; KHR_materials_iridescence; Belcour & Barla 2017, ACM TOG 36(4):65",
+            has_lobes: false,
+            build: |c| Ok(Box::new(crate::GltfIridescence::with_channels(c.channels)?)),
+            build_for_data: None,
+            from_samples: None,
+            starts: Some(crate::gltf_pbr::iridescence::screened_starts),
+            polish_factor: 1,
+            channel_model: None,
+            renderer: true,
+            by_image_rank: None,
+            colour: ColourStructure::PerLobe,
+            optional_lobes: &[],
+            linear_solver: LinearSolver::Direct,
+            nonlinear_search: NonlinearSearch::Projected,
+            form: RendererForm::GltfIridescence,
+        });
     }
     #[cfg(feature = "renderer")]
     v.extend(crate::coloured_lobes::entries());

@@ -75,6 +75,10 @@ pub enum RendererForm {
         /// Whether the KHR extensions' parameters are present.
         extended: bool,
     },
+    /// glTF's material with `KHR_materials_iridescence` as well as the
+    /// extended form's parameters (`iridescence`, `iridescence_ior`,
+    /// `iridescence_thickness`).
+    GltfIridescence,
     /// A Lambert base (`kd`) under GGX lobes.
     Ggx(GgxForm),
     /// Lobes with colours of their own, one renderer's formula each

@@ -57,6 +57,7 @@
 //! ```
 
 mod ext_kernel;
+pub mod iridescence;
 mod kernel;
 
 use std::f64::consts::FRAC_1_PI;

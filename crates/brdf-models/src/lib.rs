@@ -19,7 +19,7 @@
 //! | `sopp` | [`PhongFresnel`], [`AsPaint`] / [`PaintShader`] (with the `Rs` conversion), [`ClearCoat`] over any base |
 //! | `koenderink` | [`Koenderink`] (Zernike expansion of any order) |
 //! | `polynomial` | [`KurtPolynomial`] (isotropic and anisotropic) |
-//! | `renderer` | [`Ggx`] (K lobes) and the [`ggx`] family (anisotropic; separable Smith; dielectric and conductor Fresnel), [`Principled`] (Disney, as Mitsuba 3), [`GltfPbr`], [`GltfPbrExt`], [`ColouredLobes`] (a colour and width per GGX lobe, a dielectric coat) |
+//! | `renderer` | [`Ggx`] (K lobes) and the [`ggx`] family (anisotropic; separable Smith; dielectric and conductor Fresnel), [`Principled`] (Disney, as Mitsuba 3), [`GltfPbr`], [`GltfPbrExt`], [`GltfIridescence`], [`ColouredLobes`] (a colour and width per GGX lobe, a dielectric coat) |
 //!
 //! [`catalogue()`] lists the models compiled into this build; [`build`]
 //! constructs one by name. Each entry also states facts about its model
@@ -125,6 +125,7 @@ pub use ggx::{
     GgxDielectricSeparable, GgxSeparable,
 };
 #[cfg(feature = "renderer")]
+pub use gltf_pbr::iridescence::GltfIridescence;
 pub use gltf_pbr::{GltfPbr, GltfPbrExt};
 #[cfg(feature = "koenderink")]
 pub use koenderink::Koenderink;

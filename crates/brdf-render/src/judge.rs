@@ -157,6 +157,27 @@ impl Judge {
         Ok((errors, renders))
     }
 
+    /// How far the data of [`Judge::with_data`] lie from every plane of
+    /// white and one colour, under the first white light set; `None`
+    /// without data renders, without a white set or for black data.
+    pub fn data_colour_plane(&self) -> Option<DataColourPlane> {
+        self.colour_plane_of(&self.reference)
+    }
+
+    fn colour_plane_of(&self, refs: &[Reference]) -> Option<DataColourPlane> {
+        self.points
+            .iter()
+            .zip(refs)
+            .find(|((light, _), _)| light.is_white())
+            .and_then(|((light, _), r)| {
+                r.colour_plane().map(|c| DataColourPlane {
+                    light: light.name().to_string(),
+                    colour: c.colour,
+                    outside: c.outside,
+                })
+            })
+    }
+
     fn errors_against(
         &self,
         refs: &[Reference],
@@ -185,18 +206,7 @@ impl Judge {
             compared.push((t, map));
             lights.push(e);
         }
-        let colour_plane = self
-            .points
-            .iter()
-            .zip(refs)
-            .find(|((light, _), _)| light.is_white())
-            .and_then(|((light, _), r)| {
-                r.colour_plane().map(|c| DataColourPlane {
-                    light: light.name().to_string(),
-                    colour: c.colour,
-                    outside: c.outside,
-                })
-            });
+        let colour_plane = self.colour_plane_of(refs);
         let errors = ImageError {
             size: self.size,
             lights,

@@ -9,6 +9,7 @@
 #   M.scene.xml                              --to mitsuba --scene (studio light)
 #   (the .gltf files are written with --no-mesh: the material alone)
 #   ../mesh/paper_white_rgb.gltf             principled's glTF conversion with its preview sphere
+#   ../mesh/film_iridescence.gltf            ../mesh/film_iridescence.json (gltf-iridescence), exact
 #   M.KIND.json, M.KIND.report.json          the conversion, where there is one
 # Takes several minutes (the principled fit, the conversions).
 #   BRDF_DATA=... BRDF=target/release/brdf bash make.sh
@@ -41,4 +42,7 @@ for m in ggx principled; do
 done
 # A glTF file with its preview sphere (the default), for the validator.
 "$brdf" export --from principled.gltf.json --to gltf --exact ../mesh/paper_white_rgb.gltf >/dev/null
+# glTF's thin film (KHR_materials_iridescence), a hand-chosen model.
+"$brdf" export --from ../mesh/film_iridescence.json --to gltf --name film_iridescence \
+    ../mesh/film_iridescence.gltf >/dev/null
 bash ../check_exports.sh

@@ -1,0 +1,347 @@
+//! The glTF material with `KHR_materials_iridescence` (Khronos, the
+//! extension's README, "Iridescence BRDF" and "Implementation Notes"): the
+//! `gltf-ext` material whose Fresnel terms are mixed, by `iridescence`,
+//! with a thin film's reflectance as glTF approximates it, so that a thin
+//! film fitted to a measurement reaches glTF viewers.
+//!
+//! With `S`, `w = (1 - |V.H|)^5`, `C` and `m` as in [`crate::gltf_pbr`],
+//! `b0_c = min(((ior - 1)/(ior + 1))^2 specular_color_c, 1)`,
+//! `fr_c = b0_c + (1 - b0_c) w`, `I(f0)` the film's reflectance over a base
+//! of normal reflectance `f0` (below) at `cos theta_1 = V.H`:
+//!
+//! `a_c = (1 - t) specular fr_c + t I(specular b0)_c`, `t = iridescence`,
+//! `dielectric_c = (1 - max_k a_k) C_c / pi + a_c S`,
+//! `metal_c = S ((1 - t) (C_c + (1 - C_c) w) + t I(C)_c)`,
+//! `material = (1 - m) dielectric + m metal`, and the clear coat as
+//! `gltf-ext`'s (the extension ignores the interface between coat and film).
+//!
+//! The film's reflectance `I` is the extension's: Schlick reflectances at
+//! both interfaces (`R12` from the film index `n`, `R23` at the refracted
+//! angle from the base index `(1 + sqrt f0)/(1 - sqrt f0)`, `f0 + 1e-4`),
+//! phases 0 or `pi` by which index is larger, and Belcour & Barla's
+//! Fourier-domain sum of the DC term and two orders with Gaussian fits of
+//! the colour-matching functions, taken to linear Rec. 709 and floored at
+//! 0. One channel reads the film's luminance (Rec. 709 weights).
+//!
+//! | parameter | meaning | box | default | linear |
+//! | --- | --- | --- | --- | --- |
+//! | `gltf-ext`'s | | | | |
+//! | `iridescence` | `iridescenceFactor` | `[0, 1]` | 1 | no |
+//! | `iridescence_ior` | `iridescenceIor` | `[1, 3]` | 1.3 | no |
+//! | `iridescence_thickness` | `iridescenceThicknessMaximum`, nm | `[0, 1500]` | 400 | no |
+//!
+//! Without a thickness texture glTF's film is `iridescenceThicknessMaximum`
+//! thick everywhere. The extension leaves the angle at which `I` is taken
+//! to the implementation; this model takes `V.H`, the angle of the core
+//! material's Fresnel that `I` is mixed with (Khronos' sample viewer takes
+//! `N.V` per pixel). Not reciprocal with a clear coat (as `gltf-ext`).
+
+use std::f64::consts::{FRAC_1_PI, PI};
+
+use brdf_core::{DirPairs, ParamSpec, Parametric, SampleSet};
+use nalgebra::Vector3;
+
+use super::GltfExtFormula;
+use crate::dual::Dual;
+use crate::dual_model::{DualFormula, DualModel, MAX_CHANNELS};
+use crate::ggx::Masking;
+use crate::principled::{ggx_dual, schlick_weight};
+
+/// Thickest film the box allows, in nm (as the thin-film models').
+pub const THICKNESS_MAX: f64 = 1500.0;
+
+/// `XYZ_TO_REC709` of the extension, row by row.
+const XYZ_TO_REC709: [[f64; 3]; 3] = [
+    [3.2404542, -1.5371385, -0.4985314],
+    [-0.9692660, 1.8760108, 0.0415560],
+    [0.0556434, -0.2040259, 1.0572252],
+];
+
+fn cos<const N: usize>(x: Dual<N>) -> Dual<N> {
+    x.chain(x.v.cos(), -x.v.sin())
+}
+
+fn exp<const N: usize>(x: Dual<N>) -> Dual<N> {
+    let e = x.v.exp();
+    x.chain(e, e)
+}
+
+/// Schlick's `f0 + (1 - f0)(1 - c)^5`.
+fn schlick<const N: usize>(f0: Dual<N>, c: Dual<N>) -> Dual<N> {
+    let m = (c * -1.0 + 1.0).max_c(0.0);
+    let m2 = m * m;
+    f0 + (f0 * -1.0 + 1.0) * (m2 * m2 * m)
+}
+
+/// The extension's `evalSensitivity`: linear Rec. 709 response at optical
+/// path difference `opd` (nm) with per-channel phase shifts.
+fn sensitivity<const N: usize>(opd: Dual<N>, shift: [f64; 3]) -> [Dual<N>; 3] {
+    const VAL: [f64; 3] = [5.4856e-13, 4.4201e-13, 5.2481e-13];
+    const POS: [f64; 3] = [1.6810e+06, 1.7953e+06, 2.2084e+06];
+    const VAR: [f64; 3] = [4.3278e+09, 9.3046e+09, 6.6121e+09];
+    let phase = opd * (2.0 * PI * 1e-9);
+    let gauss = |val: f64, pos: f64, var: f64, s: f64| {
+        cos(phase * pos + s) * exp(phase.sq() * -var) * (val * (2.0 * PI * var).sqrt())
+    };
+    let mut xyz = [Dual::c(0.0); 3];
+    for k in 0..3 {
+        xyz[k] = gauss(VAL[k], POS[k], VAR[k], shift[k]);
+    }
+    xyz[0] = xyz[0] + gauss(9.7470e-14, 2.2399e+06, 4.5282e+09, shift[0]);
+    let xyz = xyz.map(|x| x / 1.0685e-7);
+    XYZ_TO_REC709.map(|r| xyz[0] * r[0] + xyz[1] * r[1] + xyz[2] * r[2])
+}
+
+/// The extension's `iridescent_fresnel` (outside index 1) over a base of
+/// normal reflectance `f0` (per Rec. 709 channel) at `cos1`.
+fn film<const N: usize>(n: Dual<N>, d: Dual<N>, f0: [Dual<N>; 3], cos1: f64) -> [Dual<N>; 3] {
+    let one = Dual::c(1.0);
+    let r0 = ((n - 1.0) / (n + 1.0)).sq();
+    let r12 = schlick(r0, Dual::c(cos1));
+    let t121 = one - r12;
+    let cos2_sq = one - (one / n).sq() * (1.0 - cos1 * cos1);
+    if cos2_sq.v < 0.0 {
+        return [one; 3];
+    }
+    let cos2 = cos2_sq.sqrt();
+    // phi21 = pi - phi12, phi12 = 0 for a film denser than the outside.
+    let phi21 = if n.v < 1.0 { 0.0 } else { PI };
+    let mut r23 = [Dual::c(0.0); 3];
+    let mut shift = [0.0; 3];
+    for k in 0..3 {
+        let s = (f0[k] + 1e-4).sqrt();
+        let base = (one + s) / (one - s);
+        r23[k] = schlick(((base - n) / (base + n)).sq(), cos2);
+        shift[k] = phi21 + if base.v < n.v { PI } else { 0.0 };
+    }
+    let opd = n * d * cos2 * 2.0;
+    let s1 = sensitivity(opd, shift);
+    let s2 = sensitivity(opd * 2.0, shift.map(|x| 2.0 * x));
+    let mut out = [Dual::c(0.0); 3];
+    for k in 0..3 {
+        let mut r123 = r12 * r23[k];
+        r123 = if r123.v < 1e-5 {
+            Dual::c(1e-5)
+        } else if r123.v > 0.9999 {
+            Dual::c(0.9999)
+        } else {
+            r123
+        };
+        let r = r123.sqrt();
+        let rs = t121.sq() * r23[k] / (one - r123);
+        let c1 = (rs - t121) * r;
+        let c2 = c1 * r;
+        out[k] = (r12 + rs + c1 * s1[k] * 2.0 + c2 * s2[k] * 2.0).max_c(0.0);
+    }
+    out
+}
+
+/// The film's reflectance in `nc` channels: Rec. 709 for three, the
+/// luminance for one (its base reflectance repeated).
+fn film_channels<const N: usize>(
+    n: Dual<N>,
+    d: Dual<N>,
+    f0: &[Dual<N>],
+    nc: usize,
+    cos1: f64,
+    out: &mut [Dual<N>],
+) {
+    if nc == 3 {
+        out[..3].copy_from_slice(&film(n, d, [f0[0], f0[1], f0[2]], cos1));
+    } else {
+        let rgb = film(n, d, [f0[0]; 3], cos1);
+        out[0] = rgb[0] * 0.2126 + rgb[1] * 0.7152 + rgb[2] * 0.0722;
+    }
+}
+
+/// The glTF material with `KHR_materials_iridescence`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfIridescenceFormula;
+
+impl DualFormula for GltfIridescenceFormula {
+    const NAME: &'static str = "gltf-iridescence";
+
+    fn specs(nc: usize) -> Vec<ParamSpec> {
+        let mut s = GltfExtFormula::specs(nc);
+        s.extend([
+            ParamSpec::new(
+                "iridescence",
+                "iridescenceFactor (KHR_materials_iridescence)",
+                0.0,
+                1.0,
+                1.0,
+                false,
+            ),
+            ParamSpec::new("iridescence_ior", "iridescenceIor", 1.0, 3.0, 1.3, false),
+            ParamSpec::new(
+                "iridescence_thickness",
+                "iridescenceThicknessMaximum, nm",
+                0.0,
+                THICKNESS_MAX,
+                400.0,
+                false,
+            ),
+        ]);
+        s
+    }
+
+    fn eval<const N: usize>(
+        p: &[Dual<N>],
+        nc: usize,
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        out: &mut [Dual<N>],
+    ) {
+        let base = &p[..nc];
+        let (metallic, rough) = (p[nc], p[nc + 1]);
+        let e = &p[nc + 2..];
+        let (ior, specular, sc) = (e[0], e[1], &e[2..2 + nc]);
+        let (cc, cc_rough) = (e[2 + nc], e[3 + nc]);
+        let (t, n, d) = (e[4 + nc], e[5 + nc], e[6 + nc]);
+        let h = (l + v).normalize();
+        let mu = v.dot(&h).abs();
+        let w = schlick_weight(mu);
+        let alpha = rough.sq();
+        let spec = ggx_dual(l, v, alpha, alpha, Masking::HeightCorrelated);
+        let f0_ior = ((ior - 1.0) / (ior + 1.0)).sq();
+        let zero = Dual::c(0.0);
+        let (mut b0, mut sb0) = ([zero; MAX_CHANNELS], [zero; MAX_CHANNELS]);
+        for c in 0..nc {
+            b0[c] = (f0_ior * sc[c]).min_c(1.0);
+            sb0[c] = b0[c] * specular;
+        }
+        let (mut film_d, mut film_m) = ([zero; MAX_CHANNELS], [zero; MAX_CHANNELS]);
+        film_channels(n, d, &sb0[..nc], nc, mu, &mut film_d);
+        film_channels(n, d, base, nc, mu, &mut film_m);
+        let mut a = [zero; MAX_CHANNELS];
+        let mut amax = Dual::c(f64::NEG_INFINITY);
+        for c in 0..nc {
+            let fr = b0[c] + (b0[c] * -1.0 + 1.0) * w;
+            a[c] = t.lerp(specular * fr, film_d[c]);
+            amax = amax.max(a[c]);
+        }
+        let a_coat = cc_rough.sq();
+        let fc = cc * (0.04 + 0.96 * schlick_weight(v.z));
+        let coat = ggx_dual(l, v, a_coat, a_coat, Masking::HeightCorrelated);
+        for c in 0..nc {
+            let dielectric = (1.0 - amax) * base[c] * FRAC_1_PI + a[c] * spec;
+            let conductor = base[c] + (1.0 - base[c]) * w;
+            let metal = spec * t.lerp(conductor, film_m[c]);
+            let material = (1.0 - metallic) * dielectric + metallic * metal;
+            out[c] = (1.0 - fc) * material + fc * coat;
+        }
+    }
+
+    fn reciprocal() -> bool {
+        false
+    }
+}
+
+/// The glTF material with `KHR_materials_iridescence` as a model.
+pub type GltfIridescence = DualModel<GltfIridescenceFormula>;
+
+/// Samples the start screen reads at most (every k-th of the data).
+const SCREEN_SAMPLES: usize = 2000;
+/// Starts returned by [`screened_starts`].
+const STARTS: usize = 4;
+
+/// Fit starts for the thickness, whose fringes (about 150 nm apart) are
+/// each a local optimum: the model's defaults with the film at every
+/// 50 nm from 100 to 1000 nm and indices 1.3, 1.6 and 2.0, screened by the
+/// `cos_i`-weighted squared error on at most [`SCREEN_SAMPLES`] samples;
+/// the best [`STARTS`], at least 100 nm apart at one index.
+pub fn screened_starts(model: &dyn Parametric, data: &SampleSet) -> Vec<Vec<f64>> {
+    let (nc, np) = (model.channels(), model.n_params());
+    if data.channels() != nc || data.is_empty() || np < 3 {
+        return Vec::new();
+    }
+    let every = data.len().div_ceil(SCREEN_SAMPLES).max(1);
+    let all = data.pairs();
+    let mut pairs = DirPairs::with_capacity(data.len() / every + 1);
+    let mut rows = Vec::new();
+    for j in (0..data.len()).step_by(every) {
+        pairs.push(&all.l(j), &all.v(j));
+        rows.push(j);
+    }
+    let n = pairs.len();
+    let mut f = vec![0.0; nc * n];
+    let mut scored = Vec::new();
+    for ior in [1.3, 1.6, 2.0] {
+        for k in 2..=20 {
+            let mut p = model.params().to_vec();
+            p[np - 2] = ior;
+            p[np - 1] = 50.0 * k as f64;
+            model.eval_batch_at(&p, &pairs, &mut f);
+            let mut cost = 0.0;
+            for (i, &j) in rows.iter().enumerate() {
+                let w = all.l(j).z.max(0.0);
+                for c in 0..nc {
+                    let r = f[c * n + i] - data.channel(c)[j];
+                    cost += w * r * r;
+                }
+            }
+            scored.push((cost, p));
+        }
+    }
+    scored.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut chosen: Vec<Vec<f64>> = Vec::with_capacity(STARTS);
+    for (cost, p) in scored {
+        let near = chosen
+            .iter()
+            .any(|c| c[np - 2] == p[np - 2] && (c[np - 1] - p[np - 1]).abs() < 100.0);
+        if cost.is_finite() && !near {
+            chosen.push(p);
+        }
+        if chosen.len() == STARTS {
+            break;
+        }
+    }
+    chosen
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn film_at(n: f64, d: f64, f0: f64, cos1: f64) -> [f64; 3] {
+        film::<0>(Dual::c(n), Dual::c(d), [Dual::c(f0); 3], cos1).map(|x| x.v)
+    }
+
+    #[test]
+    fn a_film_of_no_thickness_stays_in_range() {
+        // At d = 0 the sensitivities are evaluated at phase 0 with shifts 0
+        // or pi: the value is finite, in [0, 1], and the same in all
+        // channels up to the fits' imbalance.
+        let f = film_at(1.5, 0.0, 0.04, 0.8);
+        assert!(f.iter().all(|x| (0.0..=1.0).contains(x)), "{f:?}");
+    }
+
+    #[test]
+    fn colour_turns_with_thickness_and_fades_at_large_thickness() {
+        let hue = |c: [f64; 3]| (c[0] - c[2]) / (c[0] + c[1] + c[2]);
+        let a = film_at(1.6, 250.0, 0.04, 1.0);
+        let b = film_at(1.6, 350.0, 0.04, 1.0);
+        assert!((hue(a) - hue(b)).abs() > 0.05, "{a:?} {b:?}");
+        // Thick films average out: the colour tends to grey.
+        let c = film_at(1.6, 1500.0, 0.04, 1.0);
+        assert!(hue(c).abs() < hue(a).abs().max(hue(b).abs()), "{c:?}");
+    }
+
+    #[test]
+    fn no_iridescence_is_the_gltf_ext_material() {
+        // iridescence = 0: the extension leaves gltf-ext's BRDF.
+        let mut p = vec![0.3, 0.2, 0.1, 0.2, 0.4, 1.45, 0.8, 1.0, 0.9, 0.7, 0.3, 0.2];
+        let ext = crate::GltfPbrExt::new(3, &p).unwrap();
+        p.extend([0.0, 1.7, 300.0]);
+        let iri = GltfIridescence::new(3, &p).unwrap();
+        let l = Vector3::new(0.3, 0.1, 0.9).normalize();
+        let v = Vector3::new(-0.4, 0.2, 0.8).normalize();
+        let (mut a, mut b) = ([0.0; 3], [0.0; 3]);
+        use brdf_core::Brdf;
+        ext.eval(&l, &v, &mut a);
+        iri.eval(&l, &v, &mut b);
+        for c in 0..3 {
+            assert!((a[c] - b[c]).abs() <= 1e-14 * a[c], "{a:?} {b:?}");
+        }
+    }
+}
