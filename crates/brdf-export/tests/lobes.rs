@@ -366,6 +366,10 @@ fn blender_script_carries_the_film_and_its_weight() {
     }
 }
 
+/// A MaterialX node read back: its kind, name, and inputs as (name, value
+/// or the node it links to).
+type MxNode = (String, String, Vec<(String, String)>);
+
 /// The MaterialX graph: one pbrlib node per term with the model's values,
 /// summed by `add` nodes into a `surface`, read back with an XML parser.
 #[test]
@@ -382,8 +386,7 @@ fn materialx_graph_has_one_node_per_term_with_its_values() {
     ]);
     let m = model("lobes-f82-coat-materialx", 2, &named(&p));
     let doc = export(m.as_ref(), Target::MaterialX).unwrap();
-    // (node kind, name) and each node's inputs as (name, value or link).
-    let mut nodes: Vec<(String, String, Vec<(String, String)>)> = Vec::new();
+    let mut nodes: Vec<MxNode> = Vec::new();
     let mut r = quick_xml::Reader::from_str(&doc);
     loop {
         let ev = r.read_event().unwrap();
