@@ -14,14 +14,14 @@ TERMS = [
     (
         "ShaderNodeBsdfDiffuse",
         {},
-        {"Color": (0.0014353152174876576, 0.0008316635991286686, 0.0, 1.0), "Roughness": 0.0},
+        {"Color": (0.0014353215375011992, 0.0008316664905916535, 9.280770596475918e-17, 1.0), "Roughness": 0.0},
         None,
     ),
     (
         "ShaderNodeBsdfMetallic",
         {"distribution": "GGX", "fresnel_type": "PHYSICAL_CONDUCTOR"},
-        {"IOR": (4.024093933121024, 4.024093933121024, 4.024093933121024), "Extinction": (0.0, 0.0, 0.0), "Roughness": 0.30736798027072193, "Thin Film Thickness": 150.0921345208024, "Thin Film IOR": 2.4984013671276366},
-        1.0,
+        {"IOR": (4.024093959762252, 4.024093959762252, 4.024093959762252), "Extinction": (0.0, 0.0, 0.0), "Roughness": 0.30736794372974163, "Thin Film Thickness": 150.09210465254557, "Thin Film IOR": 2.4984018892589903},
+        0.9999999999999989,
     ),
 ]
 

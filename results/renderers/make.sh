@@ -2,16 +2,19 @@
 # The renderer figure of README.md and docs/export.md (results/renderers/): a
 # measured film (RGL cc_ibiza_sunset, a paint whose highlight is another hue
 # than its body), fitted for each renderer in one command (`brdf fit --for
-# mitsuba`, `brdf fit --for blender`: among the models that renderer renders
-# exactly, the one whose render is closest to the data), rendered by Mitsuba
-# 3 and by Blender Cycles beside the measurement in the judge scene, studio
-# light (figure.py).
-# Writes the fits MATERIAL.mitsuba.json, MATERIAL.blender.json, the
-# materials MATERIAL.xml, MATERIAL.py, three PNG tiles, renderers.md and
-# renderers.json (HDR-FLIP of each render against the measurement).
+# mitsuba`, `brdf fit --for blender`, `brdf fit --for materialx`: among the
+# models that renderer renders exactly, the one whose render is closest to
+# the data), rendered by Mitsuba 3, by Blender Cycles and by MaterialX's GLSL
+# renderer (under xvfb-run) beside the measurement in the judge scene,
+# studio light (figure.py).
+# Writes the fits MATERIAL.mitsuba.json, MATERIAL.blender.json,
+# MATERIAL.materialx.json, the materials MATERIAL.xml, MATERIAL.py,
+# MATERIAL.mtlx, four PNG tiles, renderers.md and renderers.json (HDR-FLIP
+# of each render against the measurement).
 #   BRDF_DATA=... BRDF=target/release/brdf PYTHON=.../venv-export/bin/python \
 #   BLENDER_PYTHON=.../venv-blender/bin/python bash results/renderers/make.sh
-# PYTHON needs mitsuba, numpy, flip-evaluator; BLENDER_PYTHON needs bpy.
+# PYTHON needs mitsuba, numpy, flip-evaluator, materialx; BLENDER_PYTHON
+# needs bpy; xvfb-run (Debian's xvfb) gives MaterialX its display.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 : "${BRDF_DATA:?set BRDF_DATA}"
@@ -24,7 +27,10 @@ cd "$here"
 rm -f ./*.principled.json ./*.gltf.json
 "$brdf" fit --data "$data" --for mitsuba --out "$material.xml" --save "$material.mitsuba.json" >/dev/null
 "$brdf" fit --data "$data" --for blender --out "$material.py" --save "$material.blender.json" >/dev/null
+"$brdf" fit --data "$data" --for materialx --out "$material.mtlx" --save "$material.materialx.json" >/dev/null
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 "$BLENDER_PYTHON" ../../crates/brdf-export/tests/reference/cycles_render.py "$tmp" --spp 256 --antialias "$material.py" >&2
-"$py" figure.py "$data" "$material.xml" "$tmp/$material.py.studio.seed2.exr" .
+xvfb-run -a "$py" ../../crates/brdf-export/tests/reference/materialx_render.py "$tmp" "$material.mtlx" >&2
+"$py" figure.py "$data" "$material.xml" "$tmp/$material.py.studio.seed2.exr" \
+    "$tmp/$material.mtlx.studio.seed2.exr" .
