@@ -126,6 +126,7 @@ pub use ggx::{
 };
 #[cfg(feature = "renderer")]
 pub use gltf_pbr::iridescence::GltfIridescence;
+#[cfg(feature = "renderer")]
 pub use gltf_pbr::{GltfPbr, GltfPbrExt};
 #[cfg(feature = "koenderink")]
 pub use koenderink::Koenderink;
