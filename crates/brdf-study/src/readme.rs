@@ -193,7 +193,7 @@ fn other_file(name: &str) -> &'static str {
             "what colour alone costs a renderer model with one base colour (principled, glTF) on each RGL measurement, written by `python benches/judge/colour_planes.py`"
         }
         "renderers/" => {
-            "one RGL film fitted `--for mitsuba` and `--for blender`, rendered by Mitsuba 3 and Blender Cycles beside its measurement: its fits, materials, renders and `renderers.md`, written by `bash results/renderers/make.sh` (with `figure.py`)"
+            "one RGL film fitted `--for mitsuba`, `--for blender` and `--for materialx`, rendered by Mitsuba 3, Blender Cycles and MaterialX's GLSL renderer beside its measurement: its fits, materials, renders and `renderers.md`, written by `bash results/renderers/make.sh` (with `figure.py`)"
         }
         "synthetic/" => {
             "the study on the built-in synthetic materials (`brdf reproduce` without measured data), with its own README.md"

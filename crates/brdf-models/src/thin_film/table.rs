@@ -102,15 +102,7 @@ impl FilmTable {
     pub fn at(&self, mu: f64) -> FilmColour {
         let x = mu.clamp(0.0, 1.0) * INTERVALS as f64;
         let i = (x as usize).min(INTERVALS - 1);
-        let t = x - i as f64;
-        let (t2, t3) = (t * t, t * t * t);
-        // Catmull-Rom weights of nodes i - 1, i, i + 1, i + 2.
-        let w = [
-            0.5 * (-t3 + 2.0 * t2 - t),
-            0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
-            0.5 * (-3.0 * t3 + 4.0 * t2 + t),
-            0.5 * (t3 - t2),
-        ];
+        let w = catmull_rom(x - i as f64);
         let i = i as isize;
         let p = [
             self.node(i - 1),
@@ -130,6 +122,19 @@ impl FilmTable {
         }
         out
     }
+}
+
+/// Catmull-Rom weights of nodes `i - 1`, `i`, `i + 1`, `i + 2` at the
+/// fraction `t` of the step from node `i` to `i + 1`.
+#[inline]
+pub fn catmull_rom(t: f64) -> [f64; 4] {
+    let (t2, t3) = (t * t, t * t * t);
+    [
+        0.5 * (-t3 + 2.0 * t2 - t),
+        0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
+        0.5 * (-3.0 * t3 + 4.0 * t2 + t),
+        0.5 * (t3 - t2),
+    ]
 }
 
 /// The model's recent tables. Cloning a model starts an empty cache; the
