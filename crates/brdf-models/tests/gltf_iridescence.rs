@@ -8,7 +8,6 @@
 //! declared non-reciprocity are the catalogue-wide tests'
 //! (`tests/properties.rs`, `tests/reciprocity.rs`).
 
-use brdf_core::Parametric;
 use brdf_models::{ModelConfig, build};
 use nalgebra::Vector3;
 

@@ -457,8 +457,8 @@ const STARTS: usize = 4;
 /// Fit starts for the thickness, whose fringes (about 150 nm apart) are
 /// each a local optimum: the model's defaults with the film at every
 /// 50 nm from 100 to 1000 nm and indices 1.3, 1.6 and 2.0, screened by the
-/// `cos_i`-weighted squared error on at most [`SCREEN_SAMPLES`] samples;
-/// the best [`STARTS`], at least 100 nm apart at one index.
+/// `cos_i`-weighted squared error on at most 2000 samples;
+/// the best four, at least 100 nm apart at one index.
 pub fn screened_starts(model: &dyn Parametric, data: &SampleSet) -> Vec<Vec<f64>> {
     let (nc, np) = (model.channels(), model.n_params());
     if data.channels() != nc || data.is_empty() || np < 3 {
