@@ -39,7 +39,7 @@ pub fn colour_plane_note(model: &str, e: &ImageError) -> Option<String> {
         return None;
     }
     Some(format!(
-        "the data's hue changes across the sphere: under the {} light {:.1}% (RMS) of its rendered colour lies off every plane of white and one colour; each `{model}` lobe is white or the base colour, so every `{model}` render lies in such a plane and none comes closer; models with a second colour can",
+        "the data's hue changes across the sphere: under the {} light {:.1}% (RMS) of its rendered colour lies off every plane of white and one colour; each `{model}` lobe is white or the base colour, so every `{model}` render lies in such a plane and none comes closer; models with a second colour can: `brdf fit --for` with `mitsuba`, `blender`, `materialx` or `gltf` fits the coloured lobes and thin films that renderer shows exactly",
         c.light,
         100.0 * c.outside
     ))

@@ -109,4 +109,6 @@ fn a_second_colour_leaves_the_plane_and_only_single_colour_models_get_the_note()
     let note = colour_plane_note("principled", &e).expect("note");
     let pct = format!("{:.1}%", 100.0 * c.outside);
     assert!(note.contains(&pct) && note.contains("studio"), "{note}");
+    // It names the route that renders such data exactly.
+    assert!(note.contains("`brdf fit --for`"), "{note}");
 }
