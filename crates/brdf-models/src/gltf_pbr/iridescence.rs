@@ -239,10 +239,7 @@ impl DualFormula for GltfIridescenceFormula {
     ) {
         let inputs = FilmInputs::new(p, nc);
         let mu = v.dot(&(l + v).normalize()).abs();
-        let zero = Dual::c(0.0);
-        let (mut film_d, mut film_m) = ([zero; 3], [zero; 3]);
-        film_chained(inputs.n, inputs.d, &inputs.sb0[..nc], nc, mu, &mut film_d);
-        film_chained(inputs.n, inputs.d, &p[..nc], nc, mu, &mut film_m);
+        let (film_d, film_m) = inputs.films(p, nc, mu);
         shade(p, nc, l, v, &inputs, (&film_d, &film_m), out);
     }
 
@@ -293,6 +290,16 @@ impl<const N: usize> FilmInputs<N> {
             b0,
             sb0,
         }
+    }
+
+    /// The films over the dielectric's base and over the metal's (the base
+    /// colour, `p[..nc]`) at `mu = V.H`, exactly.
+    fn films(&self, p: &[Dual<N>], nc: usize, mu: f64) -> ([Dual<N>; 3], [Dual<N>; 3]) {
+        let zero = Dual::c(0.0);
+        let (mut fd, mut fm) = ([zero; 3], [zero; 3]);
+        film_chained(self.n, self.d, &self.sb0[..nc], nc, mu, &mut fd);
+        film_chained(self.n, self.d, &p[..nc], nc, mu, &mut fm);
+        (fd, fm)
     }
 }
 
@@ -348,15 +355,8 @@ struct FilmTable<const N: usize> {
 
 impl<const N: usize> FilmTable<N> {
     fn new(p: &[Dual<N>], nc: usize, inputs: &FilmInputs<N>) -> Self {
-        let zero = Dual::c(0.0);
         let nodes = (0..=INTERVALS)
-            .map(|i| {
-                let mu = i as f64 / INTERVALS as f64;
-                let (mut fd, mut fm) = ([zero; 3], [zero; 3]);
-                film_chained(inputs.n, inputs.d, &inputs.sb0[..nc], nc, mu, &mut fd);
-                film_chained(inputs.n, inputs.d, &p[..nc], nc, mu, &mut fm);
-                (fd, fm)
-            })
+            .map(|i| inputs.films(p, nc, i as f64 / INTERVALS as f64))
             .collect();
         FilmTable { nodes }
     }
