@@ -46,6 +46,10 @@
 //! | Mitsuba 3 | `principled` | Mitsuba's own BSDF, written exactly |
 //! | pbrt-v4 | `ggx-dielectric` | a `mix` of `diffuse` and `conductor` with `k = 0`, written exactly once `ks` is grey |
 //! | glTF 2.0 | `gltf` (`gltf-iridescence` for a thin film) | the metallic-roughness material (with glTF's own film) |
+//!
+//! A coloured-lobe model goes to its twin in the target's form where the
+//! catalogue has one ([`via_for`]): `-mitsuba`, `-cycles` and `-materialx`
+//! differ only in masking and compensation.
 //! | MaterialX | `gltf` | written as `gltf_pbr` |
 //!
 //! pbrt-v4's `mix` takes one amount for all channels and a diffuse
@@ -216,16 +220,38 @@ pub fn default_via(target: Target) -> &'static str {
     }
 }
 
-/// The model a conversion of `source` to `target` fits unless told: the
-/// target's [`default_via`], except that a thin film goes to glTF as glTF's
-/// own film (`KHR_materials_iridescence`).
+/// The model a conversion of `source` to `target` fits unless told: a
+/// coloured-lobe model goes to its twin in the target's form
+/// (`lobes-cycles` to MaterialX as `lobes-materialx`: the same terms with
+/// the target's masking and compensation, so the conversion changes
+/// little), a thin film to glTF as glTF's own film
+/// (`KHR_materials_iridescence`); everything else to the target's
+/// [`default_via`]. A thin film does not go to its twin: the films'
+/// formulas put their fringes at other thicknesses, and the conversion of
+/// the iris fixture's Cycles film to MaterialX's renders at HDR-FLIP 0.20
+/// (through `gltf` 0.19), so either is refused as another material.
 pub fn via_for(source: &dyn Parametric, target: Target) -> &'static str {
-    let film = brdf_models::entry(source.name()).is_some_and(|e| e.form == RendererForm::ThinFilm);
-    if film && target == Target::Gltf {
-        "gltf-iridescence"
-    } else {
-        default_via(target)
+    match brdf_models::entry(source.name()).map(|e| e.form) {
+        Some(RendererForm::ColouredLobes) => twin(source.name(), target),
+        Some(RendererForm::ThinFilm) if target == Target::Gltf => Some("gltf-iridescence"),
+        _ => None,
     }
+    .unwrap_or(default_via(target))
+}
+
+/// The catalogue twin of coloured-lobe model `name` in `target`'s form, if
+/// the catalogue has one.
+fn twin(name: &str, target: Target) -> Option<&'static str> {
+    let suffix = match target {
+        Target::Mitsuba => "-mitsuba",
+        Target::Blender => "-cycles",
+        Target::MaterialX => "-materialx",
+        _ => return None,
+    };
+    let stem = ["-mitsuba", "-cycles", "-materialx"]
+        .iter()
+        .find_map(|s| name.strip_suffix(s))?;
+    brdf_models::entry(&format!("{stem}{suffix}")).map(|e| e.name)
 }
 
 /// Fit the target's model to `source` (see the module doc).
@@ -380,6 +406,19 @@ fn fit_target(
             brdf_fit::resolve(via).map_err(|e| e.to_string())?,
         )
     };
+    let mut request = request;
+    // A coloured-lobe twin keeps the source's number of lobes.
+    if request.model.has_lobes {
+        let lobes = (1..)
+            .take_while(|k| {
+                source
+                    .param_specs()
+                    .iter()
+                    .any(|s| s.name == format!("alpha{k}"))
+            })
+            .count();
+        request.config.lobes = lobes.max(1);
+    }
     request
         .run()
         .and_then(FitOutcome::into_report)
