@@ -288,8 +288,9 @@ fn mitsuba_conductor_and_coat_lobes_keep_their_fresnel_at_full_amplitude() {
     assert!(xml.contains("unbounded srgb"), "{xml}");
 }
 
-#[test]
-fn blender_script_sets_each_nodes_values() {
+/// An F82-tinted lobe, a plain one and the coat (the Blender and MaterialX
+/// writers' checks).
+fn f82_coat_params() -> Vec<(String, f64)> {
     let mut p = rgb("kd", [0.35, 0.2, 0.08]);
     p.extend(rgb("f01", [0.9, 0.6, 0.3]));
     p.extend(rgb("tint1", [0.8, 0.9, 1.0]));
@@ -300,6 +301,12 @@ fn blender_script_sets_each_nodes_values() {
         ("coat_ior".into(), 1.5),
         ("coat_alpha".into(), 0.04),
     ]);
+    p
+}
+
+#[test]
+fn blender_script_sets_each_nodes_values() {
+    let p = f82_coat_params();
     let m = model("lobes-f82-coat-cycles", 2, &named(&p));
     let py = export(m.as_ref(), Target::Blender).unwrap();
     for want in [
@@ -374,16 +381,7 @@ type MxNode = (String, String, Vec<(String, String)>);
 /// summed by `add` nodes into a `surface`, read back with an XML parser.
 #[test]
 fn materialx_graph_has_one_node_per_term_with_its_values() {
-    let mut p = rgb("kd", [0.35, 0.2, 0.08]);
-    p.extend(rgb("f01", [0.9, 0.6, 0.3]));
-    p.extend(rgb("tint1", [0.8, 0.9, 1.0]));
-    p.extend(rgb("ks2", [0.2, 0.12, 0.05]));
-    p.extend([
-        ("alpha1".into(), 0.09),
-        ("alpha2".into(), 0.25),
-        ("coat_ior".into(), 1.5),
-        ("coat_alpha".into(), 0.04),
-    ]);
+    let p = f82_coat_params();
     let m = model("lobes-f82-coat-materialx", 2, &named(&p));
     let doc = export(m.as_ref(), Target::MaterialX).unwrap();
     let mut nodes: Vec<MxNode> = Vec::new();
