@@ -260,10 +260,15 @@ fn search_starts(
             multistart(&coarse, |s| bounded_least_squares(problem, s, full, &lm))?
         }
         Search::Screened => {
-            let screened = screened_starts(data, opts.objective, model, starts, |sub, s| {
-                let p0 = pr.project(s)?;
-                bounded_least_squares(sub, &p0, full, &lm)
-            })?;
+            let screened = screened_starts(
+                data,
+                opts.objective,
+                model,
+                starts,
+                &lm,
+                |s| pr.project(s),
+                |sub, p0, lm| bounded_least_squares(sub, p0, full, lm),
+            )?;
             multistart(&screened, |s| {
                 let p0 = pr.project(s)?;
                 bounded_least_squares(problem, &p0, full, &lm)

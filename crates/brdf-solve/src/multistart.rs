@@ -99,13 +99,34 @@ where
     if starts.is_empty() {
         return Err(SolveError::Empty { what: "starts" });
     }
+    summarise(solve_each(starts, |s: &Vec<f64>| solve(s)))
+}
+
+/// `solve` from every start (in parallel with the `rayon` feature), the
+/// results in the starts' order.
+pub(crate) fn solve_each<T: Sync, F>(
+    starts: &[T],
+    solve: F,
+) -> Vec<Result<SolverReport, SolveError>>
+where
+    F: Fn(&T) -> Result<SolverReport, SolveError> + Sync,
+{
     #[cfg(feature = "rayon")]
-    let results: Vec<Result<SolverReport, SolveError>> = {
+    {
         use rayon::prelude::*;
-        starts.par_iter().map(|s| solve(s)).collect()
-    };
+        starts.par_iter().map(&solve).collect()
+    }
     #[cfg(not(feature = "rayon"))]
-    let results: Vec<Result<SolverReport, SolveError>> = starts.iter().map(|s| solve(s)).collect();
+    {
+        starts.iter().map(&solve).collect()
+    }
+}
+
+/// The best of the solves `results` (one per start, in the starts' order):
+/// the lowest cost among the converged ones, else among all.
+pub(crate) fn summarise(
+    results: Vec<Result<SolverReport, SolveError>>,
+) -> Result<MultiStartReport, SolveError> {
     let ssr: Vec<f64> = results
         .iter()
         .map(|r| r.as_ref().map(|r| r.ssr).unwrap_or(f64::NAN))
