@@ -12,7 +12,9 @@
 //! `dielectric = F_d S(alpha) + (1 - max_c F_d) C / pi`,
 //! `metal = S(alpha) (C + (1 - C) w)`,
 //! `material = (1 - m) dielectric + m metal`;
-//! with the clear coat, `F_c = 0.04 + 0.96 (1 - N.V)^5` and
+//! with the clear coat, `F_c = 0.04 + 0.96 (1 - N.V)^5` (`V` towards the
+//! viewer: the first direction, as renderers evaluate a BRDF, see
+//! `brdf_render::shading`) and
 //! `f = (1 - clearcoat F_c) material + clearcoat F_c S(clearcoat_roughness^2)`.
 //!
 //! The core model (`gltf`) is the extension model at `ior = 1.5`,
@@ -130,7 +132,7 @@ fn gltf_eval<const N: usize>(
     }
     let coat = if ext {
         let a = cc_rough.sq();
-        let fc = cc * (0.04 + 0.96 * schlick_weight(v.z));
+        let fc = cc * (0.04 + 0.96 * schlick_weight(l.z));
         Some((fc, ggx_dual(l, v, a, a, Masking::HeightCorrelated)))
     } else {
         None

@@ -102,7 +102,8 @@ pub(crate) fn batch(
         let w = schlick_weight(v.dot(&g.h).abs());
         let (s, ds) = (g.value, (g.d_ax + g.d_ay) * 2.0 * h.rough);
         let (sc, dsc) = (gc.value, (gc.d_ax + gc.d_ay) * 2.0 * h.cc_rough);
-        let coat_w = 0.04 + 0.96 * schlick_weight(v.z);
+        // The viewer's cosine: the first direction (renderers' order).
+        let coat_w = 0.04 + 0.96 * schlick_weight(l.z);
         let fc = h.clearcoat * coat_w;
         // F_c per channel and the first channel of the largest.
         let mut fd = [0.0; MAX_CHANNELS];

@@ -333,7 +333,8 @@ fn shade<const N: usize>(
         amax = amax.max(a[c]);
     }
     let a_coat = cc_rough.sq();
-    let fc = cc * (0.04 + 0.96 * schlick_weight(v.z));
+    // The viewer's cosine: the first direction (renderers' order).
+    let fc = cc * (0.04 + 0.96 * schlick_weight(l.z));
     let coat = ggx_dual(l, v, a_coat, a_coat, Masking::HeightCorrelated);
     for c in 0..nc {
         let dielectric = (1.0 - amax) * base[c] * FRAC_1_PI + a[c] * spec;

@@ -110,7 +110,8 @@ def evaluate(p, wi, wo, nc):
     dielectric = (1.0 - a.max()) * base / np.pi + a * s
     metal = s * ((1.0 - t) * (base + (1.0 - base) * (1.0 - vdoth) ** 5) + t * film(base))
     material = (1.0 - metallic) * dielectric + metallic * metal
-    fc = cc * (0.04 + 0.96 * (1.0 - wo[2]) ** 5)
+    # N.V of the viewer: the first direction, as renderers evaluate.
+    fc = cc * (0.04 + 0.96 * (1.0 - wi[2]) ** 5)
     out = (1.0 - fc) * material + fc * ggx(wi, wo, h, cc_rough**2)
     return [float(x) for x in out]
 

@@ -155,7 +155,8 @@ def gltf(p, nc, l, v, ext):
         f0 = min(f0i * sc[k], 1.0) * spec
         fd.append(f0 + (spec - f0) * (1 - vh) ** 5)
     fmax = max(fd)
-    fc = cc * (0.04 + 0.96 * (1 - abs(v[2])) ** 5)
+    # N.V of the viewer: the first direction, as renderers evaluate.
+    fc = cc * (0.04 + 0.96 * (1 - abs(l[2])) ** 5)
     s_cc, _ = ggx_spec(l, v, ccr * ccr, ccr * ccr, False)
     out = []
     for k in range(nc):
