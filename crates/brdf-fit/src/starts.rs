@@ -168,7 +168,10 @@ const SAME_BASIN: f64 = 1e-5;
 /// `principled`, `gltf-ext` and three coloured-lobe models under the three
 /// objectives on the five files (75 fits) ended where they did with one
 /// round, to every printed digit, at 88% of the processor time (55-75% on
-/// the conductor lobe with a coat, the film's).
+/// the conductor lobe with a coat, the film's). The three basins screened
+/// can differ in the last (a start left after the first round may have
+/// ended just below it); the best of their solves on all samples did not
+/// (tested on colodur_napoli).
 const SCREEN_FIRST_ITERATIONS: usize = 50;
 /// The screen's rounds: [`SCREEN_FIRST_ITERATIONS`], then the
 /// [`POLISHED_STARTS`] lowest of the starts still going carried on when
@@ -217,59 +220,181 @@ where
         ) -> Result<SolverReport, brdf_solve::SolveError>
         + Sync,
 {
-    if data.len() <= SCREEN_ABOVE || starts.len() <= POLISHED_STARTS {
-        return Ok(starts.to_vec());
-    }
-    let (sub, _) = stratified_subsample(data, SCREEN_SAMPLES);
-    let scales = objective.row_scales(&sub);
-    let values = sub.values_channel_major();
-    // One problem on the subsample (the transformed one wraps it).
-    let mp = ModelProblem::new(model, sub.pairs(), &values, &scales)?;
-    let (rows, transformed);
-    let problem: &(dyn LeastSquaresProblem + Sync) = if objective.is_transformed() {
-        rows = TransformedRows::new(&sub, objective);
-        transformed = mp.with_transform(&rows);
-        &transformed
-    } else {
-        &mp
+    let screen = Screen {
+        data,
+        objective,
+        model,
+        starts,
+        lm,
     };
-    // A start whose projection fails is left out, as one whose solve does.
-    use rayon::prelude::*;
-    let (index, projected): (Vec<usize>, Vec<Vec<f64>>) = starts
-        .par_iter()
-        .enumerate()
-        .filter_map(|(i, s)| project(s).ok().map(|p| (i, p)))
-        .unzip();
-    let Ok(screen) =
-        multistart_in_rounds(&projected, lm.max_iterations, &SCREEN_ROUNDS, |p, cap| {
+    screen.run(&SCREEN_ROUNDS, project, solve)
+}
+
+/// What [`screened_starts`] screens.
+struct Screen<'a> {
+    data: &'a SampleSet,
+    objective: Objective,
+    model: &'a dyn Parametric,
+    starts: &'a [Vec<f64>],
+    lm: &'a LmOptions,
+}
+
+impl Screen<'_> {
+    /// The screen in `rounds`.
+    fn run<P, S>(&self, rounds: &Rounds, project: P, solve: S) -> Result<Vec<Vec<f64>>, FitError>
+    where
+        P: Fn(&[f64]) -> Result<Vec<f64>, brdf_solve::SolveError> + Sync,
+        S: Fn(
+                &(dyn LeastSquaresProblem + Sync),
+                &[f64],
+                &LmOptions,
+            ) -> Result<SolverReport, brdf_solve::SolveError>
+            + Sync,
+    {
+        let Screen {
+            data,
+            objective,
+            model,
+            starts,
+            lm,
+        } = *self;
+        if data.len() <= SCREEN_ABOVE || starts.len() <= POLISHED_STARTS {
+            return Ok(starts.to_vec());
+        }
+        let (sub, _) = stratified_subsample(data, SCREEN_SAMPLES);
+        let scales = objective.row_scales(&sub);
+        let values = sub.values_channel_major();
+        // One problem on the subsample (the transformed one wraps it).
+        let mp = ModelProblem::new(model, sub.pairs(), &values, &scales)?;
+        let (rows, transformed);
+        let problem: &(dyn LeastSquaresProblem + Sync) = if objective.is_transformed() {
+            rows = TransformedRows::new(&sub, objective);
+            transformed = mp.with_transform(&rows);
+            &transformed
+        } else {
+            &mp
+        };
+        // A start whose projection fails is left out, as one whose solve does.
+        use rayon::prelude::*;
+        let (index, projected): (Vec<usize>, Vec<Vec<f64>>) = starts
+            .par_iter()
+            .enumerate()
+            .filter_map(|(i, s)| project(s).ok().map(|p| (i, p)))
+            .unzip();
+        let Ok(screen) = multistart_in_rounds(&projected, lm.max_iterations, rounds, |p, cap| {
             let lm = LmOptions {
                 max_iterations: cap,
                 ..lm.clone()
             };
             solve(problem, p, &lm)
-        })
-    else {
-        return Ok(starts.to_vec());
-    };
-    let mut found: Vec<(f64, usize)> = screen
-        .ssr
-        .iter()
-        .zip(&index)
-        .filter(|(ssr, _)| ssr.is_finite())
-        .map(|(ssr, i)| (*ssr, *i))
-        .collect();
-    found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    let mut chosen: Vec<(f64, usize)> = Vec::new();
-    for (ssr, i) in found {
-        let distinct = chosen
+        }) else {
+            return Ok(starts.to_vec());
+        };
+        let mut found: Vec<(f64, usize)> = screen
+            .ssr
             .iter()
-            .all(|(c, _)| (c - ssr).abs() > SAME_BASIN * ssr.abs().max(f64::MIN_POSITIVE));
-        if distinct && chosen.len() < POLISHED_STARTS {
-            chosen.push((ssr, i));
+            .zip(&index)
+            .filter(|(ssr, _)| ssr.is_finite())
+            .map(|(ssr, i)| (*ssr, *i))
+            .collect();
+        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut chosen: Vec<(f64, usize)> = Vec::new();
+        for (ssr, i) in found {
+            let distinct = chosen
+                .iter()
+                .all(|(c, _)| (c - ssr).abs() > SAME_BASIN * ssr.abs().max(f64::MIN_POSITIVE));
+            if distinct && chosen.len() < POLISHED_STARTS {
+                chosen.push((ssr, i));
+            }
         }
+        if chosen.is_empty() {
+            return Ok(starts.to_vec());
+        }
+        Ok(chosen.into_iter().map(|(_, i)| starts[i].clone()).collect())
     }
-    if chosen.is_empty() {
-        return Ok(starts.to_vec());
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    use brdf_models::{ModelConfig, build};
+    use brdf_solve::{Termination, bounded_least_squares};
+
+    use super::*;
+    use crate::param_box::box_constraints;
+
+    /// The two-round screen leads the search to the optimum one round to
+    /// the cap leads it to, though some starts were left after the first
+    /// round: the conductor lobe with a coat on colodur_napoli (measured
+    /// data; on synthetic data of the model itself hardly a start creeps).
+    /// The three basins screened need not be the same (the third may be
+    /// one a start left after 50 iterations would have passed); the best
+    /// of their solves on all samples is.
+    #[test]
+    #[ignore = "needs BRDF_DATA"]
+    fn two_rounds_lead_to_the_optimum_one_round_leads_to() {
+        let rgb = ModelConfig {
+            channels: 3,
+            ..ModelConfig::default()
+        };
+        let model = build("lobes-conductor-coat-mitsuba", &rgb).expect("model");
+        let all =
+            brdf_io::load("rgl/colodur_napoli_4f_rgb.bsdf").expect("BRDF_DATA with the RGL files");
+        // As a fit sees it: within 80 degrees.
+        let (data, _) = all.filter_angle_limit(80f64.to_radians());
+        let starts = brdf_models::suggested_starts(model.as_ref(), &data);
+        let full = box_constraints(model.as_ref()).expect("box");
+        let lm = crate::options::FitOptions::default().search_lm();
+        let stopped = AtomicUsize::new(0);
+        let solve = |p: &(dyn LeastSquaresProblem + Sync), p0: &[f64], lm: &LmOptions| {
+            let r = bounded_least_squares(p, p0, &full, lm)?;
+            if lm.max_iterations == SCREEN_FIRST_ITERATIONS
+                && r.termination == Termination::MaxIterations
+            {
+                stopped.fetch_add(1, Ordering::Relaxed);
+            }
+            Ok(r)
+        };
+        let screen = Screen {
+            data: &data,
+            objective: Objective::Ngan,
+            model: model.as_ref(),
+            starts: &starts,
+            lm: &lm,
+        };
+        let project = |s: &[f64]| Ok(s.to_vec());
+        let two = screen
+            .run(&SCREEN_ROUNDS, project, solve)
+            .expect("two rounds");
+        // More starts were still going than the second round carries: some
+        // were left after the first round.
+        let stopped = stopped.load(Ordering::Relaxed);
+        assert!(
+            stopped > POLISHED_STARTS,
+            "{stopped} starts still going after the first round"
+        );
+        let one_round = Rounds {
+            first: usize::MAX,
+            carry: 0,
+            within: 0.0,
+        };
+        let one = screen.run(&one_round, project, solve).expect("one round");
+        // Each set of starts solved on all samples, as the search does.
+        let values = data.values_channel_major();
+        let scales = Objective::Ngan.row_scales(&data);
+        let problem =
+            ModelProblem::new(model.as_ref(), data.pairs(), &values, &scales).expect("problem");
+        let best = |chosen: &[Vec<f64>]| {
+            chosen
+                .iter()
+                .map(|s| {
+                    bounded_least_squares(&problem, s, &full, &lm)
+                        .expect("solve")
+                        .ssr
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        assert_eq!(best(&two), best(&one), "starts {two:?} against {one:?}");
     }
-    Ok(chosen.into_iter().map(|(_, i)| starts[i].clone()).collect())
 }
