@@ -17,8 +17,8 @@ use crate::objective::Objective;
 use crate::options::{FitOptions, Solver};
 use crate::param_box::box_constraints;
 use crate::starts::{
-    COARSE_ABOVE, COARSE_FULL_MAX_PARAMS, FUSED_REFINE_FROM, coarse_starts, screen_stages,
-    screened_starts, search_stages, start_box,
+    COARSE_ABOVE, COARSE_FULL_MAX_PARAMS, FUSED_REFINE_FROM, SCREEN_ROUNDS, Screen, coarse_starts,
+    screen_stages, search_stages, start_box,
 };
 use crate::transformed_rows::TransformedRows;
 
@@ -260,12 +260,15 @@ fn search_starts(
             multistart(&coarse, |s| bounded_least_squares(problem, s, full, &lm))?
         }
         Search::Screened => {
-            let screened = screened_starts(
+            let screen = Screen {
                 data,
-                opts.objective,
+                objective: opts.objective,
                 model,
                 starts,
-                &lm,
+                lm: &lm,
+            };
+            let screened = screen.run(
+                &SCREEN_ROUNDS,
                 |s| pr.project(s),
                 |sub, p0, lm| bounded_least_squares(sub, p0, full, lm),
             )?;

@@ -66,7 +66,7 @@ pub(crate) fn search_stages(samples: usize, starts: usize) -> String {
     }
 }
 
-/// The screened search in words ([`screened_starts`]).
+/// The screened search in words ([`Screen`]).
 pub(crate) fn screen_stages(samples: usize, starts: usize) -> String {
     if samples > SCREEN_ABOVE && starts > POLISHED_STARTS {
         format!(
@@ -152,7 +152,7 @@ pub(crate) fn stratified_subsample(data: &SampleSet, target: usize) -> (SampleSe
 }
 
 /// Sample sets larger than this screen the starts of a search on all
-/// parameters on a subsample ([`screened_starts`]).
+/// parameters on a subsample ([`Screen`]).
 const SCREEN_ABOVE: usize = 8_000;
 /// Size of the stratified subsample the starts are screened on.
 const SCREEN_SAMPLES: usize = 2_048;
@@ -177,13 +177,13 @@ const SCREEN_FIRST_ITERATIONS: usize = 50;
 /// [`POLISHED_STARTS`] lowest of the starts still going carried on when
 /// within 10 times the least cost (a cost only falls, so one far above
 /// cannot be ranked first; one close above may still pass the best).
-const SCREEN_ROUNDS: Rounds = Rounds {
+pub(crate) const SCREEN_ROUNDS: Rounds = Rounds {
     first: SCREEN_FIRST_ITERATIONS,
     carry: POLISHED_STARTS,
     within: 10.0,
 };
 
-/// The starts of a search on all parameters, screened. Every start is
+/// The screen of the starts of a search on all parameters. Every start is
 /// solved on a deterministic stratified subsample ([`SCREEN_SAMPLES`]
 /// samples: every `k`-th, in the data's order) in `objective`, and the
 /// starts of the [`POLISHED_STARTS`] best distinct subsample costs are
@@ -198,50 +198,29 @@ const SCREEN_ROUNDS: Rounds = Rounds {
 ///
 /// The screen runs in two rounds ([`SCREEN_ROUNDS`]): every start for at
 /// most [`SCREEN_FIRST_ITERATIONS`], then the few best of those still
-/// going on to the search's own cap, from where they stopped.
+/// going solved again from the start to the search's own cap.
 ///
-/// `project` turns a start into the full parameter vector the solve
-/// begins at; `solve` solves from such a vector under the given options.
-pub(crate) fn screened_starts<P, S>(
-    data: &SampleSet,
-    objective: Objective,
-    model: &dyn Parametric,
-    starts: &[Vec<f64>],
-    lm: &LmOptions,
-    project: P,
-    solve: S,
-) -> Result<Vec<Vec<f64>>, FitError>
-where
-    P: Fn(&[f64]) -> Result<Vec<f64>, brdf_solve::SolveError> + Sync,
-    S: Fn(
-            &(dyn LeastSquaresProblem + Sync),
-            &[f64],
-            &LmOptions,
-        ) -> Result<SolverReport, brdf_solve::SolveError>
-        + Sync,
-{
-    let screen = Screen {
-        data,
-        objective,
-        model,
-        starts,
-        lm,
-    };
-    screen.run(&SCREEN_ROUNDS, project, solve)
-}
-
-/// What [`screened_starts`] screens.
-struct Screen<'a> {
-    data: &'a SampleSet,
-    objective: Objective,
-    model: &'a dyn Parametric,
-    starts: &'a [Vec<f64>],
-    lm: &'a LmOptions,
+/// The fields: the starts of `model` on `data` in `objective`, each solve
+/// under `lm`.
+pub(crate) struct Screen<'a> {
+    pub(crate) data: &'a SampleSet,
+    pub(crate) objective: Objective,
+    pub(crate) model: &'a dyn Parametric,
+    pub(crate) starts: &'a [Vec<f64>],
+    pub(crate) lm: &'a LmOptions,
 }
 
 impl Screen<'_> {
-    /// The screen in `rounds`.
-    fn run<P, S>(&self, rounds: &Rounds, project: P, solve: S) -> Result<Vec<Vec<f64>>, FitError>
+    /// The screened starts, in `rounds` ([`SCREEN_ROUNDS`] in a search).
+    /// `project` turns a start into the full parameter vector the solve
+    /// begins at; `solve` solves from such a vector under the given
+    /// options.
+    pub(crate) fn run<P, S>(
+        &self,
+        rounds: &Rounds,
+        project: P,
+        solve: S,
+    ) -> Result<Vec<Vec<f64>>, FitError>
     where
         P: Fn(&[f64]) -> Result<Vec<f64>, brdf_solve::SolveError> + Sync,
         S: Fn(
