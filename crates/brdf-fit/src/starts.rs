@@ -174,8 +174,8 @@ const SAME_BASIN: f64 = 1e-5;
 /// (tested on colodur_napoli).
 const SCREEN_FIRST_ITERATIONS: usize = 50;
 /// The screen's rounds: [`SCREEN_FIRST_ITERATIONS`], then the
-/// [`POLISHED_STARTS`] lowest of the starts still going carried on when
-/// within 10 times the least cost (a cost only falls, so one far above
+/// [`POLISHED_STARTS`] lowest of the starts still going solved again to
+/// the cap when within 10 times the least cost (a cost only falls, so one far above
 /// cannot be ranked first; one close above may still pass the best).
 pub(crate) const SCREEN_ROUNDS: Rounds = Rounds {
     first: SCREEN_FIRST_ITERATIONS,

@@ -21,7 +21,7 @@
 //! | [`varpro`] | variable projection: linear coefficients (NNLS) projected out, Golub-Pereyra Jacobian |
 //! | [`model_problem`] | least-squares problems from any `Parametric` model and samples (full and separable) |
 //! | [`multistart`](mod@multistart) | deterministic Halton multi-start, best result and spread |
-//! | [`rounds`] | multi-start in two rounds: the starts still going after a few iterations carried on only when they can win |
+//! | [`rounds`] | multi-start in two rounds: the starts still going after a few iterations solved again only when they can win |
 //! | [`tall_qr`] | the triangular factor of tall, skinny matrices (row-block TSQR on faer's kernels) |
 //! | [`scratch`] | reusable buffers for problems shared between threads |
 //! | [`strd`] | the 27 NIST StRD model functions with analytic gradients, LRE |
