@@ -53,7 +53,34 @@ fn reciprocal(w: Complex<f64>) -> Complex<f64> {
 /// assert!((f - (0.64 + 9.0) / (1.44 + 9.0)).abs() < 1e-14);
 /// ```
 pub fn fresnel_conductor(cos_i: f64, eta: f64, k: f64) -> f64 {
-    fresnel_conductor_grad(cos_i, eta, k).0
+    let c = cos_i.clamp(0.0, 1.0);
+    if c == 0.0 {
+        return 1.0;
+    }
+    // w = n^2 - sin^2 = x + i y; z = sqrt(w) = (zr, zi) with |z|^2 = |w|,
+    // from the same branch-wise root as `principal_sqrt`, in real numbers.
+    let n2r = eta * eta - k * k;
+    let y = 2.0 * eta * k;
+    let x = n2r - (1.0 - c * c).max(0.0);
+    let r = (x * x + y * y).sqrt();
+    if r == 0.0 {
+        return 1.0;
+    }
+    let t = (0.5 * (r + x.abs())).sqrt();
+    let (zr, zi) = if x >= 0.0 {
+        (t, y / (2.0 * t))
+    } else {
+        (y.abs() / (2.0 * t), t.copysign(y))
+    };
+    // |c - z|^2 / |c + z|^2 and |A - z|^2 / |A + z|^2 with A = n^2 c:
+    // |u -+ z|^2 = |u|^2 -+ 2 Re(u conj(z)) + |z|^2, both ratios over one
+    // division (this runs once per sample and channel at every trial point
+    // of a conductor fit, where the derivatives are not needed).
+    let c2 = c * c;
+    let (ps, qs) = (c2 + r, 2.0 * c * zr);
+    let (pp, qp) = (c2 * (n2r * n2r + y * y) + r, 2.0 * c * (n2r * zr + y * zi));
+    let (ns, ds, np, dp) = (ps - qs, ps + qs, pp - qp, pp + qp);
+    0.5 * (ns * dp + np * ds) / (ds * dp)
 }
 
 /// `(F, dF/d eta, dF/dk)` of [`fresnel_conductor`]. At grazing incidence
@@ -76,7 +103,9 @@ pub fn fresnel_conductor_grad(cos_i: f64, eta: f64, k: f64) -> (f64, f64, f64) {
     let a = n2 * c;
     let inv_p = reciprocal(a + z);
     let rp = (a - z) * inv_p;
-    let f = 0.5 * (rs.norm_sqr() + rp.norm_sqr());
+    // The value of the values-only path, to the bit: a solver compares
+    // costs from both paths.
+    let f = fresnel_conductor(c, eta, k);
     let z2 = z.norm_sqr();
     if z2 == 0.0 {
         return (f, 0.0, 0.0);
@@ -91,6 +120,40 @@ pub fn fresnel_conductor_grad(cos_i: f64, eta: f64, k: f64) -> (f64, f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The value in real numbers against the amplitude ratios in complex
+    /// numbers (`nalgebra`'s root), over metals, dielectrics beyond and
+    /// below the critical angle, and grazing to normal incidence.
+    #[test]
+    fn value_in_real_numbers_is_the_complex_form_s() {
+        for &(eta, k) in &[
+            (0.2, 3.0),
+            (1.5, 0.0),
+            (0.6, 0.0),
+            (0.01, 10.0),
+            (5.0, 10.0),
+            (2.5, 0.3),
+            (0.9, 1e-9),
+        ] {
+            for i in 0..=100 {
+                let c = i as f64 / 100.0;
+                let n2 = Complex::new(eta, k) * Complex::new(eta, k);
+                let z = (n2 - Complex::new(1.0 - c * c, 0.0)).sqrt();
+                let (rs, rp) = ((c - z) / (c + z), (n2 * c - z) / (n2 * c + z));
+                let b = if c == 0.0 {
+                    1.0
+                } else {
+                    0.5 * (rs.norm_sqr() + rp.norm_sqr())
+                };
+                let a = fresnel_conductor(c, eta, k);
+                assert_eq!(a, fresnel_conductor_grad(c, eta, k).0);
+                assert!(
+                    (a - b).abs() <= 1e-13 * b.abs().max(1e-3),
+                    "cos {c}, eta {eta}, k {k}: {a} vs {b}"
+                );
+            }
+        }
+    }
 
     /// The closed form against `nalgebra`'s polar-form root on every
     /// quadrant, the axes and the signed zeros.

@@ -4,7 +4,7 @@
 use std::f64::consts::FRAC_1_PI;
 
 use brdf_core::fresnel::fresnel_dielectric_d_eta;
-use brdf_core::fresnel_conductor::fresnel_conductor_grad;
+use brdf_core::fresnel_conductor::{fresnel_conductor, fresnel_conductor_grad};
 use brdf_core::params::per_channel_specs;
 use brdf_core::{DirPairs, ParamError, ParamSpec, Parametric};
 use nalgebra::Vector3;
@@ -285,6 +285,7 @@ impl ColouredLobes {
             }
         }
         let mu = geo.cos_d;
+        let derivatives = grad.is_some();
         for lobe in &self.lobes {
             let alpha = p[lobe.alpha];
             let (s, ds) = geo.lobe(alpha, self.masking);
@@ -296,7 +297,11 @@ impl ColouredLobes {
                 let (f, d1, d2) = match lobe.fresnel {
                     LobeFresnel::None => (p[a + c], 1.0, 0.0),
                     LobeFresnel::F82Tint => f82_tint(p[a + c], p[b + c], mu),
-                    LobeFresnel::Conductor => fresnel_conductor_grad(mu, p[a + c], p[b + c]),
+                    // Trial points and renders need the value alone.
+                    LobeFresnel::Conductor if derivatives => {
+                        fresnel_conductor_grad(mu, p[a + c], p[b + c])
+                    }
+                    LobeFresnel::Conductor => (fresnel_conductor(mu, p[a + c], p[b + c]), 0.0, 0.0),
                 };
                 let (w, dw_df, dw_da) = weighted(f, k);
                 out[c * os] += w * s;
