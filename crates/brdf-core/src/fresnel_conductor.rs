@@ -108,6 +108,7 @@ impl Parts {
 /// let f = fresnel_conductor(1.0, 0.2, 3.0);
 /// assert!((f - (0.64 + 9.0) / (1.44 + 9.0)).abs() < 1e-14);
 /// ```
+#[inline]
 pub fn fresnel_conductor(cos_i: f64, eta: f64, k: f64) -> f64 {
     Parts::new(cos_i, eta, k).map_or(1.0, |p| p.value())
 }
@@ -117,6 +118,7 @@ pub fn fresnel_conductor(cos_i: f64, eta: f64, k: f64) -> f64 {
 /// (`cos_i = 0`) `F = 1` and both derivatives are 0; where `z = 0` (`k = 0`
 /// and `eta = sin theta_i`, the critical angle) the derivatives are
 /// reported as 0 (the one-sided limits are infinite).
+#[inline]
 pub fn fresnel_conductor_grad(cos_i: f64, eta: f64, k: f64) -> (f64, f64, f64) {
     let Some(p) = Parts::new(cos_i, eta, k) else {
         return (1.0, 0.0, 0.0);
