@@ -24,10 +24,13 @@
 #    ngan`, per channel) on every RGL file, one thread, and for appearance
 #    on cc_iris_purple_gem, two threads; with PEERS_LONG=1 also SGD for
 #    appearance on every RGL file and `brdf reproduce` with the data, two
-#    threads (each about half an hour on the shared 2-core machine).
+#    threads (each about half an hour on the shared 2-core machine);
+# 7. `brdf fit --for RENDERER` (every model the renderer renders exactly,
+#    each fitted for appearance, the closest written) for Mitsuba, Blender
+#    and MaterialX on every RGL file, two threads.
 #
-# Called by run.sh; PEERS_ONLY=where_users_wait runs it alone (about 15 minutes of
-# processor time on the shared 2-core machine).
+# Called by run.sh; PEERS_ONLY=where_users_wait runs it alone (about 35 minutes
+# on the shared 2-core machine).
 set -euo pipefail
 
 out="$1"
@@ -171,4 +174,13 @@ if [ "${PEERS_LONG:-0}" = 1 ]; then
 	/usr/bin/time -f '%U %S %e' -o "$d/time.txt" env RAYON_NUM_THREADS=2 "$brdf" reproduce --out "$d/reproduce" --quiet >/dev/null
 	"$py" -c "import json,sys; u,s,e=open(sys.argv[1]).read().split()[-3:]; print(json.dumps({'tag': {'kind': 'reproduce', 'threads': 2}, 'cpu': float(u)+float(s), 'wall': float(e), 'result': None}))" "$d/time.txt" >>"$d/runs.jsonl"
 fi
-rm -f "$d/time.txt" "$d/out.json"
+
+# 7. `brdf fit --for RENDERER`.
+echo 'RAYON_NUM_THREADS=2 brdf fit --data $BRDF_DATA/rgl/FILE.bsdf --for {mitsuba,blender,materialx} --out $PEERS_OUT/where_users_wait/for.out --json --quiet' >>"$cmds"
+for target in mitsuba blender materialx; do
+	for f in $files; do
+		RAYON_NUM_THREADS=2 timed "{\"kind\": \"for\", \"file\": \"$f\", \"target\": \"$target\", \"threads\": 2}" \
+			"$brdf" fit --data "$BRDF_DATA/rgl/$f.bsdf" --for "$target" --out "$d/for.out" --json --quiet
+	done
+done
+rm -f "$d/time.txt" "$d/out.json" "$d/for.out"
