@@ -21,8 +21,9 @@
 #
 # 7. where_users_wait.sh: the commands users wait for (default `brdf fit` of the
 #    renderer models on every RGL file, the full MERL grid against SciPy,
-#    select, batch on 1 and 2 threads, the renderer kernels, Bagher's SGD;
-#    PEERS_LONG=1 adds SGD for appearance on every file and `brdf reproduce`).
+#    select, batch on 1 and 2 threads, the renderer kernels, Bagher's SGD,
+#    `brdf fit --for` Mitsuba, Blender and MaterialX; PEERS_LONG=1 adds SGD
+#    for appearance on every file and `brdf reproduce`).
 #
 # PEERS_ONLY=irls runs step 4 alone (no fit peers, no profiles) and the
 # report then holds the IRLS section only. PEERS_ONLY=where_users_wait
