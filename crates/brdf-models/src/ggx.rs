@@ -66,7 +66,7 @@ use std::f64::consts::PI;
 
 use brdf_core::ParamSpec;
 use brdf_core::fresnel::{fresnel_dielectric_d_eta, schlick, schlick_d_f0};
-use brdf_core::fresnel_conductor::fresnel_conductor_grad;
+use brdf_core::fresnel_conductor::{fresnel_conductor, fresnel_conductor_grad};
 use nalgebra::Vector3;
 
 use crate::combinators::{DiffuseLobe, Lobe, MultiLobe};
@@ -190,6 +190,11 @@ pub trait GgxFresnel {
     fn specs() -> Vec<ParamSpec>;
     /// `F(cos)` at parameters `q`, derivatives into `dq[..NQ]`.
     fn eval(q: &[f64], cos: f64, dq: &mut [f64; 2]) -> f64;
+    /// `F(cos)` alone, the same to the bit as [`GgxFresnel::eval`]'s (what
+    /// trial points and renders call).
+    fn value(q: &[f64], cos: f64) -> f64 {
+        Self::eval(q, cos, &mut [0.0; 2])
+    }
 }
 
 /// Schlick's `F0 + (1 - F0)(1 - c)^5`, parameter `f0`.
@@ -262,6 +267,9 @@ impl GgxFresnel for Conductor {
         dq[1] = dk;
         f
     }
+    fn value(q: &[f64], cos: f64) -> f64 {
+        fresnel_conductor(cos, q[0], q[1])
+    }
 }
 
 fn width_specs(aniso: bool) -> Vec<ParamSpec> {
@@ -299,18 +307,19 @@ pub(crate) fn ggx_shape<F: GgxFresnel>(
         }
         return 0.0;
     };
+    let Some(dq) = dq else {
+        return sp.value * F::value(&q[nr..], sp.vh);
+    };
     let mut df = [0.0; 2];
     let f = F::eval(&q[nr..], sp.vh, &mut df);
-    if let Some(dq) = dq {
-        if aniso {
-            dq[0] = sp.d_ax * f;
-            dq[1] = sp.d_ay * f;
-        } else {
-            dq[0] = (sp.d_ax + sp.d_ay) * f;
-        }
-        for k in 0..F::NQ {
-            dq[nr + k] = sp.value * df[k];
-        }
+    if aniso {
+        dq[0] = sp.d_ax * f;
+        dq[1] = sp.d_ay * f;
+    } else {
+        dq[0] = (sp.d_ax + sp.d_ay) * f;
+    }
+    for k in 0..F::NQ {
+        dq[nr + k] = sp.value * df[k];
     }
     sp.value * f
 }
