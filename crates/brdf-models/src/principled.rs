@@ -85,7 +85,7 @@ use crate::dual_model::{DualFormula, DualModel};
 use crate::ggx::{Masking, ggx_specular, smith_lambda};
 
 /// `(1 - c)^5` with `c` clipped to `[0, 1]` (Mitsuba's `schlick_weight`).
-#[inline]
+#[inline(always)]
 pub(crate) fn schlick_weight(c: f64) -> f64 {
     let m = (1.0 - c).clamp(0.0, 1.0);
     let m2 = m * m;
