@@ -43,6 +43,7 @@ pub fn fresnel_dielectric(cos_i: f64, eta: f64) -> f64 {
 /// respect to `eta`. With `c_t = sqrt(1 - (1 - c_i^2)/eta^2)`:
 /// `dc_t/deta = (1 - c_i^2) / (eta^3 c_t)`, and `r_s`, `r_p` are
 /// differentiated as quotients.
+#[inline]
 pub fn fresnel_dielectric_d_eta(cos_i: f64, eta: f64) -> (f64, f64) {
     let ci = cos_i.clamp(0.0, 1.0);
     let sin2 = (1.0 - ci * ci).max(0.0);

@@ -42,6 +42,7 @@ const ALBEDO_MIN: f64 = 1e-4;
 
 /// `(E, dE/d alpha)`: the directional albedo of a white GGX lobe of width
 /// `alpha` seen at `cos_v`, by MaterialX's rational fit.
+#[inline(always)]
 pub fn albedo(cos_v: f64, alpha: f64) -> (f64, f64) {
     let (x, y) = (
         cos_v.clamp(f64::EPSILON, 1.0),
@@ -92,7 +93,7 @@ pub fn albedo(cos_v: f64, alpha: f64) -> (f64, f64) {
 
 /// `(k, dk/d alpha)` with `k = 1 / E - 1`, so that a lobe of Fresnel `F`
 /// is weighted `F (1 + F k)`.
-#[inline]
+#[inline(always)]
 pub fn excess(cos_v: f64, alpha: f64) -> (f64, f64) {
     let (e, de) = albedo(cos_v, alpha);
     if e <= ALBEDO_MIN {

@@ -43,23 +43,31 @@ impl LobeGeometry {
         if !(l.z > 0.0 && v.z > 0.0) {
             return None;
         }
-        // Both above the horizon: l + v has a positive z, never zero length.
+        Some(Self::unchecked(l, v))
+    }
+
+    /// [`LobeGeometry::new`] without the horizon test: meaningful only
+    /// where both directions are above the horizon (a batch computes it
+    /// branch-free for every pair and keeps only those).
+    #[inline(always)]
+    pub fn unchecked(l: &Vector3<f64>, v: &Vector3<f64>) -> Self {
+        // Above the horizon l + v has a positive z, never zero length.
         let s = l + v;
         let len2 = s.norm_squared();
         let cos_d = (v.dot(&s) / len2.sqrt()).clamp(0.0, 1.0);
         let tan2 = |z: f64| ((1.0 - z * z) / (z * z)).max(0.0);
-        Some(LobeGeometry {
+        LobeGeometry {
             cos_h2: s.z * s.z / len2,
             tan2_i: tan2(l.z),
             tan2_o: tan2(v.z),
             cos_d,
             inv_4_cos: 0.25 / (l.z * v.z),
             cos_first: l.z,
-        })
+        }
     }
 
     /// `(S, dS/d alpha)` of the lobe of width `alpha > 0`.
-    #[inline]
+    #[inline(always)]
     pub fn lobe(&self, alpha: f64, masking: Masking) -> (f64, f64) {
         let a2 = alpha * alpha;
         let den = self.cos_h2 * (a2 - 1.0) + 1.0;

@@ -108,6 +108,7 @@
 //! Turquin 2019, "Practical multiple scattering compensation for microfacet
 //! models" (the factor).
 
+mod batch;
 pub mod compensation;
 pub mod fresnel_laws;
 pub mod geometry;

@@ -39,13 +39,13 @@ pub enum LobeFresnel {
 
 /// Where one lobe's parameters sit in the parameter vector.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct LobeLayout {
-    fresnel: LobeFresnel,
+pub(super) struct LobeLayout {
+    pub(super) fresnel: LobeFresnel,
     /// First of the lobe's per-channel blocks (one block for `None`, two
     /// for the others: `f0` then `tint`, or `eta` then `kappa`).
-    start: usize,
+    pub(super) start: usize,
     /// Index of `alpha{k}`.
-    alpha: usize,
+    pub(super) alpha: usize,
 }
 
 /// Lambert plus `K` coloured isotropic GGX lobes plus an optional white
@@ -54,15 +54,15 @@ struct LobeLayout {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ColouredLobes {
     name: &'static str,
-    channels: usize,
-    masking: Masking,
-    lobes: Vec<LobeLayout>,
+    pub(super) channels: usize,
+    pub(super) masking: Masking,
+    pub(super) lobes: Vec<LobeLayout>,
     /// Index of `coat_ior` (`coat_alpha` follows), if there is a coat.
-    coat: Option<usize>,
+    pub(super) coat: Option<usize>,
     /// Whether every lobe carries MaterialX's energy compensation
     /// ([`compensation`]).
-    compensated: bool,
-    specs: Vec<ParamSpec>,
+    pub(super) compensated: bool,
+    pub(super) specs: Vec<ParamSpec>,
     params: Vec<f64>,
 }
 
@@ -344,8 +344,8 @@ impl ColouredLobes {
 
 /// A term's weight `F (1 + F k)` for Fresnel `F` and compensation excess
 /// `(k, dk/d alpha)`, with its derivatives in `F` and in `alpha`.
-#[inline]
-fn weighted(f: f64, (k, dk): (f64, f64)) -> (f64, f64, f64) {
+#[inline(always)]
+pub(super) fn weighted(f: f64, (k, dk): (f64, f64)) -> (f64, f64, f64) {
     (f * (1.0 + f * k), 1.0 + 2.0 * f * k, f * f * dk)
 }
 
@@ -380,24 +380,23 @@ impl Parametric for ColouredLobes {
     }
 
     fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
-        let n = pairs.len();
-        for j in 0..n {
-            self.kernel(p, &pairs.l(j), &pairs.v(j), (&mut out[j..], n), None);
-        }
+        pulp::Arch::new().dispatch(super::batch::Batch {
+            model: self,
+            p,
+            pairs,
+            out,
+            jac: None,
+        });
     }
 
     fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
-        // Layout: out[c * n + j], jac[(c * n + j) * np + k]: channel rows
-        // of pair j lie n values (n * np Jacobian entries) apart.
-        let (n, np) = (pairs.len(), self.specs.len());
-        for j in 0..n {
-            self.kernel(
-                p,
-                &pairs.l(j),
-                &pairs.v(j),
-                (&mut out[j..], n),
-                Some((&mut jac[j * np..], n * np)),
-            );
-        }
+        // Layout: out[c * n + j], jac[(c * n + j) * np + k].
+        pulp::Arch::new().dispatch(super::batch::Batch {
+            model: self,
+            p,
+            pairs,
+            out,
+            jac: Some(jac),
+        });
     }
 }
