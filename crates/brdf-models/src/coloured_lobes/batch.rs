@@ -289,7 +289,7 @@ impl ColouredLobes {
                     value[i] += chunk.g1[i];
                 }
             }
-            if let Some(jac) = jac.as_deref_mut() {
+            if let Some(jac) = jac {
                 for i in 0..len {
                     for c in 0..nc {
                         if chunk.above[i] {
