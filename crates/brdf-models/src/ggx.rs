@@ -71,6 +71,8 @@ use nalgebra::Vector3;
 
 use crate::combinators::{DiffuseLobe, Lobe, MultiLobe};
 
+pub(crate) mod chunk;
+
 /// Form of the Smith masking-shadowing term.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Masking {
@@ -170,7 +172,7 @@ pub fn ggx_specular(
 /// a batch computes it branch-free for every pair and keeps the valid
 /// ones, with the same operations, so the same bits.
 #[inline(always)]
-fn ggx_specular_unchecked(
+pub(crate) fn ggx_specular_unchecked(
     l: &Vector3<f64>,
     v: &Vector3<f64>,
     ax: f64,

@@ -802,40 +802,45 @@ pub(crate) mod tests {
         }
     }
 
-    /// The vectorised chunks round as scalar code does: the batch over
-    /// many pairs (full chunks, where the loops run over several lanes)
-    /// equals, to the bit, the batch of each pair alone (a chunk of one,
-    /// the loops' scalar remainder), values and derivatives, for one,
-    /// two (the path for any channel count) and three channels.
+    /// The batch over [`pairs`] (full chunks, where the vectorised loops
+    /// run over several lanes) equals, to the bit, the batch of each pair
+    /// alone (a chunk of one, the loops' scalar remainder): values alone,
+    /// and values with derivatives.
+    pub(crate) fn assert_chunks_give_the_bits_of_single_pairs(model: &dyn Parametric, p: &[f64]) {
+        let all = pairs();
+        let (n, nc, np) = (all.len(), model.channels(), p.len());
+        let (mut out, mut jac) = (vec![0.0; nc * n], vec![f64::NAN; nc * n * np]);
+        model.eval_grad_batch_at(p, &all, &mut out, &mut jac);
+        let mut values = vec![0.0; nc * n];
+        model.eval_batch_at(p, &all, &mut values);
+        let (mut o1, mut j1) = (vec![0.0; nc], vec![0.0; nc * np]);
+        let mut single = DirPairs::with_capacity(1);
+        for j in 0..n {
+            single.clear();
+            single.push(&all.l(j), &all.v(j));
+            model.eval_grad_batch_at(p, &single, &mut o1, &mut j1);
+            for c in 0..nc {
+                let i = c * n + j;
+                assert_eq!(out[i].to_bits(), o1[c].to_bits(), "value, pair {j}");
+                assert_eq!(values[i].to_bits(), o1[c].to_bits(), "value only");
+                for k in 0..np {
+                    let (a, b) = (jac[i * np + k], j1[c * np + k]);
+                    assert_eq!(a.to_bits(), b.to_bits(), "d/dp{k}, pair {j}");
+                }
+            }
+        }
+    }
+
+    /// The vectorised chunks round as scalar code does, for one, two (the
+    /// path for any channel count) and three channels.
     #[test]
     fn chunks_give_the_bits_of_single_pairs() {
         let mut state = 0xb175_u64;
-        let all = pairs();
-        let (n, mut single) = (all.len(), DirPairs::with_capacity(1));
         for nc in [1, 2, 3] {
             for _ in 0..8 {
                 let p: Vec<f64> = (0..nc + 9).map(|_| uniform(&mut state)).collect();
-                let np = p.len();
                 let model = Principled::new(nc, &p).expect("parameters in the box");
-                let (mut out, mut jac) = (vec![0.0; nc * n], vec![f64::NAN; nc * n * np]);
-                model.eval_grad_batch_at(&p, &all, &mut out, &mut jac);
-                let mut values = vec![0.0; nc * n];
-                model.eval_batch_at(&p, &all, &mut values);
-                let (mut o1, mut j1) = (vec![0.0; nc], vec![0.0; nc * np]);
-                for j in 0..n {
-                    single.clear();
-                    single.push(&all.l(j), &all.v(j));
-                    model.eval_grad_batch_at(&p, &single, &mut o1, &mut j1);
-                    for c in 0..nc {
-                        let i = c * n + j;
-                        assert_eq!(out[i].to_bits(), o1[c].to_bits(), "value, pair {j}");
-                        assert_eq!(values[i].to_bits(), o1[c].to_bits(), "value only");
-                        for k in 0..np {
-                            let (a, b) = (jac[i * np + k], j1[c * np + k]);
-                            assert_eq!(a.to_bits(), b.to_bits(), "d/dp{k}, pair {j}");
-                        }
-                    }
-                }
+                assert_chunks_give_the_bits_of_single_pairs(&model, &p);
             }
         }
     }
