@@ -144,7 +144,7 @@ impl pulp::WithSimd for Ext<'_> {
                 let (s, ds) = (base.s[i], base.ds[i] * 2.0 * h.rough);
                 let (sc, dsc) = (coat.s[i], coat.ds[i] * 2.0 * h.cc_rough);
                 pair(
-                    &h,
+                    h,
                     p,
                     (s, ds, sc, dsc),
                     (w, lz),
