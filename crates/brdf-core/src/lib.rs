@@ -73,5 +73,5 @@ pub use metrics::MetricValue;
 pub use pair_geometry::PairGeometry;
 pub use params::{ParamError, ParamSpec};
 pub use quadrature::{Albedo, AlbedoFrame, QuadratureOptions, directional_albedo};
-pub use samples::{DirPairs, FilterReport, SampleSet};
+pub use samples::{DirPairs, FilterReport, PairChunk, SampleSet};
 pub use shared_basis::SharedBasis;

@@ -24,6 +24,28 @@ pub struct DirPairs {
     pub vz: Vec<f64>,
 }
 
+/// A run of consecutive pairs of a [`DirPairs`] ([`DirPairs::chunk`]).
+#[derive(Clone, Copy, Debug)]
+pub struct PairChunk<'a> {
+    lx: &'a [f64],
+    ly: &'a [f64],
+    lz: &'a [f64],
+    vx: &'a [f64],
+    vy: &'a [f64],
+    vz: &'a [f64],
+}
+
+impl PairChunk<'_> {
+    /// `L` and `V` of the chunk's pair `i`.
+    #[inline(always)]
+    pub fn at(&self, i: usize) -> (Vector3<f64>, Vector3<f64>) {
+        (
+            Vector3::new(self.lx[i], self.ly[i], self.lz[i]),
+            Vector3::new(self.vx[i], self.vy[i], self.vz[i]),
+        )
+    }
+}
+
 impl DirPairs {
     /// Empty storage with room for `n` pairs.
     pub fn with_capacity(n: usize) -> Self {
@@ -51,6 +73,25 @@ impl DirPairs {
             vx: cut(&self.vx),
             vy: cut(&self.vy),
             vz: cut(&self.vz),
+        }
+    }
+
+    /// The `len` pairs from `start` on, borrowed as slices of one length:
+    /// what a kernel's loop over a chunk reads, with no bounds check left
+    /// in it (so the loop can vectorise).
+    ///
+    /// # Panics
+    /// If `start + len > self.len()`.
+    #[inline(always)]
+    pub fn chunk(&self, start: usize, len: usize) -> PairChunk<'_> {
+        let r = start..start + len;
+        PairChunk {
+            lx: &self.lx[r.clone()],
+            ly: &self.ly[r.clone()],
+            lz: &self.lz[r.clone()],
+            vx: &self.vx[r.clone()],
+            vy: &self.vy[r.clone()],
+            vz: &self.vz[r],
         }
     }
 

@@ -429,26 +429,11 @@ impl<F: GgxFresnel, const ANISO: bool, const HC: bool> pulp::WithSimd
         while start < n {
             let len = CHUNK.min(n - start);
             let r = start..start + len;
-            let (lx, ly, lz) = (
-                &pairs.lx[r.clone()],
-                &pairs.ly[r.clone()],
-                &pairs.lz[r.clone()],
-            );
-            let (vx, vy, vz) = (
-                &pairs.vx[r.clone()],
-                &pairs.vy[r.clone()],
-                &pairs.vz[r.clone()],
-            );
+            let pc = pairs.chunk(start, len);
             let ok = &valid[r.clone()];
-            let at = |i: usize| {
-                (
-                    Vector3::new(lx[i], ly[i], lz[i]),
-                    Vector3::new(vx[i], vy[i], vz[i]),
-                )
-            };
             if ds.is_some() {
                 for i in 0..len {
-                    let (l, v) = at(i);
+                    let (l, v) = pc.at(i);
                     let mut dq = [0.0; 4];
                     let x =
                         ggx_shape_unchecked::<F>(&qa, &l, &v, Some(&mut dq[..nq]), ANISO, masking);
@@ -459,7 +444,7 @@ impl<F: GgxFresnel, const ANISO: bool, const HC: bool> pulp::WithSimd
                 }
             } else {
                 for i in 0..len {
-                    let (l, v) = at(i);
+                    let (l, v) = pc.at(i);
                     let x = ggx_shape_unchecked::<F>(&qa, &l, &v, None, ANISO, masking);
                     buf[0][i] = if ok[i] { x } else { 0.0 };
                 }

@@ -17,7 +17,6 @@ use std::f64::consts::FRAC_1_PI;
 use brdf_core::DirPairs;
 use brdf_core::fresnel::fresnel_dielectric_d_eta;
 use brdf_core::fresnel_conductor::{fresnel_conductor, fresnel_conductor_grad};
-use nalgebra::Vector3;
 
 use super::geometry::LobeGeometry;
 use super::model::{ColouredLobes, LobeFresnel, weighted};
@@ -78,16 +77,9 @@ impl Chunk {
     /// (never read there).
     #[inline(always)]
     fn geometry(&mut self, pairs: &DirPairs, start: usize, len: usize) {
-        let r = start..start + len;
-        let (lx, ly, lz) = (
-            &pairs.lx[r.clone()],
-            &pairs.ly[r.clone()],
-            &pairs.lz[r.clone()],
-        );
-        let (vx, vy, vz) = (&pairs.vx[r.clone()], &pairs.vy[r.clone()], &pairs.vz[r]);
+        let pc = pairs.chunk(start, len);
         for i in 0..len {
-            let l = Vector3::new(lx[i], ly[i], lz[i]);
-            let v = Vector3::new(vx[i], vy[i], vz[i]);
+            let (l, v) = pc.at(i);
             let g = LobeGeometry::unchecked(&l, &v);
             self.above[i] = l.z > 0.0 && v.z > 0.0;
             self.cos_h2[i] = g.cos_h2;

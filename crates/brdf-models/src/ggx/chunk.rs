@@ -6,7 +6,6 @@
 //! the kernels built on it keep their bits (tested there).
 
 use brdf_core::DirPairs;
-use nalgebra::Vector3;
 
 use super::{Masking, ggx_specular_unchecked};
 
@@ -46,16 +45,9 @@ impl LobeChunk {
         masking: Masking,
     ) {
         let len = len.min(CHUNK);
-        let r = start..start + len;
-        let (lx, ly, lz) = (
-            &pairs.lx[r.clone()],
-            &pairs.ly[r.clone()],
-            &pairs.lz[r.clone()],
-        );
-        let (vx, vy, vz) = (&pairs.vx[r.clone()], &pairs.vy[r.clone()], &pairs.vz[r]);
+        let pc = pairs.chunk(start, len);
         for i in 0..len {
-            let l = Vector3::new(lx[i], ly[i], lz[i]);
-            let v = Vector3::new(vx[i], vy[i], vz[i]);
+            let (l, v) = pc.at(i);
             let g = ggx_specular_unchecked(&l, &v, alpha, alpha, masking);
             self.above[i] = l.z > 0.0 && v.z > 0.0;
             self.s[i] = g.value;

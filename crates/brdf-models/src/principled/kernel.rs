@@ -446,13 +446,7 @@ impl TermChunk {
     /// loop vectorises; their terms are never read).
     #[inline(always)]
     fn fill<const GRAD: bool>(&mut self, h: &Hoisted, pairs: &DirPairs, start: usize, len: usize) {
-        let r = start..start + len;
-        let (lx, ly, lz) = (
-            &pairs.lx[r.clone()],
-            &pairs.ly[r.clone()],
-            &pairs.lz[r.clone()],
-        );
-        let (vx, vy, vz) = (&pairs.vx[r.clone()], &pairs.vy[r.clone()], &pairs.vz[r]);
+        let pc = pairs.chunk(start, len);
         let above = &mut self.above[..len];
         let (w, s, ds_ax, ds_ay) = (
             &mut self.w[..len],
@@ -473,8 +467,7 @@ impl TermChunk {
         let h = *h;
         let h = &h;
         for i in 0..len {
-            let l = Vector3::new(lx[i], ly[i], lz[i]);
-            let v = Vector3::new(vx[i], vy[i], vz[i]);
+            let (l, v) = pc.at(i);
             let t = Terms::new::<GRAD>(h, &l, &v);
             above[i] = l.z > 0.0 && v.z > 0.0;
             w[i] = t.w;

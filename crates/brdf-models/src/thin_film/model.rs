@@ -422,16 +422,9 @@ impl pulp::WithSimd for Batch<'_> {
         let mut start = 0;
         while start < n {
             let len = CHUNK.min(n - start);
-            let r = start..start + len;
-            let (lx, ly, lz) = (
-                &pairs.lx[r.clone()],
-                &pairs.ly[r.clone()],
-                &pairs.lz[r.clone()],
-            );
-            let (vx, vy, vz) = (&pairs.vx[r.clone()], &pairs.vy[r.clone()], &pairs.vz[r]);
+            let pc = pairs.chunk(start, len);
             for i in 0..len {
-                let l = Vector3::new(lx[i], ly[i], lz[i]);
-                let v = Vector3::new(vx[i], vy[i], vz[i]);
+                let (l, v) = pc.at(i);
                 terms.set(
                     i,
                     l.z > 0.0 && v.z > 0.0,
