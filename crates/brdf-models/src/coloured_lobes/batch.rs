@@ -109,11 +109,8 @@ impl Chunk {
         for i in 0..len {
             let g = self.at(i);
             (self.s[i], self.ds[i]) = g.lobe(alpha, masking);
-            (self.k[i], self.dk[i]) = if compensated {
-                super::compensation::excess(g.cos_first, alpha)
-            } else {
-                (0.0, 0.0)
-            };
+            (self.k[i], self.dk[i]) =
+                super::compensation::excess_if(compensated, g.cos_first, alpha);
         }
     }
 

@@ -102,6 +102,13 @@ pub fn excess(cos_v: f64, alpha: f64) -> (f64, f64) {
     (1.0 / e - 1.0, -de / (e * e))
 }
 
+/// [`excess`] where the model carries the compensation (`on`), `(0, 0)`
+/// where it does not: the one switch of the lobes' and the films' kernels.
+#[inline(always)]
+pub fn excess_if(on: bool, cos_v: f64, alpha: f64) -> (f64, f64) {
+    if on { excess(cos_v, alpha) } else { (0.0, 0.0) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -334,11 +334,7 @@ impl ColouredLobes {
     /// pair, `(0, 0)` without compensation.
     #[inline]
     fn excess(&self, geo: &LobeGeometry, alpha: f64) -> (f64, f64) {
-        if self.compensated {
-            compensation::excess(geo.cos_first, alpha)
-        } else {
-            (0.0, 0.0)
-        }
+        compensation::excess_if(self.compensated, geo.cos_first, alpha)
     }
 }
 

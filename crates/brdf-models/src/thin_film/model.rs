@@ -310,11 +310,7 @@ impl Widths {
     /// pair, `(0, 0)` for Cycles.
     #[inline(always)]
     fn excess(&self, geo: &LobeGeometry, alpha: f64) -> (f64, f64) {
-        if self.compensated {
-            compensation::excess(geo.cos_first, alpha)
-        } else {
-            (0.0, 0.0)
-        }
+        compensation::excess_if(self.compensated, geo.cos_first, alpha)
     }
 
     /// The pair's [`Terms`] (branch-free, so a batch vectorises it).
