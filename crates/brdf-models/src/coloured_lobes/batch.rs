@@ -19,7 +19,7 @@ use brdf_core::fresnel::fresnel_dielectric_d_eta;
 use brdf_core::fresnel_conductor::{fresnel_conductor, fresnel_conductor_grad};
 
 use super::geometry::LobeGeometry;
-use super::model::{ColouredLobes, LobeFresnel, weighted};
+use super::layout::{LobeFresnel, LobeLayout, weighted};
 use crate::dual_model::MAX_CHANNELS;
 use crate::ggx::Masking;
 
@@ -160,7 +160,7 @@ impl Chunk {
 /// The batch of one call: values `out[c * n + j]` and, with `jac`, the
 /// Jacobian `jac[(c * n + j) * np + k]`, 0 below the horizon.
 pub(super) struct Batch<'a> {
-    pub(super) model: &'a ColouredLobes,
+    pub(super) view: View<'a>,
     pub(super) p: &'a [f64],
     pub(super) pairs: &'a DirPairs,
     pub(super) out: &'a mut [f64],
@@ -179,7 +179,7 @@ impl pulp::WithSimd for Batch<'_> {
             let len = CHUNK.min(n - start);
             chunk.geometry(self.pairs, start, len);
             match self.jac {
-                Some(ref mut jac) => self.model.chunk::<true>(
+                Some(ref mut jac) => self.view.chunk::<true>(
                     self.p,
                     &mut chunk,
                     (start, len, n),
@@ -187,7 +187,7 @@ impl pulp::WithSimd for Batch<'_> {
                     Some(jac),
                 ),
                 None => {
-                    self.model
+                    self.view
                         .chunk::<false>(self.p, &mut chunk, (start, len, n), self.out, None)
                 }
             }
@@ -196,7 +196,18 @@ impl pulp::WithSimd for Batch<'_> {
     }
 }
 
-impl ColouredLobes {
+/// What the batch reads of a [`super::ColouredLobes`]: its channels,
+/// parameter count and lobes.
+pub(super) struct View<'a> {
+    pub(super) channels: usize,
+    pub(super) np: usize,
+    pub(super) masking: Masking,
+    pub(super) lobes: &'a [LobeLayout],
+    pub(super) coat: Option<usize>,
+    pub(super) compensated: bool,
+}
+
+impl View<'_> {
     /// The chunk `start..start + len` of `n` pairs (`chunk` holds its
     /// geometry) into `out` and, with `GRAD`, `jac`.
     #[inline(always)]
@@ -210,7 +221,7 @@ impl ColouredLobes {
     ) {
         // Never more than a chunk (said so the loops need no bounds checks).
         let len = len.min(CHUNK);
-        let (nc, np) = (self.channels, self.specs.len());
+        let (nc, np) = (self.channels, self.np);
         let row = |c: usize, i: usize| (c * n + start + i) * np;
         if let Some(jac) = jac.as_deref_mut() {
             for i in 0..len {
@@ -227,7 +238,7 @@ impl ColouredLobes {
             let kd = p[c] * FRAC_1_PI;
             chunk.value[c][..len].fill(kd);
         }
-        for lobe in &self.lobes {
+        for lobe in self.lobes {
             let alpha = p[lobe.alpha];
             chunk.shape(alpha, self.masking, self.compensated, len);
             let (a, b) = (lobe.start, lobe.start + nc);
@@ -308,6 +319,7 @@ mod tests {
     use nalgebra::Vector3;
 
     use super::*;
+    use crate::coloured_lobes::ColouredLobes;
 
     /// Pairs over the whole sphere of both directions (below the horizon
     /// too), more than a chunk of them.

@@ -112,6 +112,7 @@ mod batch;
 pub mod compensation;
 pub mod fresnel_laws;
 pub mod geometry;
+mod layout;
 pub mod model;
 pub mod starts;
 pub mod variants;

@@ -9,9 +9,12 @@ use brdf_core::params::per_channel_specs;
 use brdf_core::{DirPairs, ParamError, ParamSpec, Parametric};
 use nalgebra::Vector3;
 
+use super::batch::{Batch, View};
 use super::compensation;
 use super::fresnel_laws::{F82_TINT_MIN, f82_tint};
 use super::geometry::LobeGeometry;
+pub use super::layout::LobeFresnel;
+use super::layout::{LobeLayout, weighted};
 use crate::ggx::Masking;
 
 /// Most GGX lobes a model may have.
@@ -21,32 +24,6 @@ pub const MAX_LOBES: usize = 3;
 /// what a measured BRDF resolves and make `D` at the pole `1/(pi alpha^2)`
 /// dwarf every other sample.
 pub const ALPHA_MIN: f64 = 0.002;
-
-/// The Fresnel law of one GGX lobe.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LobeFresnel {
-    /// `F = 1`: the lobe's colour is three linear amplitudes `ks{k}`
-    /// (Cycles' Glossy BSDF with the colour; Mitsuba's `roughconductor`
-    /// with `material = "none"`, a perfect mirror, and
-    /// `specular_reflectance` = the colour).
-    None,
-    /// F82 tint with colours `f0{k}` and `tint{k}` (see
-    /// [`super::fresnel_laws`]).
-    F82Tint,
-    /// Exact conductor Fresnel with `eta{k}`, `kappa{k}` per channel.
-    Conductor,
-}
-
-/// Where one lobe's parameters sit in the parameter vector.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct LobeLayout {
-    pub(super) fresnel: LobeFresnel,
-    /// First of the lobe's per-channel blocks (one block for `None`, two
-    /// for the others: `f0` then `tint`, or `eta` then `kappa`).
-    pub(super) start: usize,
-    /// Index of `alpha{k}`.
-    pub(super) alpha: usize,
-}
 
 /// Lambert plus `K` coloured isotropic GGX lobes plus an optional white
 /// dielectric coat lobe (see the module documentation of
@@ -248,6 +225,18 @@ impl ColouredLobes {
         self.lobes.iter().map(|l| l.fresnel).collect()
     }
 
+    /// What the batch kernel reads of the model.
+    fn view(&self) -> View<'_> {
+        View {
+            channels: self.channels,
+            np: self.specs.len(),
+            masking: self.masking,
+            lobes: &self.lobes,
+            coat: self.coat,
+            compensated: self.compensated,
+        }
+    }
+
     /// Whether the model has the dielectric coat lobe.
     pub fn has_coat(&self) -> bool {
         self.coat.is_some()
@@ -338,13 +327,6 @@ impl ColouredLobes {
     }
 }
 
-/// A term's weight `F (1 + F k)` for Fresnel `F` and compensation excess
-/// `(k, dk/d alpha)`, with its derivatives in `F` and in `alpha`.
-#[inline(always)]
-pub(super) fn weighted(f: f64, (k, dk): (f64, f64)) -> (f64, f64, f64) {
-    (f * (1.0 + f * k), 1.0 + 2.0 * f * k, f * f * dk)
-}
-
 brdf_core::impl_brdf_via_params!(ColouredLobes);
 
 impl Parametric for ColouredLobes {
@@ -376,8 +358,8 @@ impl Parametric for ColouredLobes {
     }
 
     fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
-        pulp::Arch::new().dispatch(super::batch::Batch {
-            model: self,
+        pulp::Arch::new().dispatch(Batch {
+            view: self.view(),
             p,
             pairs,
             out,
@@ -387,8 +369,8 @@ impl Parametric for ColouredLobes {
 
     fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
         // Layout: out[c * n + j], jac[(c * n + j) * np + k].
-        pulp::Arch::new().dispatch(super::batch::Batch {
-            model: self,
+        pulp::Arch::new().dispatch(Batch {
+            view: self.view(),
             p,
             pairs,
             out,
