@@ -92,15 +92,7 @@ pub trait Parametric: Brdf {
 
     /// Batch values at `p`: `out[c * n + j]`.
     fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
-        let n = pairs.len();
-        let nc = self.channels();
-        let mut buf = vec![0.0; nc];
-        for j in 0..n {
-            self.eval_at(p, &pairs.l(j), &pairs.v(j), &mut buf);
-            for c in 0..nc {
-                out[c * n + j] = buf[c];
-            }
-        }
+        eval_batch_per_pair(self, p, pairs, out)
     }
 
     /// Batch values and Jacobian at `p`: `out[c * n + j]` and
@@ -271,4 +263,24 @@ macro_rules! param_accessors {
             Box::new(self.clone())
         }
     };
+}
+
+/// [`Parametric::eval_batch_at`] by [`Parametric::eval_at`] pair by pair
+/// (the default; a model whose batch kernel holds only in some
+/// configurations falls back to it).
+pub fn eval_batch_per_pair<M: Parametric + ?Sized>(
+    model: &M,
+    p: &[f64],
+    pairs: &DirPairs,
+    out: &mut [f64],
+) {
+    let n = pairs.len();
+    let nc = model.channels();
+    let mut buf = vec![0.0; nc];
+    for j in 0..n {
+        model.eval_at(p, &pairs.l(j), &pairs.v(j), &mut buf);
+        for c in 0..nc {
+            out[c * n + j] = buf[c];
+        }
+    }
 }

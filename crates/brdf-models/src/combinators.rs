@@ -25,6 +25,11 @@ pub trait Lobe: Clone + Send + Sync + 'static {
     fn reciprocal() -> bool {
         true
     }
+    /// Whether [`Lobe::shape_batch`] and [`Lobe::diffuse_batch`] give the
+    /// bits [`Lobe::shape`] and [`Lobe::diffuse`] give pair by pair (tested
+    /// where set): renders of the model then take the batch kernels, as
+    /// fits do.
+    const BATCH_IS_EXACT: bool = false;
     /// Name of the diffuse coefficient.
     const DIFFUSE: &'static str = "kd";
     /// Name of the specular coefficient.
@@ -182,6 +187,29 @@ impl<S: Lobe> Parametric for DiffuseLobe<S> {
         let d = S::diffuse(q, l, v, None);
         for c in 0..nc {
             out[c] = p[c] * d + p[nc + c] * s;
+        }
+    }
+    /// Through the batch kernels when they are exact
+    /// ([`Lobe::BATCH_IS_EXACT`]): the same values as pair by pair.
+    fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
+        if !S::BATCH_IS_EXACT {
+            return brdf_core::brdf::eval_batch_per_pair(self, p, pairs, out);
+        }
+        let (n, nc) = (pairs.len(), self.channels);
+        let geom = PairGeometry::new(pairs);
+        let (mut d, mut s) = (vec![0.0; n], vec![0.0; n]);
+        let q = &p[2 * nc..];
+        S::diffuse_batch(q, pairs, &geom, &mut d, None);
+        S::shape_batch(q, pairs, &geom, &mut s, None);
+        for c in 0..nc {
+            for j in 0..n {
+                // As `eval_at`: 0 below the horizon, else kd D + ks S.
+                out[c * n + j] = if geom.valid[j] {
+                    p[c] * d[j] + p[nc + c] * s[j]
+                } else {
+                    0.0
+                };
+            }
         }
     }
     fn eval_grad_at(

@@ -467,6 +467,7 @@ macro_rules! ggx_lobe {
         pub struct $lobe;
         impl Lobe for $lobe {
             const NAME: &'static str = $name;
+            const BATCH_IS_EXACT: bool = true;
             fn specs() -> Vec<ParamSpec> {
                 let mut s = width_specs($aniso);
                 s.extend(<$fresnel>::specs());

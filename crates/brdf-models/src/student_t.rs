@@ -59,11 +59,13 @@
 
 use std::f64::consts::PI;
 
-use brdf_core::ParamSpec;
 use brdf_core::fresnel::{schlick, schlick_d_f0};
+use brdf_core::{DirPairs, PairGeometry, ParamSpec};
 use nalgebra::Vector3;
 
 use crate::combinators::{DiffuseLobe, Lobe};
+
+mod batch;
 
 /// `ln Gamma(x)` for `x >= 1/2` (Lanczos, `g = 7`, 9 terms: relative error
 /// below `2e-15`).
@@ -118,19 +120,72 @@ fn beta_cf(a: f64, b: f64, x: f64) -> f64 {
 /// Regularised incomplete beta `I_x(a, b)`, given `x` and `1 - x` (both
 /// passed so neither is formed by cancellation).
 pub fn incomplete_beta(a: f64, b: f64, x: f64, one_minus_x: f64) -> f64 {
-    if x <= 0.0 {
-        return 0.0;
+    let ln_beta = ln_gamma(a + b) - ln_gamma(a) - ln_gamma(b);
+    match BetaTail::start(ln_beta, a, b, x, one_minus_x, x.ln()) {
+        BetaTail::Known(v) => v,
+        BetaTail::Fraction(f) => f.finish(beta_cf(f.a, f.b, f.x)),
     }
-    if one_minus_x <= 0.0 {
-        return 1.0;
+}
+
+/// `I_x(a, b)` up to its continued fraction: known outright at the ends
+/// of `[0, 1]`, else the fraction's arguments and the factors around it.
+#[derive(Clone, Copy, Debug)]
+enum BetaTail {
+    Known(f64),
+    Fraction(Fraction),
+}
+
+/// `I_x(a, b) = front cf(a, b, x) / a` (`direct`), or by the symmetry
+/// `1 - front cf(b, a, 1 - x) / b`; `(a, b, x)` here are the fraction's.
+#[derive(Clone, Copy, Debug)]
+struct Fraction {
+    front: f64,
+    a: f64,
+    b: f64,
+    x: f64,
+    direct: bool,
+}
+
+impl BetaTail {
+    /// `ln_beta = ln Gamma(a + b) - ln Gamma(a) - ln Gamma(b)` (it depends on
+    /// the parameters alone, so a batch takes it once) and `ln_x = ln x`.
+    fn start(ln_beta: f64, a: f64, b: f64, x: f64, one_minus_x: f64, ln_x: f64) -> BetaTail {
+        if x <= 0.0 {
+            return BetaTail::Known(0.0);
+        }
+        if one_minus_x <= 0.0 {
+            return BetaTail::Known(1.0);
+        }
+        let front = (ln_beta + a * ln_x + b * one_minus_x.ln()).exp();
+        // The fraction converges fast on this side; the other side by symmetry.
+        BetaTail::Fraction(if x < (a + 1.0) / (a + b + 2.0) {
+            Fraction {
+                front,
+                a,
+                b,
+                x,
+                direct: true,
+            }
+        } else {
+            Fraction {
+                front,
+                a: b,
+                b: a,
+                x: one_minus_x,
+                direct: false,
+            }
+        })
     }
-    let ln_front = ln_gamma(a + b) - ln_gamma(a) - ln_gamma(b) + a * x.ln() + b * one_minus_x.ln();
-    let front = ln_front.exp();
-    // The fraction converges fast on this side; the other side by symmetry.
-    if x < (a + 1.0) / (a + b + 2.0) {
-        front * beta_cf(a, b, x) / a
-    } else {
-        1.0 - front * beta_cf(b, a, one_minus_x) / b
+}
+
+impl Fraction {
+    /// `I_x` from the continued fraction's value `cf`.
+    fn finish(&self, cf: f64) -> f64 {
+        if self.direct {
+            self.front * cf / self.a
+        } else {
+            1.0 - self.front * cf / self.a
+        }
     }
 }
 
@@ -153,41 +208,122 @@ pub fn std_d(h: &Vector3<f64>, alpha: f64, gamma: f64) -> (f64, f64, f64) {
     )
 }
 
-/// Smith's `Lambda(a)` of the STD at `a = cot(theta)/alpha > 0` and the
-/// tail `I_x(gamma - 1, 1/2) / 2`.
-fn lambda_of_a(a: f64, gamma: f64) -> (f64, f64) {
-    let g1 = gamma - 1.0;
-    let den = g1 + a * a;
-    let (x, omx) = (g1 / den, a * a / den);
-    let tail = 0.5 * incomplete_beta(g1, 0.5, x, omx);
-    let ln_k = 1.5 * g1.ln() + ln_gamma(gamma - 0.5) - ln_gamma(gamma) - 0.5 * PI.ln();
-    let first = (ln_k + (gamma - 1.5) * x.ln()).exp() / ((2.0 * gamma - 3.0) * a);
-    ((first - tail).max(0.0), tail)
+/// Smith's `Lambda` of the STD at one `gamma`: the factors that depend on
+/// `gamma` alone (five log-gamma functions) taken once, for every `a`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LambdaAt {
+    gamma: f64,
+    g1: f64,
+    /// `ln Gamma(gamma - 1/2) - ln Gamma(gamma - 1) - ln Gamma(1/2)`: the
+    /// front factor of `I_x(gamma - 1, 1/2)`
+    ln_beta: f64,
+    /// log of the power term's constant
+    ln_k: f64,
+}
+
+/// What [`LambdaAt`] needs of one `a` around the continued fraction.
+#[derive(Clone, Copy, Debug)]
+struct LambdaStart {
+    a: f64,
+    ln_x: f64,
+    tail: BetaTail,
+}
+
+impl LambdaAt {
+    pub(crate) fn new(gamma: f64) -> LambdaAt {
+        let g1 = gamma - 1.0;
+        LambdaAt {
+            gamma,
+            g1,
+            ln_beta: ln_gamma(g1 + 0.5) - ln_gamma(g1) - ln_gamma(0.5),
+            ln_k: 1.5 * g1.ln() + ln_gamma(gamma - 0.5) - ln_gamma(gamma) - 0.5 * PI.ln(),
+        }
+    }
+
+    /// `Lambda(a)` at `a = cot(theta)/alpha > 0` and the tail
+    /// `I_x(gamma - 1, 1/2) / 2`.
+    fn eval(&self, a: f64) -> (f64, f64) {
+        let s = self.start(a);
+        let i_x = match s.tail {
+            BetaTail::Known(v) => v,
+            BetaTail::Fraction(f) => f.finish(beta_cf(f.a, f.b, f.x)),
+        };
+        self.finish(&s, i_x)
+    }
+
+    /// The stage before the continued fraction.
+    fn start(&self, a: f64) -> LambdaStart {
+        let den = self.g1 + a * a;
+        let (x, omx) = (self.g1 / den, a * a / den);
+        let ln_x = x.ln();
+        LambdaStart {
+            a,
+            ln_x,
+            tail: BetaTail::start(self.ln_beta, self.g1, 0.5, x, omx, ln_x),
+        }
+    }
+
+    /// `(Lambda, tail)` from `I_x(gamma - 1, 1/2)`.
+    fn finish(&self, s: &LambdaStart, i_x: f64) -> (f64, f64) {
+        let tail = 0.5 * i_x;
+        let gamma = self.gamma;
+        let first = (self.ln_k + (gamma - 1.5) * s.ln_x).exp() / ((2.0 * gamma - 3.0) * s.a);
+        ((first - tail).max(0.0), tail)
+    }
+}
+
+/// Step of the central difference of `Lambda` in `gamma` (0: none, at the
+/// lower end of the box).
+fn gamma_step(gamma: f64) -> f64 {
+    (1e-5 * gamma).min(0.5 * (gamma - 1.5))
+}
+
+/// `a = cot(theta)/alpha` of `w`, or `None` at the pole (where `Lambda = 0`).
+fn cot_over_alpha(w: &Vector3<f64>, alpha: f64) -> Option<f64> {
+    let r = w.x.hypot(w.y);
+    (r > 0.0).then(|| w.z / (alpha * r))
 }
 
 /// Smith's `Lambda(w)` of the STD and `(dLambda/d alpha, dLambda/d gamma)`
 /// for `w` above the horizon.
 pub fn std_lambda(w: &Vector3<f64>, alpha: f64, gamma: f64) -> (f64, f64, f64) {
-    std_lambda_with(w, alpha, gamma, true)
+    let at = [gamma, gamma + gamma_step(gamma), gamma - gamma_step(gamma)].map(LambdaAt::new);
+    std_lambda_with(w, alpha, &at, true)
 }
 
-/// As [`std_lambda`]; the derivative in `gamma` (two more evaluations) only
-/// when `d_gamma` is set, 0 otherwise.
-fn std_lambda_with(w: &Vector3<f64>, alpha: f64, gamma: f64, d_gamma: bool) -> (f64, f64, f64) {
-    let r = w.x.hypot(w.y);
-    if !(r > 0.0) {
+/// As [`std_lambda`] with `Lambda` at `gamma` and at `gamma` plus and minus
+/// [`gamma_step`] (`at`); the derivative in `gamma` only when `d_gamma`
+/// is set, 0 otherwise.
+fn std_lambda_with(
+    w: &Vector3<f64>,
+    alpha: f64,
+    at: &[LambdaAt; 3],
+    d_gamma: bool,
+) -> (f64, f64, f64) {
+    let Some(a) = cot_over_alpha(w, alpha) else {
         return (0.0, 0.0, 0.0);
-    }
-    let a = w.z / (alpha * r);
-    let (lam, tail) = lambda_of_a(a, gamma);
+    };
+    let (lam, tail) = at[0].eval(a);
+    let ends =
+        (d_gamma && gamma_step(at[0].gamma) > 0.0).then(|| (at[1].eval(a).0, at[2].eval(a).0));
+    lambda_derivatives(lam, tail, alpha, at[0].gamma, ends)
+}
+
+/// `(Lambda, dLambda/d alpha, dLambda/d gamma)` from `Lambda` and its tail
+/// at `gamma` and, for the derivative in `gamma`, `Lambda` at `gamma`
+/// plus and minus [`gamma_step`].
+fn lambda_derivatives(
+    lam: f64,
+    tail: f64,
+    alpha: f64,
+    gamma: f64,
+    ends: Option<(f64, f64)>,
+) -> (f64, f64, f64) {
     // dLambda/da = -(Lambda + tail)/a and da/dalpha = -a/alpha.
     let d_alpha = (lam + tail) / alpha;
-    let h = (1e-5 * gamma).min(0.5 * (gamma - 1.5));
-    let d_g = if d_gamma && h > 0.0 {
-        (lambda_of_a(a, gamma + h).0 - lambda_of_a(a, gamma - h).0) / (2.0 * h)
-    } else {
-        0.0
-    };
+    let d_g = ends.map_or(0.0, |(plus, minus)| {
+        (plus - minus) / (2.0 * gamma_step(gamma))
+    });
     (lam, d_alpha, d_g)
 }
 
@@ -197,6 +333,7 @@ pub struct StdLobe;
 
 impl Lobe for StdLobe {
     const NAME: &'static str = "std";
+    const BATCH_IS_EXACT: bool = true;
     fn specs() -> Vec<ParamSpec> {
         vec![
             ParamSpec::new("alpha", "STD width", 0.0, 1.0, 0.2, false).open_below(),
@@ -212,32 +349,73 @@ impl Lobe for StdLobe {
         ]
     }
     fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
-        let (alpha, gamma, f0) = (q[0], q[1], q[2]);
-        let s = l + v;
-        let len = s.norm();
-        if !(len > 0.0) {
+        let Some(h) = half_vector(l, v) else {
             if let Some(dq) = dq {
                 dq.fill(0.0);
             }
             return 0.0;
-        }
-        let h = s / len;
-        let (d, d_la, d_lg) = std_d(&h, alpha, gamma);
+        };
         let grad = dq.is_some();
-        let (ll, ll_a, ll_g) = std_lambda_with(l, alpha, gamma, grad);
-        let (lv, lv_a, lv_g) = std_lambda_with(v, alpha, gamma, grad);
-        let g = 1.0 / (1.0 + ll + lv);
-        let vh = v.dot(&h).clamp(0.0, 1.0);
-        let base = d * g / (4.0 * l.z * v.z);
-        let f = schlick(f0, vh);
-        if let Some(dq) = dq {
-            // d ln G = -G dLambda.
-            dq[0] = base * f * (d_la - g * (ll_a + lv_a));
-            dq[1] = base * f * (d_lg - g * (ll_g + lv_g));
-            dq[2] = base * schlick_d_f0(vh);
-        }
-        base * f
+        let at = lambdas_at(q[1], grad);
+        let ll = std_lambda_with(l, q[0], &at, grad);
+        let lv = std_lambda_with(v, q[0], &at, grad);
+        lobe_value(q, l, v, &h, ll, lv, dq)
     }
+    fn shape_batch(
+        q: &[f64],
+        pairs: &DirPairs,
+        geom: &PairGeometry,
+        s: &mut [f64],
+        ds: Option<&mut [f64]>,
+    ) {
+        batch::shape_batch(q, pairs, &geom.valid, s, ds);
+    }
+}
+
+/// The unit half vector of `l` and `v`, `None` where `l + v = 0`.
+fn half_vector(l: &Vector3<f64>, v: &Vector3<f64>) -> Option<Vector3<f64>> {
+    let s = l + v;
+    let len = s.norm();
+    (len > 0.0).then(|| s / len)
+}
+
+/// [`LambdaAt`] at `gamma` and, when the derivative in `gamma` is wanted,
+/// at `gamma` plus and minus [`gamma_step`] (else copies of the first).
+fn lambdas_at(gamma: f64, d_gamma: bool) -> [LambdaAt; 3] {
+    let at = LambdaAt::new(gamma);
+    if d_gamma {
+        let h = gamma_step(gamma);
+        [at, LambdaAt::new(gamma + h), LambdaAt::new(gamma - h)]
+    } else {
+        [at; 3]
+    }
+}
+
+/// The lobe `S = D G F / (4 N.L N.V)` at parameters `q` from the pair's
+/// unit half vector `h` and `(Lambda, dLambda/d alpha, dLambda/d gamma)`
+/// of `l` (`ll`) and of `v` (`lv`); `dS/dq` into `dq` when given.
+fn lobe_value(
+    q: &[f64],
+    l: &Vector3<f64>,
+    v: &Vector3<f64>,
+    h: &Vector3<f64>,
+    (ll, ll_a, ll_g): (f64, f64, f64),
+    (lv, lv_a, lv_g): (f64, f64, f64),
+    dq: Option<&mut [f64]>,
+) -> f64 {
+    let (alpha, gamma, f0) = (q[0], q[1], q[2]);
+    let (d, d_la, d_lg) = std_d(h, alpha, gamma);
+    let g = 1.0 / (1.0 + ll + lv);
+    let vh = v.dot(h).clamp(0.0, 1.0);
+    let base = d * g / (4.0 * l.z * v.z);
+    let f = schlick(f0, vh);
+    if let Some(dq) = dq {
+        // d ln G = -G dLambda.
+        dq[0] = base * f * (d_la - g * (ll_a + lv_a));
+        dq[1] = base * f * (d_lg - g * (ll_g + lv_g));
+        dq[2] = base * schlick_d_f0(vh);
+    }
+    base * f
 }
 
 /// Lambert plus one STD lobe.
