@@ -47,6 +47,28 @@ pub trait FittedShape: Clone + Send + Sync + 'static {
     /// `S` at `q` for `L`, `V` above the horizon, writing `dS/dq_k` into
     /// `dq` when it is `Some`.
     fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64;
+    /// What [`FittedShape::shape_channels`] keeps from one pair to the
+    /// next of a batch (whose parameters do not change).
+    type Memo: Default;
+    /// `S` of every channel at one pair (`L`, `V` above the horizon): at
+    /// lobe parameters `qs[c][..nq]` into `s[c]` and, when given, `dS/dq`
+    /// into `dq[c]`, the bits [`FittedShape::shape`] gives channel by
+    /// channel. A shape may take its factors of the pair alone once for
+    /// every channel, and read from `memo` what the pair before of the
+    /// same batch computed. The default calls `shape` per channel.
+    fn shape_channels(
+        qs: &[[f64; MAX_SHAPE_PARAMS]],
+        nq: usize,
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        _memo: &mut Self::Memo,
+        s: &mut [f64],
+        mut dq: Option<&mut [[f64; MAX_SHAPE_PARAMS]]>,
+    ) {
+        for (c, q) in qs.iter().enumerate() {
+            s[c] = Self::shape(&q[..nq], l, v, dq.as_deref_mut().map(|d| &mut d[c][..nq]));
+        }
+    }
 }
 
 /// `f_c = kd_c / pi + s_c S(L, V; q_c)` (see the module doc).
@@ -114,6 +136,16 @@ impl<S: FittedShape> FittedLobe<S> {
             *x = p[self.q_index(k, c)];
         }
         nq
+    }
+
+    /// Every channel's lobe parameters from `p`, and their number.
+    fn all_lobe_params(&self, p: &[f64]) -> (Vec<[f64; MAX_SHAPE_PARAMS]>, usize) {
+        let mut qs = vec![[0.0; MAX_SHAPE_PARAMS]; self.channels];
+        let mut nq = 0;
+        for (c, q) in qs.iter_mut().enumerate() {
+            nq = self.lobe_params(p, c, q);
+        }
+        (qs, nq)
     }
 
     /// Index in the parameter vector of lobe parameter `k` of channel `c`.
@@ -196,6 +228,73 @@ impl<S: FittedShape> Parametric for FittedLobe<S> {
             row[nc + c] = s;
             for k in 0..nq {
                 row[self.q_index(k, c)] = scale * dq[k];
+            }
+        }
+    }
+    /// With per-channel lobe parameters, every channel's shape at a pair at
+    /// once ([`FittedShape::shape_channels`]), its memo kept along the
+    /// batch; the values [`Parametric::eval_at`] gives pair by pair.
+    fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
+        if !S::PER_CHANNEL {
+            return brdf_core::brdf::eval_batch_per_pair(self, p, pairs, out);
+        }
+        let (n, nc) = (pairs.len(), self.channels);
+        let (qs, nq) = self.all_lobe_params(p);
+        let mut memo = S::Memo::default();
+        let mut s = vec![0.0; nc];
+        for j in 0..n {
+            let (l, v) = (pairs.l(j), pairs.v(j));
+            if !(l.z > 0.0 && v.z > 0.0) {
+                (0..nc).for_each(|c| out[c * n + j] = 0.0);
+                continue;
+            }
+            S::shape_channels(&qs, nq, &l, &v, &mut memo, &mut s, None);
+            for c in 0..nc {
+                out[c * n + j] = p[c] * FRAC_1_PI + p[nc + c] * s[c];
+            }
+        }
+    }
+    /// As [`FittedLobe::eval_batch_at`], with the Jacobian rows that
+    /// [`Parametric::eval_grad_at`] gives pair by pair.
+    fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
+        let (n, nc, np) = (pairs.len(), self.channels, self.specs.len());
+        if !S::PER_CHANNEL {
+            let mut grad = vec![0.0; nc * np];
+            let mut val = vec![0.0; nc];
+            for j in 0..n {
+                self.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut val, &mut grad);
+                for c in 0..nc {
+                    out[c * n + j] = val[c];
+                    jac[(c * n + j) * np..(c * n + j + 1) * np]
+                        .copy_from_slice(&grad[c * np..(c + 1) * np]);
+                }
+            }
+            return;
+        }
+        let (qs, nq) = self.all_lobe_params(p);
+        let mut memo = S::Memo::default();
+        let mut s = vec![0.0; nc];
+        let mut dq = vec![[0.0; MAX_SHAPE_PARAMS]; nc];
+        for j in 0..n {
+            let (l, v) = (pairs.l(j), pairs.v(j));
+            for c in 0..nc {
+                jac[(c * n + j) * np..(c * n + j + 1) * np].fill(0.0);
+            }
+            if !(l.z > 0.0 && v.z > 0.0) {
+                (0..nc).for_each(|c| out[c * n + j] = 0.0);
+                continue;
+            }
+            dq.iter_mut().for_each(|d| d.fill(0.0));
+            S::shape_channels(&qs, nq, &l, &v, &mut memo, &mut s, Some(&mut dq));
+            for c in 0..nc {
+                let scale = p[nc + c];
+                out[c * n + j] = p[c] * FRAC_1_PI + scale * s[c];
+                let row = &mut jac[(c * n + j) * np..(c * n + j + 1) * np];
+                row[c] = FRAC_1_PI;
+                row[nc + c] = s[c];
+                for k in 0..nq {
+                    row[self.q_index(k, c)] = scale * dq[c][k];
+                }
             }
         }
     }

@@ -100,6 +100,7 @@ impl FittedShape for LowSmoothShape {
     const SCALE_MEANING: &'static str = "lobe scale";
     const SCALE_BOX: (f64, f64, f64) = (0.0, 1e4, 1.0);
     const PER_CHANNEL: bool = false;
+    type Memo = ();
     fn specs() -> Vec<ParamSpec> {
         abc_specs()
     }
@@ -130,6 +131,7 @@ impl FittedShape for LowAbcShape {
     const SCALE_MEANING: &'static str = "lobe scale";
     const SCALE_BOX: (f64, f64, f64) = (0.0, 1e4, 1.0);
     const PER_CHANNEL: bool = false;
+    type Memo = ();
     fn specs() -> Vec<ParamSpec> {
         abc_specs()
     }

@@ -79,7 +79,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use brdf_core::ParamSpec;
 use nalgebra::Vector3;
 
-use crate::fitted_lobes::{FittedLobe, FittedShape};
+use crate::fitted_lobes::{FittedLobe, FittedShape, MAX_SHAPE_PARAMS};
 use crate::microfacet::HalfGeometry;
 
 /// `D(H)` of the SGD without `K_ap` and `(d ln D/d alpha, d ln D/d p)`, or
@@ -196,30 +196,104 @@ impl FittedShape for SgdShape {
         ]
     }
     fn shape(q: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, dq: Option<&mut [f64]>) -> f64 {
-        let found = HalfGeometry::new(l, v).and_then(|g| sgd_d(g.nh, q[0], q[1]).map(|d| (g, d)));
-        let Some((g, (d, d_alpha, d_p))) = found else {
+        let Some(g) = HalfGeometry::new(l, v) else {
             if let Some(dq) = dq {
                 dq.fill(0.0);
             }
             return 0.0;
         };
-        let theta = |w: &Vector3<f64>| w.x.hypot(w.y).atan2(w.z);
-        let (gi, dgi) = sgd_g1(theta(l), &q[4..8]);
-        let (go, dgo) = sgd_g1(theta(v), &q[4..8]);
-        let (fr, fr0, fr1) = sgd_fresnel(q[2], q[3], g.vh);
-        let common = d / (PI * g.nl * g.nv);
-        let s = common * gi * go * fr;
-        if let Some(dq) = dq {
-            dq[0] = s * d_alpha;
-            dq[1] = s * d_p;
-            dq[2] = common * gi * go * fr0;
-            dq[3] = common * gi * go * fr1;
-            for k in 0..4 {
-                dq[4 + k] = common * fr * (dgi[k] * go + gi * dgo[k]);
-            }
-        }
-        s
+        let g1 = |theta: f64| sgd_g1(theta, &q[4..8]);
+        shape_at(q, &g, [polar_angle(l), polar_angle(v)], g1, dq)
     }
+    type Memo = G1Memo;
+    /// The half-vector geometry and both polar angles once for every
+    /// channel; each channel's `G1` read from `memo` when the pair before
+    /// had the same angle (the view of every term of a rendered pixel,
+    /// the incident direction along a measurement's grid).
+    fn shape_channels(
+        qs: &[[f64; MAX_SHAPE_PARAMS]],
+        nq: usize,
+        l: &Vector3<f64>,
+        v: &Vector3<f64>,
+        memo: &mut G1Memo,
+        s: &mut [f64],
+        mut dq: Option<&mut [[f64; MAX_SHAPE_PARAMS]]>,
+    ) {
+        let Some(g) = HalfGeometry::new(l, v) else {
+            s[..qs.len()].fill(0.0);
+            if let Some(dq) = dq {
+                dq.iter_mut().for_each(|d| d[..nq].fill(0.0));
+            }
+            return;
+        };
+        let thetas = [polar_angle(l), polar_angle(v)];
+        memo.last.resize(qs.len(), [None; 2]);
+        for (c, q) in qs.iter().enumerate() {
+            let last = &mut memo.last[c];
+            let g1 = |theta: f64| {
+                let role = usize::from(theta.to_bits() != thetas[0].to_bits());
+                match last[role] {
+                    Some((bits, value)) if bits == theta.to_bits() => value,
+                    _ => {
+                        let value = sgd_g1(theta, &q[4..8]);
+                        last[role] = Some((theta.to_bits(), value));
+                        value
+                    }
+                }
+            };
+            s[c] = shape_at(
+                &q[..nq],
+                &g,
+                thetas,
+                g1,
+                dq.as_deref_mut().map(|d| &mut d[c][..nq]),
+            );
+        }
+    }
+}
+
+/// The polar angle of unit `w`, `atan2(|w_xy|, w_z)`.
+fn polar_angle(w: &Vector3<f64>) -> f64 {
+    w.x.hypot(w.y).atan2(w.z)
+}
+
+/// `G1` of one channel at the polar angles of its last pair, per role
+/// (`L`, `V`): `(theta's bits, (G1, its derivatives))`.
+#[derive(Default)]
+pub struct G1Memo {
+    last: Vec<[Option<(u64, (f64, [f64; 4]))>; 2]>,
+}
+
+/// The lobe at `q` from the pair's geometry `g`, the polar angles of `L`
+/// and `V` and `G1` by angle (`g1`).
+fn shape_at(
+    q: &[f64],
+    g: &HalfGeometry,
+    [theta_i, theta_o]: [f64; 2],
+    mut g1: impl FnMut(f64) -> (f64, [f64; 4]),
+    dq: Option<&mut [f64]>,
+) -> f64 {
+    let Some((d, d_alpha, d_p)) = sgd_d(g.nh, q[0], q[1]) else {
+        if let Some(dq) = dq {
+            dq.fill(0.0);
+        }
+        return 0.0;
+    };
+    let (gi, dgi) = g1(theta_i);
+    let (go, dgo) = g1(theta_o);
+    let (fr, fr0, fr1) = sgd_fresnel(q[2], q[3], g.vh);
+    let common = d / (PI * g.nl * g.nv);
+    let s = common * gi * go * fr;
+    if let Some(dq) = dq {
+        dq[0] = s * d_alpha;
+        dq[1] = s * d_p;
+        dq[2] = common * gi * go * fr0;
+        dq[3] = common * gi * go * fr1;
+        for k in 0..4 {
+            dq[4 + k] = common * fr * (dgi[k] * go + gi * dgo[k]);
+        }
+    }
+    s
 }
 
 /// Bagher et al.'s SGD model with a Lambertian term, parameters per channel.
@@ -267,4 +341,59 @@ pub fn suggested_starts(model: &dyn brdf_core::Parametric) -> Vec<Vec<f64>> {
             p
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use brdf_core::{DirPairs, Parametric};
+
+    use super::*;
+
+    /// The batch paths of the RGB model (every channel's shape at a pair at
+    /// once, `G1` read again for a repeated angle) give the bits of the
+    /// pair-by-pair ones, directions below the horizon and repeated views
+    /// included.
+    #[test]
+    fn the_batch_gives_the_per_pair_values_and_jacobian_bit_for_bit() {
+        let dir = |t: f64, f: f64| Vector3::new(t.sin() * f.cos(), t.sin() * f.sin(), t.cos());
+        let mut pairs = DirPairs::with_capacity(0);
+        for i in 0..9 {
+            for j in 0..7 {
+                pairs.push(
+                    &dir(0.18 * i as f64, 0.5),
+                    &dir(0.23 * j as f64, 2.0 + 0.3 * j as f64),
+                );
+            }
+            // One view for many lights, as a rendered pixel's terms.
+            pairs.push(&dir(0.1 * i as f64, 1.0), &dir(0.9, 0.2));
+            pairs.push(&dir(0.1 * i as f64 + 0.05, 4.0), &dir(0.9, 0.2));
+        }
+        pairs.push(&dir(2.0, 0.0), &dir(0.5, 1.0));
+        pairs.push(&Vector3::z(), &Vector3::z());
+        let n = pairs.len();
+        #[rustfmt::skip]
+        let p = [
+            0.2, 0.3, 0.1, 2.0, 3.0, 4.0, // kd, ks
+            0.05, 0.1, 0.3, 0.4, 0.8, 1.2, 0.5, 0.6, 0.7, 0.0, 0.1, -0.2, // alpha, p, f0, f1
+            0.5, 2.0, 0.0, 1.0, 0.3, 1e-7, 2.0, 5.0, 20.0, 0.5, -0.3, 0.0, // lambda, c, k, theta0
+        ];
+        let m = Sgd::new(3, &p).expect("sgd");
+        let np = p.len();
+        let (mut val, mut jac) = (vec![0.0; 3 * n], vec![0.0; 3 * n * np]);
+        m.eval_grad_batch_at(&p, &pairs, &mut val, &mut jac);
+        let mut only = vec![0.0; 3 * n];
+        m.eval_batch_at(&p, &pairs, &mut only);
+        let (mut one, mut grad) = ([0.0; 3], vec![0.0; 3 * np]);
+        for j in 0..n {
+            m.eval_grad_at(&p, &pairs.l(j), &pairs.v(j), &mut one, &mut grad);
+            for c in 0..3 {
+                assert_eq!(val[c * n + j].to_bits(), one[c].to_bits(), "pair {j}");
+                assert_eq!(only[c * n + j].to_bits(), one[c].to_bits(), "pair {j}");
+                let row = &jac[(c * n + j) * np..(c * n + j + 1) * np];
+                let bits = |r: &[f64]| r.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(row), bits(&grad[c * np..(c + 1) * np]), "pair {j}");
+            }
+        }
+        assert!(val.iter().filter(|x| **x > 0.0).count() > n);
+    }
 }

@@ -148,6 +148,37 @@ impl Hoisted {
     }
 }
 
+/// The last `G1` evaluated at one angle: read again, not evaluated again,
+/// when the next pair has the same angle (the same bits).
+#[derive(Default)]
+struct LastG1 {
+    /// `theta`'s bits, whether the derivatives were taken, `G1` and them.
+    at: Option<(u64, bool, f64, [f64; 4])>,
+}
+
+impl LastG1 {
+    /// [`Hoisted::g1`] at `theta`.
+    #[inline(always)]
+    fn g1(&mut self, h: &Hoisted, theta: f64, d: Option<&mut [f64; 4]>) -> f64 {
+        let (bits, grad) = (theta.to_bits(), d.is_some());
+        if let Some((b, g, value, dv)) = self.at {
+            if b == bits && g == grad {
+                if let Some(d) = d {
+                    *d = dv;
+                }
+                return value;
+            }
+        }
+        let mut dv = [0.0; 4];
+        let value = h.g1(theta, grad.then_some(&mut dv));
+        if let Some(d) = d {
+            *d = dv;
+        }
+        self.at = Some((bits, grad, value, dv));
+        value
+    }
+}
+
 /// The lobe `S` of every pair into `s[j]` and, when `ds` is given, its
 /// derivatives `ds[u * n + j]` in the lobe parameters `q`; 0 where the
 /// pair is invalid or `D` underflows.
@@ -162,6 +193,10 @@ fn lobe_batch(
     let n = pairs.len();
     let mut dgi = [0.0; 4];
     let mut dgo = [0.0; 4];
+    // `G1` depends on one direction's polar angle, which consecutive
+    // pairs often share (the view of every term of a rendered pixel, the
+    // incident direction along a measurement's grid).
+    let (mut last_i, mut last_o) = (LastG1::default(), LastG1::default());
     for j in 0..n {
         let nh = geom.nh[j];
         if !(geom.valid[j] && nh > 0.0) {
@@ -201,12 +236,12 @@ fn lobe_batch(
         let common = d / (PI * nl * nv);
         match ds.as_deref_mut() {
             None => {
-                let (gi, go) = (h.g1(theta_i, None), h.g1(theta_o, None));
+                let (gi, go) = (last_i.g1(&h, theta_i, None), last_o.g1(&h, theta_o, None));
                 s[j] = common * gi * go * fr;
             }
             Some(ds) => {
-                let gi = h.g1(theta_i, Some(&mut dgi));
-                let go = h.g1(theta_o, Some(&mut dgo));
+                let gi = last_i.g1(&h, theta_i, Some(&mut dgi));
+                let go = last_o.g1(&h, theta_o, Some(&mut dgo));
                 let v = common * gi * go * fr;
                 s[j] = v;
                 let dw = 1.0 - t / (h.alpha * h.alpha);
