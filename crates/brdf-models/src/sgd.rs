@@ -257,11 +257,14 @@ fn polar_angle(w: &Vector3<f64>) -> f64 {
     w.x.hypot(w.y).atan2(w.z)
 }
 
-/// `G1` of one channel at the polar angles of its last pair, per role
-/// (`L`, `V`): `(theta's bits, (G1, its derivatives))`.
+/// `G1` and its derivatives in `[Lambda, c, k, theta0]`.
+type G1Value = (f64, [f64; 4]);
+
+/// `G1` of each channel at the polar angles of its last pair, per role
+/// (`L`, `V`): `(theta's bits, G1 and its derivatives)`.
 #[derive(Default)]
 pub struct G1Memo {
-    last: Vec<[Option<(u64, (f64, [f64; 4]))>; 2]>,
+    last: Vec<[Option<(u64, G1Value)>; 2]>,
 }
 
 /// The lobe at `q` from the pair's geometry `g`, the polar angles of `L`

@@ -161,13 +161,14 @@ impl LastG1 {
     #[inline(always)]
     fn g1(&mut self, h: &Hoisted, theta: f64, d: Option<&mut [f64; 4]>) -> f64 {
         let (bits, grad) = (theta.to_bits(), d.is_some());
-        if let Some((b, g, value, dv)) = self.at {
-            if b == bits && g == grad {
-                if let Some(d) = d {
-                    *d = dv;
-                }
-                return value;
+        if let Some((b, g, value, dv)) = self.at
+            && b == bits
+            && g == grad
+        {
+            if let Some(d) = d {
+                *d = dv;
             }
+            return value;
         }
         let mut dv = [0.0; 4];
         let value = h.g1(theta, grad.then_some(&mut dv));
