@@ -226,7 +226,7 @@ impl FittedShape for SgdShape {
             }
             return;
         };
-        let thetas = [polar_angle(l), polar_angle(v)];
+        let thetas = [memo.polar_angle(0, l), memo.polar_angle(1, v)];
         memo.last.resize(qs.len(), [None; 2]);
         for (c, q) in qs.iter().enumerate() {
             let last = &mut memo.last[c];
@@ -262,9 +262,27 @@ type G1Value = (f64, [f64; 4]);
 
 /// `G1` of each channel at the polar angles of its last pair, per role
 /// (`L`, `V`): `(theta's bits, G1 and its derivatives)`.
+/// And the polar angle of the last `L` and `V` by their bits.
 #[derive(Default)]
 pub struct G1Memo {
     last: Vec<[Option<(u64, G1Value)>; 2]>,
+    angles: [Option<([u64; 3], f64)>; 2],
+}
+
+impl G1Memo {
+    /// [`polar_angle`] of `w` in role `role` (0: `L`, 1: `V`), read again
+    /// when the last pair's direction in that role was `w`.
+    fn polar_angle(&mut self, role: usize, w: &Vector3<f64>) -> f64 {
+        let bits = [w.x.to_bits(), w.y.to_bits(), w.z.to_bits()];
+        match self.angles[role] {
+            Some((b, theta)) if b == bits => theta,
+            _ => {
+                let theta = polar_angle(w);
+                self.angles[role] = Some((bits, theta));
+                theta
+            }
+        }
+    }
 }
 
 /// The lobe at `q` from the pair's geometry `g`, the polar angles of `L`
