@@ -435,11 +435,20 @@ impl<'a> ImageProblem<'a> {
         let (nk, w, np) = (ch.pairs.len(), ch.pixels.len(), self.terms.pixels());
         let mut m = vec![0.0; nc * nk];
         let mut colour = vec![0.0; self.colour_target.len()];
-        let (mut jacobian, mut colour_jacobian, mut inner) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut jacobian, mut colour_jacobian) = (Vec::new(), Vec::new());
+        // The terms' Jacobian (about 1.5 MB for an RGB model of 30
+        // parameters) in a buffer each thread keeps: allocated afresh per
+        // chunk and pass, its pages were faulted in and zeroed by the
+        // kernel every time.
+        thread_local! {
+            static INNER: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+        }
+        let mut inner = INNER.take();
         if with_jacobian {
             jacobian = vec![0.0; nc * w * npar];
             colour_jacobian = vec![0.0; colour.len() * npar];
-            inner = vec![0.0; nc * nk * npar];
+            inner.clear();
+            inner.resize(nc * nk * npar, 0.0);
             // One pass of the model's gradient gives the values too.
             problem.residuals_and_jacobian(p, &mut m, &mut inner);
         } else {
@@ -447,6 +456,7 @@ impl<'a> ImageProblem<'a> {
         }
         let px = self.terms.chunk_pixels(ch, nc, &m);
         let mut residuals = vec![0.0; nc * w];
+        let mut weights = Vec::new();
         for c in 0..nc {
             for (j, q) in ch.pixels.clone().enumerate() {
                 let (row, e) = (c * w + j, self.exposure[q]);
@@ -459,13 +469,16 @@ impl<'a> ImageProblem<'a> {
                 }
                 // The exposed pixel's derivative, then its log's.
                 let out = &mut jacobian[row * npar..(row + 1) * npar];
-                for k in self.terms.offsets[q]..self.terms.offsets[q + 1] {
-                    let wk = e * self.terms.weight(c, k, nc);
-                    let t = c * nk + k - ch.first_term;
-                    for (o, s) in out.iter_mut().zip(&inner[t * npar..(t + 1) * npar]) {
-                        *o += wk * s;
-                    }
-                }
+                let terms = self.terms.offsets[q]..self.terms.offsets[q + 1];
+                weights.clear();
+                weights.extend(terms.clone().map(|k| e * self.terms.weight(c, k, nc)));
+                let first = c * nk + terms.start - ch.first_term;
+                let rows = &inner[first * npar..(first + terms.len()) * npar];
+                pulp::Arch::new().dispatch(WeightedRows {
+                    out,
+                    rows,
+                    weights: &weights,
+                });
                 let sums = &mut colour_jacobian[ic * npar..(ic + 1) * npar];
                 for (s, o) in sums.iter_mut().zip(out.iter_mut()) {
                     *s += *o;
@@ -473,6 +486,7 @@ impl<'a> ImageProblem<'a> {
                 }
             }
         }
+        INNER.set(inner);
         ChunkRows {
             residuals,
             jacobian,
@@ -514,6 +528,69 @@ impl<'a> ImageProblem<'a> {
     }
 }
 
+/// `out += sum_t weights[t] rows[t]` (`rows` row-major, `out.len()` per
+/// row), term by term as a loop over the terms would add them, inside
+/// `pulp`'s dispatch so each row's update fills the widest vectors (the
+/// same bits: no fused multiply-add).
+struct WeightedRows<'a> {
+    out: &'a mut [f64],
+    rows: &'a [f64],
+    weights: &'a [f64],
+}
+
+impl pulp::WithSimd for WeightedRows<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        let WeightedRows { out, rows, weights } = self;
+        if out.is_empty() {
+            return;
+        }
+        for (wk, row) in weights.iter().zip(rows.chunks_exact(out.len())) {
+            for (o, s) in out.iter_mut().zip(row) {
+                *o += wk * s;
+            }
+        }
+    }
+}
+
+/// The upper triangle of `gram += [J | r]^T [J | r]` over rows of `J`
+/// (row-major, `residuals.len()` rows) and `r`, row by row in order, inside
+/// `pulp`'s dispatch so each row's update fills the widest vectors (every
+/// entry summed in row order: the same bits).
+struct GramRows<'a> {
+    gram: &'a mut [f64],
+    residuals: &'a [f64],
+    jacobian: &'a [f64],
+}
+
+impl pulp::WithSimd for GramRows<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) {
+        let GramRows {
+            gram,
+            residuals,
+            jacobian,
+        } = self;
+        let np = jacobian.len() / residuals.len().max(1);
+        let w = np + 1;
+        let mut aug = vec![0.0; w];
+        for (r, row) in residuals.iter().zip(jacobian.chunks_exact(np.max(1))) {
+            aug[..np].copy_from_slice(row);
+            aug[np] = *r;
+            for a in 0..w {
+                let (x, g) = (aug[a], &mut gram[a * w + a..(a + 1) * w]);
+                for (gb, yb) in g.iter_mut().zip(&aug[a..]) {
+                    *gb += x * yb;
+                }
+            }
+        }
+    }
+}
+
 impl LeastSquaresProblem for ImageProblem<'_> {
     fn n_params(&self) -> usize {
         self.n_params
@@ -548,21 +625,16 @@ impl LeastSquaresProblem for ImageProblem<'_> {
         // mean-colour rows last.
         let w = self.n_params + 1;
         gram.fill(0.0);
-        let mut aug = vec![0.0; w];
         let colour_part = [(&*colour, colour_jac.as_slice())];
         let pixel_parts = parts
             .iter()
             .map(|part| (part.residuals.as_slice(), part.jacobian.as_slice()));
         for (residuals, jacobian) in pixel_parts.chain(colour_part) {
-            for (r, row) in residuals.iter().zip(jacobian.chunks_exact(self.n_params)) {
-                aug[..self.n_params].copy_from_slice(row);
-                aug[self.n_params] = *r;
-                for a in 0..w {
-                    for b in a..w {
-                        gram[a * w + b] += aug[a] * aug[b];
-                    }
-                }
-            }
+            pulp::Arch::new().dispatch(GramRows {
+                gram: &mut *gram,
+                residuals,
+                jacobian,
+            });
         }
         for a in 0..w {
             for b in 0..a {
