@@ -7,6 +7,9 @@ use faer::linalg::solvers::SolveLstsq;
 use super::all_finite;
 use crate::{lsi, tall_qr};
 
+/// Rows per tile of the Jacobian's copy into the QR workspace.
+const TRANSPOSE_TILE: usize = 64;
+
 /// The Jacobian at the current point, reduced to what a step needs: the
 /// triangle `R` of `J = Q R`, `Q^T r`, the column norms `||J_k|| = ||R_k||`
 /// and the gradient `g = J^T r = R^T Q^T r`. Every damped step is then a
@@ -61,14 +64,22 @@ impl Factored {
     pub(super) fn by_qr(jac: &[f64], r: &[f64], n: usize, ws: &mut Option<Mat<f64>>) -> Self {
         let m = r.len();
         let ws = ws.get_or_insert_with(|| Mat::<f64>::zeros(m, n + 1));
-        for k in 0..n {
-            let col = ws
-                .col_mut(k)
-                .try_as_col_major_mut()
-                .map(|c| c.as_slice_mut());
-            if let Some(col) = col {
-                for (i, v) in col.iter_mut().enumerate() {
-                    *v = jac[i * n + k];
+        // The row-major Jacobian into the columns, a tile of rows at a
+        // time: each tile is read once, contiguously, where a column at a
+        // time read the whole Jacobian `n` entries apart, once per column
+        // (most of this function's time on an RGB model of 30 parameters).
+        for i0 in (0..m).step_by(TRANSPOSE_TILE) {
+            let rows = TRANSPOSE_TILE.min(m - i0);
+            let tile = &jac[i0 * n..(i0 + rows) * n];
+            for k in 0..n {
+                let col = ws
+                    .col_mut(k)
+                    .try_as_col_major_mut()
+                    .map(|c| c.as_slice_mut());
+                if let Some(col) = col {
+                    for (v, row) in col[i0..i0 + rows].iter_mut().zip(tile.chunks_exact(n)) {
+                        *v = row[k];
+                    }
                 }
             }
         }
