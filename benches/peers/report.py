@@ -584,7 +584,15 @@ def users_wait_section(d):
             "image-objective refinements now run chunk by chunk over the shading terms with the normal equations "
             "in the same pass and stop at 30 iterations (`image_objective.rs`), so they cost about as much as the "
             "BRDF-space candidates (see the per-candidate seconds); 2 s needs fewer candidates (e.g. skipping the "
-            "refinements whose start lies in the winner's basin) and a cheaper render of the data (the floor).",
+            "refinements whose start lies in the winner's basin) and a cheaper render of the data (the floor). "
+            "Measured and not adopted: solving only the best screened basin on all samples instead of three "
+            "(`starts.rs`, `Screen`) saved 0-30% of the default fits of `principled`, `gltf`, `gltf-ext` and "
+            "`ggx` on the five files but changed the chosen fit in 5 of those 20 cases (cc_iris_purple_gem "
+            "`principled`, three `gltf-ext`, colodur_napoli `ggx`), so every judged figure would move. The "
+            "floor (profiled: `brdf fit --model lambert --metric ngan` of paper_white): the judge's 128-px "
+            "shading terms about 60% (the environment cells of each pixel, `quadrature.rs` `sum_cells` 21%, "
+            "the sky's table lookup with its `acos` and `atan2` 27%), built once per process and too large "
+            "to keep (about 190 MB per light set).",
             "- Full MERL grid, default AS: 12 starts (coarse search, 3 refined on all samples) against ONE SciPy start; "
             "the refinement and the covariance (a QR of the 0.9M-row Jacobian) dominate.",
             "- select: on data that can be rendered it chooses by image error (Bieron and Peers 2020): each "
@@ -612,15 +620,25 @@ def users_wait_section(d):
             "pairs whose loops vectorise (`pulp`'s dispatch, AVX2 on this machine) and round as the scalar code "
             "did (the same bits, tested pair by pair), so every figure above but the times is what the scalar "
             "kernels gave. Per sample the channels' Jacobian rows are still written pair by pair (the solvers' "
-            "row layout), and SGD's kernel is the C library's `exp` and `log`, whose vector forms round "
-            "differently (left scalar).",
+            "row layout). The fitted-data models: STD's continued fractions (half of its time) run eight "
+            "pairs at a time in vector lanes, its factors of `gamma` alone are taken once per batch, and a "
+            "direction repeated from the pair before has its `Lambda` evaluated once; SGD's time is the C "
+            "library's `exp`, `log`, `atan2` and `hypot`, whose vector forms round differently, so it stays "
+            "scalar and takes each pair's geometry once for every channel and a repeated direction's polar "
+            "angle and `G1` once (the same bits; the same for the Gram updates of the solvers and of the "
+            "image objective, now in the dispatch too).",
             "- SGD (`sgd` table): every channel is fitted alone from the model's 7 suggested lobe shapes and 12 "
             "Halton points of its box on a stratified subsample, the best 3 refined on all samples; the Halton "
             "points mostly end with the lobe switched off (`brdf_models::sgd::suggested_starts`), and the final "
             "solves on the films and paints creep for thousands of iterations in flat valleys (`iterations`), some "
             "to the iteration cap. For appearance the pipeline makes three such fits (Ngan's L2, log, cube root) "
             "and refines every one in the image objective (the fitted-data models are not pruned by "
-            "`REFINE_REACH`), so its wall time is several times the `ngan` row's. Left: fewer, better starts (the "
+            "`REFINE_REACH`), so its wall time is several times the `ngan` row's. Profiled (`perf record` of the "
+            "appearance fit of cc_iris_purple_gem, one thread, after the changes above): the RGB shape and "
+            "its batch loop about 16%, the C library's `exp`, `log`, `atan2` and `hypot` together about 21% "
+            "(the image objective's terms each bring a new light direction), the vectorised factorisations "
+            "and Gram updates 11%, the QR fallback's copy of the Jacobian 6% (since tiled), the cube root of "
+            "that objective 5%. Left: fewer, better starts (the "
             "per-channel widths of a one-lobe fit), the step in flat valleys of the renderer fits above. The "
             "study's `new_models` table fits every 5th node of Sopp's grid; `brdf fit` fits every node within 80 "
             "degrees, and `new_models_fits.md` gives each study fit's L2 on both sets: the `ngan` rows here compare "
@@ -647,6 +665,17 @@ def users_wait_section(d):
             "at their first iteration, and 10 runs of the default `principled` fit of paper_white (all on the full "
             "data). Left: solving the bases without their held parameters, the kernels' per-sample geometry "
             "computed once per sample set.",
+            "- `brdf reproduce` (with `PEERS_LONG=1`): its parts timed one by one beside this run "
+            "(`brdf reproduce --only PART`, two cores): `new_models` about 90% of the wall clock, `kurt_9_3` "
+            "about 30 s, `kurt_9_4_times` 9 s, the other ten parts 10 s together. `new_models` fits 29 models "
+            "on each of the five RGL files for Ngan's L2 and for appearance, each as `brdf fit` fits it and "
+            "judged at 128 px; the fits' own clocks sum to about 110 s (STD and SGD for appearance 25 s each "
+            "after the changes above, from 133 s and 63 s), the rest is the 32-px judges and data renders of "
+            "every appearance fit and the 128-px renders of every fit. Profiled (`perf record` of `brdf "
+            "reproduce --only new_models`): no symbol above 7%; SGD's shape and the C library's `exp`, `log`, "
+            "`atan2`, `hypot` about a quarter, Löw's ABC shapes 4%, STD 4%, Koenderink 2%, Dupuy 2%. Left: "
+            "fewer appearance candidates for the fitted-data models (each refines every base: see SGD above), "
+            "the models' per-sample geometry computed once per sample set.",
             batch_obstacle(d, bat), ""]
     return out
 

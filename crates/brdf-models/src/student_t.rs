@@ -90,15 +90,25 @@ pub fn ln_gamma(x: f64) -> f64 {
     0.5 * (2.0 * PI).ln() + (x + 0.5) * t.ln() - t + a.ln()
 }
 
+/// Most terms of the incomplete beta function's continued fraction.
+const CF_MAX_TERMS: usize = 500;
+
+/// Lentz's guard: a denominator below `1e-300` in magnitude taken as
+/// `1e-300`.
+#[inline(always)]
+fn cf_guard(d: f64) -> f64 {
+    const TINY: f64 = 1e-300;
+    if d.abs() < TINY { TINY } else { d }
+}
+
 /// Continued fraction of the incomplete beta function (modified Lentz).
 fn beta_cf(a: f64, b: f64, x: f64) -> f64 {
-    const TINY: f64 = 1e-300;
-    let guard = |d: f64| if d.abs() < TINY { TINY } else { d };
+    let guard = cf_guard;
     let (qab, qap, qam) = (a + b, a + 1.0, a - 1.0);
     let mut c = 1.0;
     let mut d = 1.0 / guard(1.0 - qab * x / qap);
     let mut h = d;
-    for m in 1..=500 {
+    for m in 1..=CF_MAX_TERMS {
         let m = m as f64;
         let m2 = 2.0 * m;
         let aa = m * (b - m) * x / ((qam + m2) * (a + m2));

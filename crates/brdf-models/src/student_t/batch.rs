@@ -19,8 +19,8 @@ use brdf_core::DirPairs;
 use nalgebra::Vector3;
 
 use super::{
-    BetaTail, LambdaAt, LambdaStart, cot_over_alpha, gamma_step, half_vector, lambda_derivatives,
-    lambdas_at, lobe_value,
+    BetaTail, CF_MAX_TERMS, LambdaAt, LambdaStart, cf_guard, cot_over_alpha, gamma_step,
+    half_vector, lambda_derivatives, lambdas_at, lobe_value,
 };
 
 /// Pairs per chunk: its `Lambda`s (up to six per pair) stay in cache.
@@ -28,8 +28,6 @@ const CHUNK: usize = 64;
 /// Continued fractions run side by side: two AVX2 vectors, so that the
 /// dependent divisions of one overlap those of the other.
 const LANES: usize = 8;
-/// Iteration cap of the continued fraction (the scalar code's).
-const MAX_TERMS: usize = 500;
 
 /// `s[j]` and, when given, `ds[u * n + j]` of the STD lobe at `q` for
 /// every pair (0 where `valid[j]` is false), as
@@ -224,8 +222,7 @@ impl Lambdas {
 /// their first value.
 #[inline(always)]
 fn beta_cf_lanes(args: &[(f64, f64, f64); LANES], live: [bool; LANES]) -> [f64; LANES] {
-    const TINY: f64 = 1e-300;
-    let guard = |d: f64| if d.abs() < TINY { TINY } else { d };
+    let guard = cf_guard;
     let a: [f64; LANES] = std::array::from_fn(|k| args[k].0);
     let b: [f64; LANES] = std::array::from_fn(|k| args[k].1);
     let x: [f64; LANES] = std::array::from_fn(|k| args[k].2);
@@ -236,7 +233,7 @@ fn beta_cf_lanes(args: &[(f64, f64, f64); LANES], live: [bool; LANES]) -> [f64; 
     let mut d: [f64; LANES] = std::array::from_fn(|k| 1.0 / guard(1.0 - qab[k] * x[k] / qap[k]));
     let mut h = d;
     let mut going = live;
-    for m in 1..=MAX_TERMS {
+    for m in 1..=CF_MAX_TERMS {
         if !going.iter().any(|g| *g) {
             break;
         }
