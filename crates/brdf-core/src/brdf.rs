@@ -98,19 +98,7 @@ pub trait Parametric: Brdf {
     /// Batch values and Jacobian at `p`: `out[c * n + j]` and
     /// `jac[(c * n + j) * n_params + k]`.
     fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
-        let n = pairs.len();
-        let nc = self.channels();
-        let np = p.len();
-        let mut val = vec![0.0; nc];
-        let mut grad = vec![0.0; nc * np];
-        for j in 0..n {
-            self.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut val, &mut grad);
-            for c in 0..nc {
-                out[c * n + j] = val[c];
-                jac[(c * n + j) * np..(c * n + j + 1) * np]
-                    .copy_from_slice(&grad[c * np..(c + 1) * np]);
-            }
-        }
+        eval_grad_batch_per_pair(self, p, pairs, out, jac)
     }
 
     /// The channel-shared basis, for models of the form
@@ -281,6 +269,30 @@ pub fn eval_batch_per_pair<M: Parametric + ?Sized>(
         model.eval_at(p, &pairs.l(j), &pairs.v(j), &mut buf);
         for c in 0..nc {
             out[c * n + j] = buf[c];
+        }
+    }
+}
+
+/// [`Parametric::eval_grad_batch_at`] by [`Parametric::eval_grad_at`] pair
+/// by pair (the default).
+pub fn eval_grad_batch_per_pair<M: Parametric + ?Sized>(
+    model: &M,
+    p: &[f64],
+    pairs: &DirPairs,
+    out: &mut [f64],
+    jac: &mut [f64],
+) {
+    let n = pairs.len();
+    let nc = model.channels();
+    let np = p.len();
+    let mut val = vec![0.0; nc];
+    let mut grad = vec![0.0; nc * np];
+    for j in 0..n {
+        model.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut val, &mut grad);
+        for c in 0..nc {
+            out[c * n + j] = val[c];
+            jac[(c * n + j) * np..(c * n + j + 1) * np]
+                .copy_from_slice(&grad[c * np..(c + 1) * np]);
         }
     }
 }

@@ -257,20 +257,10 @@ impl<S: FittedShape> Parametric for FittedLobe<S> {
     /// As [`FittedLobe::eval_batch_at`], with the Jacobian rows that
     /// [`Parametric::eval_grad_at`] gives pair by pair.
     fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
-        let (n, nc, np) = (pairs.len(), self.channels, self.specs.len());
         if !S::PER_CHANNEL {
-            let mut grad = vec![0.0; nc * np];
-            let mut val = vec![0.0; nc];
-            for j in 0..n {
-                self.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut val, &mut grad);
-                for c in 0..nc {
-                    out[c * n + j] = val[c];
-                    jac[(c * n + j) * np..(c * n + j + 1) * np]
-                        .copy_from_slice(&grad[c * np..(c + 1) * np]);
-                }
-            }
-            return;
+            return brdf_core::brdf::eval_grad_batch_per_pair(self, p, pairs, out, jac);
         }
+        let (n, nc, np) = (pairs.len(), self.channels, self.specs.len());
         let (qs, nq) = self.all_lobe_params(p);
         let mut memo = S::Memo::default();
         let mut s = vec![0.0; nc];

@@ -230,6 +230,9 @@ impl FittedShape for SgdShape {
         memo.last.resize(qs.len(), [None; 2]);
         for (c, q) in qs.iter().enumerate() {
             let last = &mut memo.last[c];
+            // `shape_at` asks for `G1` at `theta_i`, then at `theta_o`: the
+            // role is which of the pair's angles is asked for (either slot
+            // holds the right value when both angles are equal).
             let g1 = |theta: f64| {
                 let role = usize::from(theta.to_bits() != thetas[0].to_bits());
                 match last[role] {
