@@ -392,6 +392,35 @@ impl<S: Lobe> Parametric for MultiLobe<S> {
     fn name(&self) -> &str {
         S::NAME
     }
+    /// Through the lobe's batch kernel when it is exact
+    /// ([`Lobe::BATCH_IS_EXACT`]): each lobe added in order, as
+    /// [`Parametric::eval_at`] adds them pair by pair.
+    fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
+        if !S::BATCH_IS_EXACT {
+            return brdf_core::brdf::eval_batch_per_pair(self, p, pairs, out);
+        }
+        let (n, nc, b) = (pairs.len(), self.channels, self.block());
+        let geom = PairGeometry::new(pairs);
+        for c in 0..nc {
+            out[c * n..(c + 1) * n].fill(p[c] * FRAC_1_PI);
+        }
+        let mut s = vec![0.0; n];
+        for k in 0..self.lobes {
+            let base = nc + k * b;
+            S::shape_batch(&p[base + nc..base + b], pairs, &geom, &mut s, None);
+            for c in 0..nc {
+                for (o, sj) in out[c * n..(c + 1) * n].iter_mut().zip(&s) {
+                    *o += p[base + c] * sj;
+                }
+            }
+        }
+        // As `eval_at`: 0 below the horizon.
+        for (j, ok) in geom.valid.iter().enumerate() {
+            if !ok {
+                (0..nc).for_each(|c| out[c * n + j] = 0.0);
+            }
+        }
+    }
     fn eval_at(&self, p: &[f64], l: &Vector3<f64>, v: &Vector3<f64>, out: &mut [f64]) {
         let nc = self.channels;
         out[..nc]
@@ -519,6 +548,40 @@ impl<S: Lobe> SharedBasis for MultiLobe<S> {
                 Some(d) => {
                     let at = ((k + 1) * big_q + k * nq) * n;
                     S::shape_batch(q, pairs, geom, s, Some(&mut d[at..at + nq * n]));
+                }
+            }
+        }
+    }
+}
+
+#[cfg(all(test, feature = "renderer", feature = "microfacet"))]
+mod tests {
+    use brdf_core::{Brdf, Parametric};
+    use nalgebra::Vector3;
+
+    use crate::principled::kernel::tests::pairs;
+
+    /// Renders take the batch kernel (`eval_pairs`): the values `eval`
+    /// gives pair by pair, below the horizon included.
+    #[test]
+    fn the_model_renders_what_it_evaluates_pair_by_pair() {
+        let mut p = pairs();
+        p.push(&Vector3::new(0.6, 0.0, -0.8), &Vector3::z());
+        let n = p.len();
+        let std = crate::Std::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 3.0, 0.3]).expect("std");
+        let ggx =
+            crate::ggx::GgxAniso::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 0.1, 0.3]).expect("ggx");
+        let mut two = crate::Ggx::new(2, 2).expect("two ggx lobes");
+        two.set_params(&[0.2, 0.3, 0.5, 0.4, 0.3, 0.8, 0.2, 0.1, 0.05, 0.6])
+            .expect("params");
+        for m in [&std as &dyn Brdf, &ggx, &two] {
+            let mut batch = vec![0.0; 2 * n];
+            m.eval_pairs(&p, &mut batch);
+            for j in 0..n {
+                let mut one = [0.0; 2];
+                m.eval(&p.l(j), &p.v(j), &mut one);
+                for c in 0..2 {
+                    assert_eq!(batch[c * n + j].to_bits(), one[c].to_bits(), "pair {j}");
                 }
             }
         }

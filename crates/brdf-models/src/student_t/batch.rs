@@ -344,28 +344,4 @@ mod tests {
             }
         }
     }
-
-    /// Renders take the batch kernel (`eval_pairs`): the values `eval`
-    /// gives pair by pair, below the horizon included.
-    #[test]
-    fn the_model_renders_what_it_evaluates_pair_by_pair() {
-        use brdf_core::Brdf;
-        let mut p = pairs();
-        p.push(&Vector3::new(0.6, 0.0, -0.8), &Vector3::z());
-        let n = p.len();
-        let std = crate::Std::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 3.0, 0.3]).expect("std");
-        let ggx =
-            crate::ggx::GgxAniso::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 0.1, 0.3]).expect("ggx");
-        for m in [&std as &dyn Brdf, &ggx] {
-            let mut batch = vec![0.0; 2 * n];
-            m.eval_pairs(&p, &mut batch);
-            for j in 0..n {
-                let mut one = [0.0; 2];
-                m.eval(&p.l(j), &p.v(j), &mut one);
-                for c in 0..2 {
-                    assert_eq!(batch[c * n + j].to_bits(), one[c].to_bits(), "pair {j}");
-                }
-            }
-        }
-    }
 }
