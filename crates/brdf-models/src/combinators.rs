@@ -554,36 +554,22 @@ impl<S: Lobe> SharedBasis for MultiLobe<S> {
     }
 }
 
-#[cfg(all(test, feature = "renderer", feature = "microfacet"))]
-mod tests {
-    use brdf_core::{Brdf, Parametric};
-    use nalgebra::Vector3;
-
-    use crate::principled::kernel::tests::pairs;
-
-    /// Renders take the batch kernel (`eval_pairs`): the values `eval`
-    /// gives pair by pair, below the horizon included.
-    #[test]
-    fn the_model_renders_what_it_evaluates_pair_by_pair() {
-        let mut p = pairs();
-        p.push(&Vector3::new(0.6, 0.0, -0.8), &Vector3::z());
-        let n = p.len();
-        let std = crate::Std::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 3.0, 0.3]).expect("std");
-        let ggx =
-            crate::ggx::GgxAniso::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 0.1, 0.3]).expect("ggx");
-        let mut two = crate::Ggx::new(2, 2).expect("two ggx lobes");
-        two.set_params(&[0.2, 0.3, 0.5, 0.4, 0.3, 0.8, 0.2, 0.1, 0.05, 0.6])
-            .expect("params");
-        for m in [&std as &dyn Brdf, &ggx, &two] {
-            let mut batch = vec![0.0; 2 * n];
-            m.eval_pairs(&p, &mut batch);
-            for j in 0..n {
-                let mut one = [0.0; 2];
-                m.eval(&p.l(j), &p.v(j), &mut one);
-                for c in 0..2 {
-                    assert_eq!(batch[c * n + j].to_bits(), one[c].to_bits(), "pair {j}");
-                }
-            }
+/// Test support: `model.eval_pairs` (what renders call) against
+/// `model.eval` pair by pair, to the bit, on `pairs`.
+#[cfg(test)]
+pub(crate) fn assert_renders_as_pair_by_pair(model: &dyn Brdf, pairs: &DirPairs) {
+    let (n, nc) = (pairs.len(), model.channels());
+    let mut batch = vec![f64::NAN; nc * n];
+    model.eval_pairs(pairs, &mut batch);
+    let mut one = vec![0.0; nc];
+    for j in 0..n {
+        model.eval(&pairs.l(j), &pairs.v(j), &mut one);
+        for c in 0..nc {
+            assert_eq!(
+                batch[c * n + j].to_bits(),
+                one[c].to_bits(),
+                "pair {j}, channel {c}"
+            );
         }
     }
 }

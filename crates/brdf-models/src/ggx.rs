@@ -675,6 +675,31 @@ mod tests {
         }
     }
 
+    /// Renders of the GGX models (one lobe, two lobes) take the batch
+    /// kernel and give what `eval` gives pair by pair.
+    #[test]
+    fn renders_give_the_bits_of_single_pairs() {
+        use crate::combinators::assert_renders_as_pair_by_pair;
+        use brdf_core::Parametric;
+        let mut pairs = DirPairs::with_capacity(0);
+        let dir = |t: f64, f: f64| Vector3::new(t.sin() * f.cos(), t.sin() * f.sin(), t.cos());
+        for i in 0..40 {
+            // Every fifth pair with one direction below the horizon.
+            let below = if i % 5 == 0 { 1.7 } else { 0.0 };
+            pairs.push(
+                &dir(0.04 * i as f64 + below, 0.3 * i as f64),
+                &dir(1.5 - 0.035 * i as f64, 2.0),
+            );
+        }
+        pairs.push(&Vector3::z(), &Vector3::z());
+        let one = GgxAniso::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 0.1, 0.3]).expect("ggx");
+        assert_renders_as_pair_by_pair(&one, &pairs);
+        let mut two = Ggx::new(2, 2).expect("two lobes");
+        two.set_params(&[0.2, 0.3, 0.5, 0.4, 0.3, 0.8, 0.2, 0.1, 0.05, 0.6])
+            .expect("params");
+        assert_renders_as_pair_by_pair(&two, &pairs);
+    }
+
     #[test]
     fn batches_give_the_bits_of_single_pairs() {
         let mut state = 0x6667_u64;

@@ -344,4 +344,14 @@ mod tests {
             }
         }
     }
+
+    /// Renders take the batch kernel (`eval_pairs`) and give what `eval`
+    /// gives pair by pair, below the horizon included.
+    #[test]
+    fn the_model_renders_what_it_evaluates_pair_by_pair() {
+        let mut p = pairs();
+        p.push(&Vector3::new(0.6, 0.0, -0.8), &Vector3::z());
+        let std = crate::Std::new(&[0.2, 0.3], &[0.7, 0.1], &[0.25, 3.0, 0.3]).expect("std");
+        crate::combinators::assert_renders_as_pair_by_pair(&std, &p);
+    }
 }
