@@ -161,13 +161,13 @@ impl Parametric for ChannelSlice {
     fn eval_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
         match &self.fast {
             Some(f) => f.eval_batch_at(p, pairs, out),
-            None => default_batch(self, p, pairs, out),
+            None => brdf_core::brdf::eval_batch_per_pair(self, p, pairs, out),
         }
     }
     fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
         match &self.fast {
             Some(f) => f.eval_grad_batch_at(p, pairs, out, jac),
-            None => default_grad_batch(self, p, pairs, out, jac),
+            None => brdf_core::brdf::eval_grad_batch_per_pair(self, p, pairs, out, jac),
         }
     }
     fn shared_basis(&self) -> Option<&dyn SharedBasis> {
@@ -175,38 +175,6 @@ impl Parametric for ChannelSlice {
     }
     fn is_reciprocal(&self) -> bool {
         self.model.is_reciprocal()
-    }
-}
-
-/// The trait's per-pair batch values (what a slice without a one-channel
-/// model does).
-fn default_batch(m: &ChannelSlice, p: &[f64], pairs: &DirPairs, out: &mut [f64]) {
-    let mut v = [0.0];
-    for (j, o) in out.iter_mut().enumerate().take(pairs.len()) {
-        m.eval_at(p, &pairs.l(j), &pairs.v(j), &mut v);
-        *o = v[0];
-    }
-}
-
-/// The trait's per-pair batch values and Jacobian.
-fn default_grad_batch(
-    m: &ChannelSlice,
-    p: &[f64],
-    pairs: &DirPairs,
-    out: &mut [f64],
-    jac: &mut [f64],
-) {
-    let np = p.len();
-    let mut v = [0.0];
-    for j in 0..pairs.len() {
-        m.eval_grad_at(
-            p,
-            &pairs.l(j),
-            &pairs.v(j),
-            &mut v,
-            &mut jac[j * np..(j + 1) * np],
-        );
-        out[j] = v[0];
     }
 }
 

@@ -179,30 +179,13 @@ impl<F: DualFormula> Parametric for DualModel<F> {
         if F::batch(p, self.channels, pairs, out, None) {
             return;
         }
-        let (n, nc) = (pairs.len(), self.channels);
-        let mut buf = [0.0; MAX_CHANNELS];
-        for j in 0..n {
-            self.eval_at(p, &pairs.l(j), &pairs.v(j), &mut buf);
-            for c in 0..nc {
-                out[c * n + j] = buf[c];
-            }
-        }
+        brdf_core::brdf::eval_batch_per_pair(self, p, pairs, out);
     }
     fn eval_grad_batch_at(&self, p: &[f64], pairs: &DirPairs, out: &mut [f64], jac: &mut [f64]) {
         if F::batch(p, self.channels, pairs, out, Some(jac)) {
             return;
         }
-        let (n, nc, np) = (pairs.len(), self.channels, p.len());
-        let mut val = [0.0; MAX_CHANNELS];
-        let mut grad = vec![0.0; nc * np];
-        for j in 0..n {
-            self.eval_grad_at(p, &pairs.l(j), &pairs.v(j), &mut val, &mut grad);
-            for c in 0..nc {
-                out[c * n + j] = val[c];
-                jac[(c * n + j) * np..(c * n + j + 1) * np]
-                    .copy_from_slice(&grad[c * np..(c + 1) * np]);
-            }
-        }
+        brdf_core::brdf::eval_grad_batch_per_pair(self, p, pairs, out, jac);
     }
     fn is_reciprocal(&self) -> bool {
         F::reciprocal()
