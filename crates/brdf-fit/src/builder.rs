@@ -225,6 +225,17 @@ impl Fit {
         self
     }
 
+    /// The fit as the start of another: its best start solved to the
+    /// search's tolerance ([`Fit::search_tolerance`]) and not polished
+    /// further. The appearance pipeline's candidates of a fitted-data
+    /// model are such starts: each is refined in the image objective,
+    /// whose few iterations begin where the candidate's basin is, not at
+    /// its last digits.
+    pub fn as_start(mut self) -> Self {
+        self.options.lm = self.options.search_lm();
+        self
+    }
+
     /// The catalogue name of the model.
     pub fn model_name(&self) -> &'static str {
         self.entry.name
