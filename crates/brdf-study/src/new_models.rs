@@ -267,6 +267,9 @@ fn fit_material(
 ) -> Result<Vec<Result<Outcome, String>>, StudyError> {
     let (dense, samples, every_node) = crate::context::rgl_material_and_grid(rgl_dir, name)?;
     let material = Material::new(name, samples, Some(Box::new(dense)));
+    // The judge first, so the parallel fits share it instead of racing to
+    // make it (each of the first fits would build the 128-px terms).
+    material.judge()?;
     let bar = progress::bar(fits.len(), name);
     let outcomes = fits
         .par_iter()
