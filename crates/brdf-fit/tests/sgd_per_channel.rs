@@ -151,3 +151,39 @@ fn sgd_transformed_objectives_are_fitted_per_channel_to_the_truth() {
         }
     }
 }
+
+/// A fit made only as the start of another (`Fit::as_start`, the
+/// appearance pipeline's candidates of a fitted-data model) stops at the
+/// search's tolerance: on noisy data of [`TRUTH`], where the polish to
+/// the full tolerances takes iterations, it takes fewer, and ends in the
+/// polished fit's basin (Ngan's L2 within 1% of it).
+#[test]
+fn a_fit_as_a_start_is_not_polished() {
+    let p = truth();
+    let clean = synth(&Sgd::with_channels(3).unwrap(), &p, (16, 36, 36), 0.0);
+    // Deterministic multiplicative noise of up to 1%, so the polish has
+    // digits to chase.
+    let mut data = SampleSet::new("noisy sgd", "test", clean.channel_names.clone());
+    for j in 0..clean.len() {
+        let noisy: Vec<f64> = (0..3)
+            .map(|c| {
+                let u = ((j * 7919 + c * 104_729) % 1000) as f64 / 1000.0;
+                clean.channel(c)[j] * (1.0 + 0.02 * u - 0.01)
+            })
+            .collect();
+        let l = Direction::try_new(clean.pairs().l(j)).unwrap();
+        let v = Direction::try_new(clean.pairs().v(j)).unwrap();
+        data.push(&l, &v, &noisy, 1.0).unwrap();
+    }
+    let fit = brdf_fit::Fit::model("sgd").unwrap();
+    let full = fit.run(&data).unwrap();
+    let start = fit.clone().as_start().run(&data).unwrap();
+    assert!(
+        start.summary.iterations < full.summary.iterations,
+        "as a start {} iterations, polished {}",
+        start.summary.iterations,
+        full.summary.iterations
+    );
+    let ratio = start.summary.ngan_l2 / full.summary.ngan_l2;
+    assert!((0.99..=1.01).contains(&ratio), "Ngan L2 ratio {ratio}");
+}
