@@ -60,6 +60,27 @@ fn synth(model: &Sgd, p: &[f64], (ni, nt, np): (usize, usize, usize), shift: f64
     s
 }
 
+/// The fit of `rep` went channel by channel and ended at the truth `p`:
+/// every parameter within 1e-4 of it (relative, or absolute below 0.1).
+fn assert_per_channel_at_truth(rep: &brdf_fit::FitSummary, p: &[f64], what: &str) {
+    assert!(
+        rep.solver.starts_with("per channel"),
+        "{what}: the per-channel path, not {}",
+        rep.solver
+    );
+    for (k, fp) in rep.parameters.iter().enumerate() {
+        let tol = 1e-4 * p[k].abs().max(0.1);
+        assert!(
+            (fp.value - p[k]).abs() <= tol,
+            "{what}: {} = {} vs truth {} (Ngan L2 {})",
+            fp.name,
+            fp.value,
+            p[k],
+            rep.ngan_l2
+        );
+    }
+}
+
 /// The slices of an RGB SGD model are evaluated by its one-channel batch
 /// model (the catalogue's), which gives the channel's values.
 #[test]
@@ -85,22 +106,7 @@ fn sgd_per_channel_fit_recovers_the_parameters() {
     let data = synth(&model, &p, (16, 36, 36), 0.0);
     assert!(data.len() > 20_000);
     let rep = fit(&mut model, &data, &FitOptions::default()).unwrap();
-    assert!(
-        rep.solver.starts_with("per channel"),
-        "the per-channel path: {}",
-        rep.solver
-    );
-    for (k, fp) in rep.parameters.iter().enumerate() {
-        let tol = 1e-4 * p[k].abs().max(0.1);
-        assert!(
-            (fp.value - p[k]).abs() <= tol,
-            "{} = {} vs truth {} (Ngan L2 {})",
-            fp.name,
-            fp.value,
-            p[k],
-            rep.ngan_l2
-        );
-    }
+    assert_per_channel_at_truth(&rep, &p, "Ngan");
     let held_out = synth(&model, &p, (7, 11, 13), 0.37);
     let (n, fitted) = (held_out.len(), model.params().to_vec());
     let mut got = vec![0.0; 3 * n];
@@ -134,21 +140,7 @@ fn sgd_transformed_objectives_are_fitted_per_channel_to_the_truth() {
             ..FitOptions::default()
         };
         let rep = fit(&mut model, &data, &opts).unwrap();
-        assert!(
-            rep.solver.starts_with("per channel"),
-            "{objective:?}: {}",
-            rep.solver
-        );
-        for (k, fp) in rep.parameters.iter().enumerate() {
-            let tol = 1e-4 * p[k].abs().max(0.1);
-            assert!(
-                (fp.value - p[k]).abs() <= tol,
-                "{objective:?}: {} = {} vs truth {}",
-                fp.name,
-                fp.value,
-                p[k]
-            );
-        }
+        assert_per_channel_at_truth(&rep, &p, &format!("{objective:?}"));
     }
 }
 
