@@ -212,6 +212,7 @@ pub fn fit_for_appearance_with(
         samples,
         judge: &judge,
         max_l2: refine_l2_growth * candidates[choice.k].ngan_l2,
+        renderer,
     };
     refiner.refine_starts(&bases, &mut candidates, &mut choice)?;
     refiner.lobes_in_image(&singles, &mut candidates, &mut choice)?;
@@ -366,6 +367,8 @@ struct Refiner<'a> {
     judge: &'a Judge,
     /// Largest Ngan's L2 a refinement may have and still be chosen.
     max_l2: f64,
+    /// Whether the model is a renderer model (else a fitted-data one).
+    renderer: bool,
 }
 
 impl Refiner<'_> {
@@ -403,7 +406,7 @@ impl Refiner<'_> {
             .iter()
             .map(|(_, j)| flip(candidates, *j))
             .fold(f64::INFINITY, f64::min);
-        let reach = if self.renderer() {
+        let reach = if self.renderer {
             REFINE_REACH
         } else {
             f64::INFINITY
@@ -483,11 +486,6 @@ impl Refiner<'_> {
         };
         self.offer(polished, c, 1.0, candidates, choice);
         Ok(())
-    }
-
-    /// Whether the model is a renderer model.
-    fn renderer(&self) -> bool {
-        brdf_models::catalogue::entry(self.fit.model_name()).is_some_and(|e| e.renderer)
     }
 
     /// A choice solved only as a start ([`Fit::as_start`]: a BRDF-space

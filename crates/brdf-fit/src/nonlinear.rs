@@ -273,11 +273,8 @@ fn search_starts(
             )?;
             multistart(&screened, |s| {
                 let p0 = pr.project(s)?;
-                if pr.wide_full.contains(&true) {
-                    log_scaled::solve(problem, &p0, full, &pr.wide_full, &lm)
-                } else {
-                    bounded_least_squares(problem, &p0, full, &lm)
-                }
+                // Without wide parameters this is the bounded solve itself.
+                log_scaled::solve(problem, &p0, full, &pr.wide_full, &lm)
             })?
         }
     })
