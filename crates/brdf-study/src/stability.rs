@@ -715,7 +715,12 @@ pub fn write_stability_report(out_dir: &Path) -> Result<(), StudyError> {
         path: out_dir.display().to_string(),
         source,
     })?;
-    let scratch = std::env::temp_dir().join(format!("brdf-stability-{}", std::process::id()));
+    // Two reports written at once in one process (tests run in parallel) must not share, and remove, each
+    // other's scratch files.
+    static CALL: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALL.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let scratch =
+        std::env::temp_dir().join(format!("brdf-stability-{}-{call}", std::process::id()));
     let mut cases = fit_cases()?;
     cases.extend(input_cases(&scratch)?);
     let _ = std::fs::remove_dir_all(&scratch);
