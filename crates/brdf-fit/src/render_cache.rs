@@ -218,7 +218,11 @@ fn write(dir: &Path, path: &Path, key: u64, renders: &[&Image]) -> std::io::Resu
     let mut h = Fnv::default();
     h.bytes(&body);
     body.extend(h.0.to_le_bytes());
-    let tmp = dir.join(format!("{key:016x}.{}.tmp", std::process::id()));
+    // One temporary file per writer, threads of one process included, so a rename never moves a file another
+    // writer is still filling.
+    static WRITER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let writer = WRITER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let tmp = dir.join(format!("{key:016x}.{}-{writer}.tmp", std::process::id()));
     let mut f = std::fs::File::create(&tmp)?;
     f.write_all(&body)?;
     f.sync_all()?;
