@@ -13,4 +13,4 @@ if [ -z "${BLENDER_PYTHON:-}" ] && "$blender" -c "import bpy" 2>/dev/null; then
     export BLENDER_PYTHON="$blender"
 fi
 BRDF_BIN="${BRDF_BIN:-$(pwd)/target/release/brdf}" PYTHONDONTWRITEBYTECODE=1 \
-    "$venv/bin/python" -m pytest -q -p no:cacheprovider -s benches/judge/test_judge.py
+    "$venv/bin/python" -m pytest -q -p no:cacheprovider -s --durations=0 benches/judge/test_judge.py
