@@ -30,7 +30,8 @@ The scene, as brdf-render's (crates/brdf-render):
   - sphere: radius 1 at the origin, a 512 x 256 latitude-longitude mesh whose
     normals are the sphere's, pushed out by 1 / cos^2(pi / 512) so that its
     faces cover every pixel whose ray hits the sphere (the shading points
-    move by at most 4e-5); the sub-pixel pass draws only its rim;
+    move by at most 4e-5), its faces behind z = 0 left out (never visible
+    from the camera, and not shaded); the sub-pixel pass draws only its rim;
   - studio light: brdf-render's key light, the 1.2 x 1.2 square of radiance
     12 at (3, 3, 4) facing the origin, as its 8 x 8 cells
     (materialx_square_light.glsl, one light each); the constant surround of
@@ -158,7 +159,13 @@ def sphere_obj(path, z_max=math.inf):
     idx = np.arange((n_lat + 1) * (n_lon + 1)).reshape(n_lat + 1, n_lon + 1) + 1
     a, b, c, d = idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]
     tris = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3), np.stack([a, c, d], -1).reshape(-1, 3)])
-    tris = tris[nrm[tris - 1, 2].min(axis=1) < z_max]
+    # The camera at z = 6 sees the unit sphere only where z > 1/6: faces
+    # wholly behind z = 0 are never visible, and left out they are never
+    # shaded (the renderer has no back-face culling; drawn, they were
+    # shaded wherever no front face covered them first, which in the rim
+    # pass is the whole inner disc).
+    z = nrm[tris - 1, 2]
+    tris = tris[(z.min(axis=1) < z_max) & (z.max(axis=1) > 0.0)]
     with open(path, "w") as fh:
         fh.write("".join(f"v {x:.9f} {y:.9f} {z:.9f}\n" for x, y, z in nrm * scale))
         fh.write("".join(f"vn {x:.9f} {y:.9f} {z:.9f}\n" for x, y, z in nrm))
