@@ -55,16 +55,18 @@ fi
 # fits and their conversions), then the renderers' renders of the exports.
 exr_dir="$(mktemp -d)"
 trap 'rm -rf "$exr_dir"' EXIT
+# One judge_exr run for every model: they share the judge's shading terms.
+judge_pairs=()
 for m in paper_white/*.json; do
     b=$(basename "$m" .json)
     case $b in *.report | *_validation | *_values | *_scenes | *_check) continue ;; esac
-    if [ -n "${JUDGE_EXR:-}" ]; then
-        "$JUDGE_EXR" "$m" "$exr_dir/brdf-render/$b"
-    else
-        (cd "$here/../../../.." && cargo run --release -q -p brdf-export --example judge_exr -- \
-            "$here/$m" "$exr_dir/brdf-render/$b")
-    fi
+    judge_pairs+=("$here/$m" "$exr_dir/brdf-render/$b")
 done
+if [ -n "${JUDGE_EXR:-}" ]; then
+    "$JUDGE_EXR" "${judge_pairs[@]}"
+else
+    (cd "$here/../../../.." && cargo run --release -q -p brdf-export --example judge_exr -- "${judge_pairs[@]}")
+fi
 render_files=(paper_white/*.xml)
 kept=() # renderers that cannot run here: their committed answers are kept
 if [ -n "${BLENDER_PYTHON:-}" ]; then

@@ -28,16 +28,18 @@ PY
 rm lobes/mitsuba_cases.json
 exr_dir="$(mktemp -d)"
 trap 'rm -rf "$exr_dir"' EXIT
+# One judge_exr run for every model: they share the judge's shading terms.
+judge_pairs=()
 for m in lobes/*.json; do
     b=$(basename "$m" .json)
     case $b in render_check | mitsuba_values) continue ;; esac
-    if [ -n "${JUDGE_EXR:-}" ]; then
-        "$JUDGE_EXR" "$m" "$exr_dir/brdf-render/$b"
-    else
-        (cd "$here/../../../.." && cargo run --release -q -p brdf-export --example judge_exr -- \
-            "$here/$m" "$exr_dir/brdf-render/$b")
-    fi
+    judge_pairs+=("$here/$m" "$exr_dir/brdf-render/$b")
 done
+if [ -n "${JUDGE_EXR:-}" ]; then
+    "$JUDGE_EXR" "${judge_pairs[@]}"
+else
+    (cd "$here/../../../.." && cargo run --release -q -p brdf-export --example judge_exr -- "${judge_pairs[@]}")
+fi
 render_files=(lobes/*.xml)
 if [ -n "${BLENDER_PYTHON:-}" ]; then
     "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 lobes/*.py >&2
