@@ -22,7 +22,7 @@ const USAGE: &str =
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.is_empty() || args.len() % 2 != 0 {
+    if args.is_empty() || !args.len().is_multiple_of(2) {
         return Err(USAGE.into());
     }
     // Every source is read before anything is rendered, so a bad one stops
