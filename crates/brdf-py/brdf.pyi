@@ -103,7 +103,7 @@ def fit(
 def select(
     data: Union[StrPath, Samples],
     *,
-    tolerance: float = 0.1,
+    tolerance: Optional[float] = None,
     limit_deg: float = 80.0,
     grey: bool = False,
     models: Optional[list[str]] = None,

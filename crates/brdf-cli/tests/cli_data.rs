@@ -158,20 +158,28 @@ fn real_files_info_and_resample() {
     let _ = std::fs::remove_file(&merl);
 }
 
-/// A selection by image (the default on RGL data) has no use for
-/// `--tolerance`, but a bad value is refused before any fit, as by L2.
+/// A selection by image (the default on RGL data) has no use for the
+/// options of a selection by L2: each is refused before any fit, naming
+/// the option and the way to a selection by L2, never ignored.
 #[test]
 #[ignore = "needs BRDF_DATA"]
-fn a_bad_tolerance_is_refused_before_a_selection_by_image() {
+fn options_of_a_selection_by_l2_are_refused_in_a_selection_by_image() {
     let data = common::data_file("rgl/paper_white_rgb.bsdf");
-    let (ok, out, err) = common::brdf(&[
-        "select",
-        "--data",
-        &data.display().to_string(),
-        "--tolerance",
-        "-1",
-        "--quiet",
-    ]);
-    assert!(!ok, "{out}");
-    assert!(err.contains("--tolerance -1 must be >= 0"), "{err}");
+    let data = data.display().to_string();
+    for extra in [
+        &["--tolerance", "0.2"][..],
+        &["--grey"],
+        &["--exhaustive"],
+        &["--max-parameters", "4"],
+    ] {
+        let mut args = vec!["select", "--data", &data, "--quiet"];
+        args.extend_from_slice(extra);
+        let (ok, out, err) = common::brdf(&args);
+        assert!(!ok, "{out}");
+        assert!(
+            err.contains(&format!("{} applies to a selection by L2", extra[0]))
+                && err.contains("--by-l2"),
+            "{err}"
+        );
+    }
 }

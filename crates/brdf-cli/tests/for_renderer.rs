@@ -36,13 +36,25 @@ fn fit_and_select_for_gltf_choose_the_least_flip_among_its_exact_models() {
     let data = data.to_str().expect("a UTF-8 path");
     let out = std::env::temp_dir().join(format!("brdf_for_gltf_{}.gltf", std::process::id()));
     let out_s = out.to_str().expect("a UTF-8 path");
+    // A limit below the default: both commands must pass it to every fit.
     let fitted = json(&[
-        "fit", "--data", data, "--for", "gltf", "--out", out_s, "--json", "--quiet",
+        "fit", "--data", data, "--for", "gltf", "--out", out_s, "--limit", "75", "--json",
+        "--quiet",
     ]);
     let selected = json(&[
-        "select", "--data", data, "--for", "gltf", "--json", "--quiet",
+        "select", "--data", data, "--for", "gltf", "--limit", "75", "--json", "--quiet",
     ]);
     for v in [&fitted, &selected] {
+        for c in v["candidates"].as_array().expect("candidates") {
+            assert_eq!(c["limit_deg"].as_f64(), Some(75.0), "{c}");
+            let count = |k: &str| c[k].as_u64().unwrap_or_else(|| panic!("{k} in {c}"));
+            assert!(count("dropped_angle") > 0, "{c}");
+            assert_eq!(
+                count("samples") + count("dropped_invalid") + count("dropped_angle"),
+                count("samples_present"),
+                "{c}"
+            );
+        }
         let c = candidates(v);
         let names: Vec<&str> = c.iter().map(|(m, _)| m.as_str()).collect();
         assert!(
@@ -65,6 +77,46 @@ fn fit_and_select_for_gltf_choose_the_least_flip_among_its_exact_models() {
     let gltf: Value = serde_json::from_str(&text).expect("glTF JSON");
     assert!(gltf["materials"].as_array().is_some_and(|m| !m.is_empty()));
     assert!(!text.contains("converted by fitting"), "{text}");
+}
+
+/// What `--for` decides itself (the objective, the channels, the solver
+/// and its starts, the models' structure) is refused when given, before
+/// any data is read, rather than ignored.
+#[test]
+fn options_for_decides_itself_are_refused_not_ignored() {
+    for extra in [
+        &["--metric", "ngan"][..],
+        &["--channels", "grey"],
+        &["--solver", "lm"],
+        &["--starts", "3"],
+        &["--lobes", "2"],
+        &["--report", "r.html"],
+    ] {
+        let mut args = vec![
+            "fit",
+            "--data",
+            "absent.bsdf",
+            "--for",
+            "mitsuba",
+            "--out",
+            "m.xml",
+        ];
+        args.extend_from_slice(extra);
+        let (ok, _, err) = brdf(&args);
+        assert!(!ok);
+        assert!(
+            err.contains(extra[0]) && err.contains("cannot be used with"),
+            "{err}"
+        );
+    }
+    for extra in ["--grey", "--exhaustive"] {
+        let (ok, _, err) = brdf(&["select", "--data", "absent.bsdf", "--for", "blender", extra]);
+        assert!(!ok);
+        assert!(
+            err.contains(extra) && err.contains("cannot be used with"),
+            "{err}"
+        );
+    }
 }
 
 #[test]

@@ -10,7 +10,6 @@
 //! the report size by selection by image error
 //! ([`brdf_fit::SelectRequest`]); the least mean FLIP wins.
 
-use brdf_core::progress::Progress;
 use brdf_fit::judged::COLOUR_PLANE_NOTE;
 use brdf_fit::select::Among;
 use brdf_fit::select_by_image::ImageChoice;
@@ -112,13 +111,25 @@ pub fn candidates_for(material: &Material, target: Target) -> Vec<&'static str> 
         .collect()
 }
 
-/// Fit every model `target` renders exactly to `material` for appearance
-/// and keep the one of least image error (`brdf select --for`).
+/// Fit every model `target` renders exactly to the request's material for
+/// appearance and keep the one of least image error (`brdf select
+/// --for`). The request gives the angle limit, the polish and the
+/// progress; the models and the way of choosing are the target's (a
+/// request naming models is refused, as are the options of a selection by
+/// L2).
 pub fn select_for(
-    material: &Material,
+    request: &SelectRequest<'_>,
     target: Target,
-    progress: &dyn Progress,
 ) -> Result<ForSelection, ForRendererError> {
+    let material = request.material;
+    if !request.among.models.is_empty() {
+        return Err(brdf_fit::FitError::InvalidOption {
+            option: "models",
+            value: request.among.models.join(","),
+            expected: "none with --for: it chooses among the models the renderer renders exactly",
+        }
+        .into());
+    }
     let models = candidates_for(material, target);
     if models.is_empty() {
         return Err(ForRendererError::NoExactModel {
@@ -129,9 +140,13 @@ pub fn select_for(
         by: SelectBy::Image,
         among: Among {
             models: models.iter().map(|m| m.to_string()).collect(),
-            max_parameters: None,
+            max_parameters: request.among.max_parameters,
         },
-        progress,
+        limit_deg: request.limit_deg,
+        grey: request.grey,
+        search: request.search,
+        polish: request.polish,
+        progress: request.progress,
         ..SelectRequest::new(material)
     };
     let SelectOutcome::Image {
@@ -154,12 +169,11 @@ pub fn select_for(
 /// [`select_for`], the choice written as `target`'s material (`brdf fit
 /// --for`).
 pub fn fit_for(
-    material: &Material,
+    request: &SelectRequest<'_>,
     target: Target,
     write: &WriteOptions,
-    progress: &dyn Progress,
 ) -> Result<ForRenderer, ForRendererError> {
-    let s = select_for(material, target, progress)?;
+    let s = select_for(request, target)?;
     let text = export_with(s.report.model.as_ref(), target, None, write)?;
     Ok(ForRenderer {
         rows: s.rows,
@@ -221,5 +235,27 @@ mod tests {
         let all = candidates_for(&aniso, Target::Mitsuba);
         assert_eq!(all, exact_models(Target::Mitsuba));
         assert!(all.contains(&"ggx-aniso-separable"), "{all:?}");
+    }
+
+    #[test]
+    fn options_a_choice_by_image_cannot_use_are_refused_not_ignored() {
+        let m = material("lambert", &[0.5]);
+        let named = SelectRequest {
+            among: Among {
+                models: vec!["ggx".into()],
+                max_parameters: None,
+            },
+            ..SelectRequest::new(&m)
+        };
+        let e = select_for(&named, Target::Mitsuba).err().expect("refused");
+        let e = e.to_string();
+        assert!(e.contains("models ggx") && e.contains("--for"), "{e}");
+        let grey = SelectRequest {
+            grey: true,
+            ..SelectRequest::new(&m)
+        };
+        let e = select_for(&grey, Target::Mitsuba).err().expect("refused");
+        let e = e.to_string();
+        assert!(e.starts_with("grey on") && e.contains("--by-l2"), "{e}");
     }
 }

@@ -28,18 +28,39 @@ pub struct ImageChoice {
     pub parameters: usize,
     /// Seconds of the model's appearance fit.
     pub seconds: f64,
+    /// Samples the fit used, of `samples_present`.
+    pub samples: usize,
+    /// Samples the data holds.
+    pub samples_present: usize,
+    /// Samples dropped as invalid (NaN, infinite; MERL's negative marker).
+    pub dropped_invalid: usize,
+    /// Samples dropped beyond `limit_deg`.
+    pub dropped_angle: usize,
+    /// The angle limit of the BRDF-space candidates (degrees).
+    pub limit_deg: f64,
+}
+
+/// How [`select_by_image`] fits each model.
+#[derive(Clone, Copy, Debug)]
+pub struct ByImage {
+    /// End each fit with the search on its render's mean FLIP.
+    pub polish: bool,
+    /// Samples with theta_i or theta_o above this angle (degrees) are
+    /// left out of the BRDF-space candidates (the image objective sees
+    /// the whole render).
+    pub limit_deg: f64,
 }
 
 /// Selection by image error (Bieron and Peers 2020): every model of
 /// `models` fitted for appearance to `material` as `brdf fit` fits it (a
-/// [`FitRequest`], each fit ended by the search on its render's FLIP when
-/// `polish`), judged against the material's renders at the report size; the index of the least mean FLIP is the choice. The renders are
+/// [`FitRequest`] with `how`'s limit, each fit ended by the search on its
+/// render's FLIP when `how.polish`), judged against the material's renders at the report size; the index of the least mean FLIP is the choice. The renders are
 /// made once for every model, the models fitted in parallel (rows in the
 /// order of `models`, each fit the same for any number of threads).
 pub fn select_by_image(
     models: &[&str],
     material: &Material,
-    polish: bool,
+    how: ByImage,
     task: &dyn Task,
 ) -> Result<(Vec<ImageChoice>, usize, FitReport), FitError> {
     // The judge first, so the parallel fits share it instead of racing to
@@ -52,7 +73,8 @@ pub fn select_by_image(
             let t0 = Instant::now();
             let request = FitRequest {
                 metric: Metric::Appearance,
-                polish,
+                polish: how.polish,
+                limit_deg: how.limit_deg,
                 ..FitRequest::new(material, crate::resolve(name)?)
             };
             let report = request.run()?.into_report()?;
@@ -71,6 +93,11 @@ pub fn select_by_image(
                 ngan_l2: report.summary.ngan_l2,
                 parameters: report.summary.parameters.len(),
                 seconds: t0.elapsed().as_secs_f64(),
+                samples: report.summary.samples,
+                samples_present: report.samples_present,
+                dropped_invalid: report.dropped_invalid,
+                dropped_angle: report.dropped_angle,
+                limit_deg: report.limit_deg,
             };
             Ok((row, report))
         })

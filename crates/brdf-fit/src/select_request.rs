@@ -10,7 +10,7 @@ use brdf_core::progress::{Progress, Silent};
 use brdf_render::ImageError;
 
 use crate::select::{Among, Search, SelectRow};
-use crate::select_by_image::{ImageChoice, select_by_image};
+use crate::select_by_image::{ByImage, ImageChoice, select_by_image};
 use crate::{FitError, FitOptions, FitReport, Material};
 
 /// How the choice among candidates is made.
@@ -177,12 +177,38 @@ impl<'a> SelectRequest<'a> {
         })
     }
 
+    /// The options only a selection by L2 reads, refused in a selection
+    /// by image rather than ignored.
+    fn refuse_l2_options(&self) -> Result<(), FitError> {
+        const EXPECTED: &str = "a selection by L2 (`--by-l2`): a selection by image fits every renderer model for appearance on all channels";
+        let given = [
+            ("grey", self.grey.then(|| "on".to_string())),
+            (
+                "max_parameters",
+                self.among.max_parameters.map(|n| n.to_string()),
+            ),
+            (
+                "exhaustive",
+                (self.search == Search::Exhaustive).then(|| "on".to_string()),
+            ),
+        ];
+        match given.into_iter().find_map(|(o, v)| v.map(|v| (o, v))) {
+            Some((option, value)) => Err(FitError::InvalidOption {
+                option,
+                value,
+                expected: EXPECTED,
+            }),
+            None => Ok(()),
+        }
+    }
+
     fn by_image(&self) -> Result<SelectOutcome, FitError> {
         if !self.material.is_renderable() {
             return Err(FitError::NotRenderable {
                 data: self.material.spec().to_string(),
             });
         }
+        self.refuse_l2_options()?;
         let names: Vec<&str> = if self.among.models.is_empty() {
             brdf_models::by_image_models()
         } else {
@@ -194,8 +220,11 @@ impl<'a> SelectRequest<'a> {
             names.len(),
             self.material.name()
         ));
-        let (rows, choice, chosen) =
-            select_by_image(&names, self.material, self.polish, task.as_ref())?;
+        let how = ByImage {
+            polish: self.polish,
+            limit_deg: self.limit_deg,
+        };
+        let (rows, choice, chosen) = select_by_image(&names, self.material, how, task.as_ref())?;
         task.finish();
         Ok(SelectOutcome::Image {
             data: self.material.samples().name.clone(),

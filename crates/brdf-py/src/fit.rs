@@ -53,7 +53,10 @@ use crate::fitted::{PyFit, PyModel};
 ///     ``"blender"``, ``"gltf"``, ``"materialx"``, ``"usd"``, ``"pbrt"``)
 ///     renders exactly, the one whose render is closest to the data, fitted
 ///     for appearance (as ``brdf fit --for``); write it with
-///     ``fit.model.export(for_renderer, path)``.
+///     ``fit.model.export(for_renderer, path)``. It honours ``limit_deg``,
+///     ``polish`` and ``save``; the options it decides itself
+///     (``channels``, ``metric``, ``starts``, ``solver``, ...) raise when
+///     given other values than their defaults.
 ///
 /// Returns
 /// -------
@@ -89,7 +92,28 @@ pub fn fit<'py>(
 ) -> PyResult<PyFit> {
     let model = match (model, for_renderer) {
         (Some(m), None) => m,
-        (None, Some(target)) => return fit_for(py, data, target, save),
+        (None, Some(target)) => {
+            // What --for decides itself is refused when given, not ignored.
+            let given = [
+                ("channels", channels != "rgb"),
+                ("metric", !["auto", "appearance"].contains(&metric)),
+                ("starts", starts != 12),
+                (
+                    "irls_max_iterations",
+                    irls_max_iterations != brdf_fit::options::IRLS_MAX_ITERATIONS,
+                ),
+                ("solver", solver != "auto"),
+                ("lobes", lobes != 1),
+                ("order", order != 8),
+                ("degree", degree != 7),
+            ];
+            if let Some((name, _)) = given.iter().find(|(_, on)| *on) {
+                return Err(usage(format!(
+                    "{name}= has no use with for_renderer=: each of the renderer's models is fitted for appearance with its own settings; leave {name}= out"
+                )));
+            }
+            return fit_for(py, data, target, (limit_deg, polish), save);
+        }
         _ => {
             return Err(usage(
                 "fit: give model=NAME or for_renderer=RENDERER (one of them)".into(),
@@ -190,17 +214,22 @@ fn fit_for(
     py: Python<'_>,
     data: &Bound<'_, PyAny>,
     target: &str,
+    (limit_deg, polish): (f64, bool),
     save: Option<PathBuf>,
 ) -> PyResult<PyFit> {
     let target: brdf_export::Target = target.parse().map_err(to_py)?;
     let material = material(py, data)?;
+    let request = brdf_fit::SelectRequest {
+        limit_deg,
+        polish,
+        ..brdf_fit::SelectRequest::new(&material)
+    };
     let done = py
         .detach(|| {
             brdf_export::for_renderer::fit_for(
-                &material,
+                &request,
                 target,
                 &brdf_export::WriteOptions::default(),
-                &brdf_core::progress::Silent,
             )
         })
         .map_err(|e| usage(e.to_string()))?;

@@ -27,18 +27,19 @@ use crate::fit::material;
 /// models (principled, glTF, glTF + KHR, GGX; or those of ``models``) are
 /// each fitted for appearance and the one of least mean HDR-FLIP against
 /// the data's renders is chosen (Bieron and Peers 2020). This needs data
-/// named by a path that can be rendered (RGL ``.bsdf``, MERL ``.binary``),
-/// and it ignores ``tolerance``, ``limit_deg``, ``grey``,
-/// ``max_parameters`` and ``exhaustive``, as the command ignores their
-/// options.
+/// named by a path that can be rendered (RGL ``.bsdf``, MERL ``.binary``);
+/// ``limit_deg`` limits the samples of each fit's BRDF-space candidates,
+/// and ``tolerance``, ``grey``, ``max_parameters`` and ``exhaustive``,
+/// which only a selection by L2 reads, raise when given.
 ///
 /// Parameters
 /// ----------
 /// data : str, os.PathLike or dict
 ///     A data path (relative paths are also looked up under
 ///     ``BRDF_DATA``), or a dict of arrays as ``load`` returns.
-/// tolerance : float
-///     Accept errors up to ``(1 + tolerance)`` times the best.
+/// tolerance : float, optional
+///     Accept errors up to ``(1 + tolerance)`` times the best (default
+///     0.1).
 /// limit_deg : float
 ///     Drop samples with theta_i or theta_o above this angle.
 /// grey : bool
@@ -80,12 +81,12 @@ use crate::fit::material;
 /// BrdfError
 ///     With the message of the ``brdf`` command.
 #[pyfunction]
-#[pyo3(signature = (data, *, tolerance=0.1, limit_deg=80.0, grey=false, models=None,
+#[pyo3(signature = (data, *, tolerance=None, limit_deg=80.0, grey=false, models=None,
     max_parameters=None, exhaustive=false, by_image=None, polish=false))]
 pub fn select<'py>(
     py: Python<'py>,
     data: &Bound<'py, PyAny>,
-    tolerance: f64,
+    tolerance: Option<f64>,
     limit_deg: f64,
     grey: bool,
     models: Option<Vec<String>>,
@@ -128,9 +129,23 @@ pub fn select<'py>(
             material.spec()
         )));
     }
+    if by == SelectBy::Image || (by == SelectBy::Auto && material.is_renderable()) {
+        let given = [
+            ("tolerance", tolerance.is_some()),
+            ("grey", grey),
+            ("max_parameters", max_parameters.is_some()),
+            ("exhaustive", exhaustive),
+        ];
+        if let Some((name, _)) = given.iter().find(|(_, on)| *on) {
+            return Err(usage(format!(
+                "{name}= applies to a selection by L2, and `{}` can be rendered, so select chooses by image (every renderer model fitted for appearance on all channels): pass by_image=False, or leave {name}= out",
+                material.spec()
+            )));
+        }
+    }
     let request = SelectRequest {
         by,
-        tolerance,
+        tolerance: tolerance.unwrap_or(0.1),
         limit_deg,
         grey,
         among: Among {

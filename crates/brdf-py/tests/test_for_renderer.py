@@ -12,9 +12,10 @@ def test_fit_for_gltf_equals_cli_and_exports_exactly(brdf_cli, tmp_path):
     path = data_file("rgl/paper_white_rgb.bsdf")
     out = tmp_path / "m.gltf"
     cli = cli_json(brdf_cli, "fit", "--data", path, "--for", "gltf", "--out", str(out),
-                   "--quiet")
-    py = brdf.fit(path, for_renderer="gltf")
+                   "--limit", "75", "--quiet")
+    py = brdf.fit(path, for_renderer="gltf", limit_deg=75.0)
     assert without_seconds(py.report) == without_seconds(cli)
+    assert {c["limit_deg"] for c in py.report["candidates"]} == {75.0}
     names = [c["model"] for c in py.report["candidates"]]
     assert set(names) <= {"gltf", "gltf-ext"} and names
     flips = [sum(l["flip"] for l in c["image"]["lights"]) for c in py.report["candidates"]]
@@ -30,3 +31,12 @@ def test_fit_needs_a_model_or_a_renderer():
     path = data_file("rgl/paper_white_rgb.bsdf")
     with pytest.raises(brdf.BrdfError, match="model=NAME or for_renderer"):
         brdf.fit(path)
+
+
+@pytest.mark.parametrize("option", [dict(metric="ngan"), dict(channels="grey"),
+                                    dict(starts=3), dict(solver="lm"), dict(lobes=2)])
+def test_fit_for_refuses_what_it_decides_itself(option):
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    name = next(iter(option))
+    with pytest.raises(brdf.BrdfError, match=f"{name}= has no use with for_renderer="):
+        brdf.fit(path, for_renderer="mitsuba", **option)

@@ -87,3 +87,12 @@ def test_polish_without_by_image_raises_brdf_error():
     path = data_file("curet/abrdf.dat#25")
     with pytest.raises(brdf.BrdfError, match="polish=True.*by_image=True"):
         brdf.select(path, polish=True, models=["ggx"])
+
+
+@pytest.mark.parametrize("option", [dict(tolerance=0.2), dict(grey=True), dict(exhaustive=True),
+                                    dict(max_parameters=4)])
+def test_a_selection_by_image_refuses_the_options_of_one_by_l2(option):
+    path = data_file("rgl/paper_white_rgb.bsdf")
+    name = next(iter(option))
+    with pytest.raises(brdf.BrdfError, match=f"{name}= applies to a selection by L2"):
+        brdf.select(path, **option)

@@ -36,28 +36,38 @@ pub struct FitArgs {
     /// Objective and metric: auto (appearance for renderer models on data
     /// that can be rendered, else ngan), appearance (candidates chosen by
     /// image error, refined in the image objective), or one objective.
-    #[arg(long, value_enum, default_value = "auto")]
+    #[arg(
+        long,
+        value_enum,
+        default_value = "auto",
+        conflicts_with = "for_renderer"
+    )]
     pub metric: MetricArg,
     /// Drop samples with theta_i or theta_o above this angle (degrees).
     #[arg(long, default_value_t = 80.0, allow_negative_numbers = true)]
     pub limit: f64,
     /// grey (mean of the channels), rgb (shared non-linear, per-channel
     /// linear parameters) or per-channel (everything per channel).
-    #[arg(long, value_enum, default_value = "rgb")]
+    #[arg(
+        long,
+        value_enum,
+        default_value = "rgb",
+        conflicts_with = "for_renderer"
+    )]
     pub channels: ChannelsArg,
     /// Solver: auto (default: IRLS bisquare for the polynomial, direct least
     /// squares for other linear models, sqp otherwise), sqp (linear
     /// parameters projected out), lm, sopp (Sopp's two stages), ols or
     /// irls or irls:WEIGHT (all-linear models).
-    #[arg(long, default_value = "auto", value_parser = crate::opts::solver)]
+    #[arg(long, default_value = "auto", value_parser = crate::opts::solver, conflicts_with = "for_renderer")]
     pub solver: Solver,
     /// Multi-start count.
-    #[arg(long, default_value_t = 12)]
+    #[arg(long, default_value_t = 12, conflicts_with = "for_renderer")]
     pub starts: usize,
     /// Reweighting cap of a robust (IRLS) fit (50 is MATLAB's
     /// `robustfit`'s); a fit whose reweighting cycles stops earlier, when
     /// a weighted solution recurs, and says so.
-    #[arg(long, default_value_t = brdf_fit::options::IRLS_MAX_ITERATIONS)]
+    #[arg(long, default_value_t = brdf_fit::options::IRLS_MAX_ITERATIONS, conflicts_with = "for_renderer")]
     pub irls_max_iterations: usize,
     /// End the fit for appearance with a search on the judge's own metric,
     /// the mean HDR-FLIP of the renders: a lower image error for a few
@@ -71,16 +81,16 @@ pub struct FitArgs {
     #[arg(long)]
     pub json: bool,
     /// Specular lobes (Lafortune, Cook-Torrance).
-    #[arg(long, default_value_t = 1, value_parser = crate::opts::at_least_one)]
+    #[arg(long, default_value_t = 1, value_parser = crate::opts::at_least_one, conflicts_with = "for_renderer")]
     pub lobes: usize,
     /// Koenderink expansion order.
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 8, conflicts_with = "for_renderer")]
     pub order: usize,
     /// Polynomial degree (Kurt's model).
-    #[arg(long, default_value_t = 7)]
+    #[arg(long, default_value_t = 7, conflicts_with = "for_renderer")]
     pub degree: usize,
     /// Write a self-contained HTML report of the fit here.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "for_renderer")]
     pub report: Option<PathBuf>,
     /// No progress bar.
     #[arg(long)]
@@ -171,7 +181,13 @@ fn fit_for(args: &FitArgs, material: &Material, bars: &Bars) -> Result<(), CliEr
         ),
         ..brdf_export::WriteOptions::default()
     };
-    let done = brdf_export::for_renderer::fit_for(material, target.target(), &write, bars)?;
+    let request = brdf_fit::SelectRequest {
+        limit_deg: args.limit,
+        polish: args.polish,
+        progress: bars,
+        ..brdf_fit::SelectRequest::new(material)
+    };
+    let done = brdf_export::for_renderer::fit_for(&request, target.target(), &write)?;
     std::fs::write(out, &done.text).map_err(|source| CliError::Io {
         path: out.display().to_string(),
         source,
@@ -184,6 +200,7 @@ fn fit_for(args: &FitArgs, material: &Material, bars: &Bars) -> Result<(), CliEr
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     crate::commands::select::print_by_image(&done.rows, done.choice)?;
+    crate::commands::select::print_samples(&done.rows[done.choice])?;
     say!(
         "wrote {} ({}, exact in the renderer)",
         out.display(),

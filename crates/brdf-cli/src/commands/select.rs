@@ -19,9 +19,10 @@ pub struct SelectArgs {
     /// Data set: `PATH` or `PATH#SAMPLE`.
     #[arg(long)]
     pub data: String,
-    /// Accept errors up to (1 + REL) times the best.
-    #[arg(long, default_value_t = 0.1, allow_negative_numbers = true)]
-    pub tolerance: f64,
+    /// Accept errors up to (1 + REL) times the best (a selection by L2;
+    /// default 0.1).
+    #[arg(long, value_name = "REL", allow_negative_numbers = true)]
+    pub tolerance: Option<f64>,
     /// Drop samples with theta_i or theta_o above this angle (degrees).
     #[arg(long, default_value_t = 80.0, allow_negative_numbers = true)]
     pub limit: f64,
@@ -59,7 +60,7 @@ pub struct SelectArgs {
     pub polish: bool,
     /// Choose among the models RENDERER renders exactly, by image error
     /// (what `brdf fit --for RENDERER` fits and writes).
-    #[arg(long = "for", value_enum, value_name = "RENDERER", conflicts_with_all = ["by_l2", "models", "max_parameters"])]
+    #[arg(long = "for", value_enum, value_name = "RENDERER", conflicts_with_all = ["by_l2", "models", "max_parameters", "grey", "tolerance", "exhaustive"])]
     pub for_renderer: Option<TargetArg>,
     /// No progress bar.
     #[arg(long)]
@@ -88,13 +89,17 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
     if let Some(target) = args.for_renderer {
         return select_for(args, &material, target, &bars);
     }
+    let by = match (args.by_image, args.by_l2) {
+        (true, _) => SelectBy::Image,
+        (_, true) => SelectBy::L2,
+        _ => SelectBy::Auto,
+    };
+    if by == SelectBy::Image || (by == SelectBy::Auto && material.is_renderable()) {
+        refuse_l2_options(args)?;
+    }
     let request = SelectRequest {
-        by: match (args.by_image, args.by_l2) {
-            (true, _) => SelectBy::Image,
-            (_, true) => SelectBy::L2,
-            _ => SelectBy::Auto,
-        },
-        tolerance: args.tolerance,
+        by,
+        tolerance: args.tolerance.unwrap_or(DEFAULT_TOLERANCE),
         limit_deg: args.limit,
         grey: args.grey,
         among: Among {
@@ -123,8 +128,44 @@ pub fn run(args: &SelectArgs) -> Result<(), CliError> {
             image,
             ..
         } => print_by_l2(&data.name, rows, *choice, *tolerance, image.as_ref()),
-        SelectOutcome::Image { rows, choice, .. } => print_by_image(rows, *choice),
+        SelectOutcome::Image { rows, choice, .. } => {
+            print_by_image(rows, *choice)?;
+            print_samples(&rows[*choice])
+        }
     }
+}
+
+/// The tolerance of a selection by L2 when `--tolerance` is not given.
+const DEFAULT_TOLERANCE: f64 = 0.1;
+
+/// The options only a selection by L2 reads, refused (not ignored) when
+/// the choice is made by image.
+fn refuse_l2_options(args: &SelectArgs) -> Result<(), CliError> {
+    let given = [
+        ("--tolerance", args.tolerance.is_some()),
+        ("--grey", args.grey),
+        ("--exhaustive", args.exhaustive),
+        ("--max-parameters", args.max_parameters.is_some()),
+    ];
+    match given.iter().find(|(_, on)| *on) {
+        Some((option, _)) => Err(CliError::Usage(format!(
+            "{option} applies to a selection by L2, and `{}` can be rendered, so select chooses by image (every renderer model fitted for appearance on all channels): add --by-l2, or leave {option} out",
+            args.data
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The samples the choice used, of those present.
+pub(crate) fn print_samples(row: &brdf_fit::select_by_image::ImageChoice) -> Result<(), CliError> {
+    say!(
+        "samples: {} of {} used (dropped {} invalid, {} beyond {} deg; the image objective sees the whole render)",
+        row.samples,
+        row.samples_present,
+        row.dropped_invalid,
+        row.dropped_angle,
+        row.limit_deg
+    )
 }
 
 /// `brdf select --for RENDERER`: the models the renderer renders exactly,
@@ -141,12 +182,19 @@ fn select_for(
             args.data
         )));
     }
-    let s = brdf_export::for_renderer::select_for(material, target.target(), bars)?;
+    let request = SelectRequest {
+        limit_deg: args.limit,
+        polish: args.polish,
+        progress: bars,
+        ..SelectRequest::new(material)
+    };
+    let s = brdf_export::for_renderer::select_for(&request, target.target())?;
     if args.json {
         let v = brdf_fit::select_by_image_json(material.name(), &s.rows, s.choice)?;
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     print_by_image(&s.rows, s.choice)?;
+    print_samples(&s.rows[s.choice])?;
     say!(
         "`{}` renders exactly in {}: write it with `brdf fit --data {} --for {} --out FILE`",
         s.rows[s.choice].model,
