@@ -159,7 +159,7 @@ pub enum TargetArg {
     Gltf,
     /// MaterialX document.
     Materialx,
-    /// USD layer with a UsdPreviewSurface.
+    /// USD layer: a UsdPreviewSurface, or the MaterialX graph of a coloured-lobe or thin-film fit.
     Usd,
     /// Blender Python script building the material.
     Blender,

@@ -245,7 +245,8 @@ fn twin(name: &str, target: Target) -> Option<&'static str> {
     let suffix = match target {
         Target::Mitsuba => "-mitsuba",
         Target::Blender => "-cycles",
-        Target::MaterialX => "-materialx",
+        // USD takes the MaterialX graph.
+        Target::MaterialX | Target::Usd => "-materialx",
         _ => return None,
     };
     let stem = ["-mitsuba", "-cycles", "-materialx"]

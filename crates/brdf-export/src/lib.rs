@@ -3,7 +3,7 @@
 //! Writes a fitted model as a material a renderer loads: a Mitsuba 3
 //! `<bsdf>` snippet or judge scene, a pbrt-v4 material, a glTF 2.0 asset, a
 //! MaterialX document (`gltf_pbr`, `standard_surface`, `open_pbr_surface`),
-//! a USD `UsdPreviewSurface` material and a Blender script.
+//! a USD material (`UsdPreviewSurface`, or a MaterialX graph) and a Blender script.
 //! A material is written only where the target's BSDF equals the fitted
 //! BRDF; otherwise [`export`] returns [`ExportError::NoEquivalent`] naming
 //! why, and [`export_or_convert`] fits a model the target has to the
@@ -17,7 +17,7 @@
 //! | pbrt-v4 | [`pbrt`] | `lambert`; `ggx-conductor*` / `ggx-dielectric*` (height-correlated; `mix` of `diffuse` and `conductor`) |
 //! | glTF 2.0 | [`gltf`] | `gltf`, `gltf-ext` (with `KHR_materials_ior`, `_specular`, `_clearcoat`); `lambert` |
 //! | MaterialX | [`materialx`] | `gltf`, `gltf-ext`, `lambert` as `gltf_pbr` (mapped as `standard_surface`, `open_pbr_surface`); `lobes*-materialx`, `film*-materialx` exact ([`lobes_materialx`]: pbrlib BSDF nodes summed by `add`) |
-//! | USD | [`usd`] | `gltf`, `gltf-ext`, `lambert` mapped to `UsdPreviewSurface` |
+//! | USD | [`usd`] | `gltf`, `gltf-ext`, `lambert` mapped to `UsdPreviewSurface`; `lobes*-materialx`, `film*-materialx` exact (their MaterialX graph as UsdShade prims, render context `mtlx`) |
 //! | Blender | [`blender`] | `gltf`, `gltf-ext`, `lambert` mapped to the Principled BSDF; `lobes*-cycles` exact ([`lobes_blender`]: Diffuse, Glossy, Metallic BSDFs summed) |
 //!
 //! *Mapped* ([`table`]): the renderer's material takes the model's
@@ -75,6 +75,7 @@ pub mod pbrt_mix;
 mod python_literal;
 pub mod table;
 pub mod usd;
+pub mod usd_materialx;
 mod xml;
 
 use brdf_core::Parametric;
@@ -94,7 +95,8 @@ pub enum Target {
     Gltf,
     /// MaterialX document with one material.
     MaterialX,
-    /// USD layer (`.usda`) with a `Material` and a `UsdPreviewSurface`.
+    /// USD layer (`.usda`) with a `Material`: a `UsdPreviewSurface`, or the
+    /// MaterialX graph of a coloured-lobe or thin-film fit.
     Usd,
     /// Blender Python script building a Principled BSDF material.
     Blender,

@@ -124,30 +124,30 @@ fn coat(base: &str, ior: f64, alpha: f64) -> Node {
     )
 }
 
-/// The MaterialX document of a thin-film fit (`film*-materialx`), with
-/// `note` as a comment before it; an error for Cycles' film, naming the
-/// model to fit, and for one channel (the film's luminance, where
-/// MaterialX's film is coloured).
-pub fn write_film(
+/// The MaterialX document of a thin-film fit (`film*-materialx`) for
+/// `target` (MaterialX, or USD through MaterialX); an error for Cycles'
+/// film, naming the model to fit, and for one channel (the film's
+/// luminance, where MaterialX's film is coloured).
+pub(crate) fn film_graph(
     fit: &Fitted,
-    note: Option<&str>,
+    target: Target,
     opts: &WriteOptions,
-) -> Result<String, ExportError> {
+) -> Result<Node, ExportError> {
     let Some(stem) = fit.name.strip_suffix("-cycles") else {
-        return film_nodes(fit, &opts.name).map(|n| document(n, &opts.name, note));
+        return film_nodes(fit, target, &opts.name).map(|n| document(n, &opts.name));
     };
     Err(fit.no_equivalent(
-        Target::MaterialX,
+        target,
         format!(
             "this is Cycles' film (spectral Airy, no energy compensation), not MaterialX's; fit `{stem}-materialx` for an exact MaterialX export"
         ),
     ))
 }
 
-fn film_nodes(fit: &Fitted, base: &str) -> Result<Vec<Node>, ExportError> {
+fn film_nodes(fit: &Fitted, target: Target, base: &str) -> Result<Vec<Node>, ExportError> {
     if fit.channels != 3 {
         return Err(fit.no_equivalent(
-            Target::MaterialX,
+            target,
             "a one-channel thin film is the film's luminance, MaterialX's film is coloured; fit RGB data",
         ));
     }
@@ -181,15 +181,15 @@ fn film_nodes(fit: &Fitted, base: &str) -> Result<Vec<Node>, ExportError> {
     Ok(v)
 }
 
-/// The MaterialX document of a coloured-lobe fit, with `note` as a comment
-/// before it; an error for a configuration without MaterialX's energy
-/// compensation, naming the one to fit.
-pub fn write(
+/// The MaterialX document of a coloured-lobe fit for `target` (MaterialX,
+/// or USD through MaterialX); an error for a configuration without
+/// MaterialX's energy compensation, naming the one to fit.
+pub(crate) fn graph(
     fit: &Fitted,
     lobes: &LobesFit,
-    note: Option<&str>,
+    target: Target,
     opts: &WriteOptions,
-) -> Result<String, ExportError> {
+) -> Result<Node, ExportError> {
     if !lobes.variant.compensated {
         let twin = lobes
             .variant
@@ -197,18 +197,18 @@ pub fn write(
             .replace("-mitsuba", "-materialx")
             .replace("-cycles", "-materialx");
         return Err(fit.no_equivalent(
-            Target::MaterialX,
+            target,
             format!(
-                "MaterialX's GGX nodes add an energy compensation this configuration lacks; fit `{twin}` for an exact MaterialX export"
+                "MaterialX's GGX nodes add an energy compensation this configuration lacks; fit `{twin}` for an exact {target} export"
             ),
         ));
     }
-    Ok(document(terms(lobes, &opts.name), &opts.name, note))
+    Ok(document(terms(lobes, &opts.name), &opts.name))
 }
 
 /// The document summing the BSDF `nodes` (a left fold of `add` nodes:
 /// `((n0 + n1) + n2) + ...`) into material `base`'s `surface`.
-fn document(nodes: Vec<Node>, base: &str, note: Option<&str>) -> String {
+fn document(nodes: Vec<Node>, base: &str) -> Node {
     let names: Vec<String> = nodes.iter().map(|n| n.name().to_string()).collect();
     let mut doc = Node::new("materialx").attr("version", "1.39");
     for n in nodes {
@@ -227,18 +227,16 @@ fn document(nodes: Vec<Node>, base: &str, note: Option<&str>) -> String {
         sum = add;
     }
     let shader = format!("{base}_shader");
-    doc = doc
-        .child(
-            Node::new("surface")
-                .attr("name", &shader)
-                .attr("type", "surfaceshader")
-                .child(link("bsdf", "BSDF", &sum)),
-        )
-        .child(
-            Node::new("surfacematerial")
-                .attr("name", base)
-                .attr("type", "material")
-                .child(link("surfaceshader", "surfaceshader", &shader)),
-        );
-    doc.to_document(true, note)
+    doc.child(
+        Node::new("surface")
+            .attr("name", &shader)
+            .attr("type", "surfaceshader")
+            .child(link("bsdf", "BSDF", &sum)),
+    )
+    .child(
+        Node::new("surfacematerial")
+            .attr("name", base)
+            .attr("type", "material")
+            .child(link("surfaceshader", "surfaceshader", &shader)),
+    )
 }

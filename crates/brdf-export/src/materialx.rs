@@ -144,13 +144,26 @@ fn shader_inputs(fit: &Fitted, g: &Gltf, surface: Surface) -> (&'static str, Vec
     }
 }
 
-/// The MaterialX document for `fit`, with `note` as a comment before it.
-pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+/// The MaterialX document of a coloured-lobe or thin-film fit for `target`
+/// (MaterialX, or USD through MaterialX); `None` for other models.
+pub(crate) fn lobe_graph(
+    fit: &Fitted,
+    target: Target,
+    opts: &WriteOptions,
+) -> Result<Option<Node>, ExportError> {
     if let Some(lobes) = fit.lobes()? {
-        return crate::lobes_materialx::write(fit, &lobes, note, opts);
+        return crate::lobes_materialx::graph(fit, &lobes, target, opts).map(Some);
     }
     if fit.form == RendererForm::ThinFilm {
-        return crate::lobes_materialx::write_film(fit, note, opts);
+        return crate::lobes_materialx::film_graph(fit, target, opts).map(Some);
+    }
+    Ok(None)
+}
+
+/// The MaterialX document for `fit`, with `note` as a comment before it.
+pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+    if let Some(graph) = lobe_graph(fit, Target::MaterialX, opts)? {
+        return Ok(graph.to_document(true, note));
     }
     let g = gltf_params(fit)?;
     let (kind, inputs) = shader_inputs(fit, &g, opts.surface);

@@ -20,7 +20,7 @@
 use brdf_models::ModelConfig;
 
 use crate::convert::{default_via, via_for};
-use crate::{ExportError, Target, export};
+use crate::{ExportError, Surface, Target, export};
 
 /// How a target writes a model.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -51,18 +51,28 @@ impl std::fmt::Display for Support {
 /// glTF parameters but evaluate their own BRDF; Blender's sums of closures
 /// for the coloured-lobe and thin-film models are exact (Cycles' film
 /// integrates the spectrum with its own table, within 1e-3 of the
-/// model's).
+/// model's), as are USD's MaterialX graphs of them.
 fn maps(model: &str, target: Target) -> bool {
-    match target {
-        Target::Usd => true,
-        Target::Blender => brdf_models::entry(model).is_none_or(|e| {
-            !matches!(
-                e.form,
-                brdf_models::RendererForm::ColouredLobes | brdf_models::RendererForm::ThinFilm
-            )
-        }),
-        _ => false,
-    }
+    matches!(target, Target::Usd | Target::Blender) && !summed(model)
+}
+
+/// Whether `model` is a coloured-lobe or thin-film model: a sum of lobes
+/// each target writes exactly where it writes it at all.
+fn summed(model: &str) -> bool {
+    brdf_models::entry(model).is_some_and(|e| {
+        matches!(
+            e.form,
+            brdf_models::RendererForm::ColouredLobes | brdf_models::RendererForm::ThinFilm
+        )
+    })
+}
+
+/// Whether `target` writes `model` as a mapping onto its own material
+/// (with MaterialX's shader `surface`: Standard Surface and OpenPBR take
+/// the glTF parameters under their own BRDF) rather than exactly.
+pub fn is_mapped(model: &str, target: Target, surface: Surface) -> bool {
+    maps(model, target)
+        || (target == Target::MaterialX && surface != Surface::GltfPbr && !summed(model))
 }
 
 /// How `target` writes catalogue model `model` (at its default
@@ -330,4 +340,25 @@ pub fn renders_markdown() -> String {
         );
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sums_of_lobes_are_exact_where_principled_materials_are_mapped() {
+        let gltf_pbr = Surface::GltfPbr;
+        assert!(is_mapped("gltf", Target::Usd, gltf_pbr));
+        assert!(is_mapped("gltf", Target::Blender, gltf_pbr));
+        assert!(!is_mapped("gltf", Target::MaterialX, gltf_pbr));
+        assert!(is_mapped("gltf", Target::MaterialX, Surface::OpenPbr));
+        assert!(!is_mapped("lobes-materialx", Target::Usd, gltf_pbr));
+        assert!(!is_mapped(
+            "film-materialx",
+            Target::MaterialX,
+            Surface::OpenPbr
+        ));
+        assert!(!is_mapped("lobes-cycles", Target::Blender, gltf_pbr));
+    }
 }

@@ -14,9 +14,14 @@
 //!   `F0 = ((ior - 1) / (ior + 1))^2 specular specular_color`.
 //! - `lambert`: the specular workflow with a black `specularColor`.
 //!
+//! The coloured-lobe and thin-film fits MaterialX renders exactly (their
+//! `-materialx` configurations) are written exactly, as their MaterialX
+//! graph in UsdShade prims ([`crate::usd_materialx`]); their Cycles and
+//! Mitsuba configurations are converted by fitting the `-materialx` twin.
 //! Every other model is converted by fitting `gltf`.
 
 use crate::fitted::Fitted;
+use crate::usd_materialx::quoted;
 use crate::{ExportError, Target, WriteOptions};
 use brdf_models::RendererForm;
 
@@ -80,13 +85,14 @@ pub fn inputs(fit: &Fitted) -> Result<Vec<Input>, ExportError> {
     Ok(v)
 }
 
-/// A USD string literal.
-fn quoted(s: &str) -> String {
-    format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
-}
-
 /// The `.usda` layer for `fit`, with `note` as the layer's `doc`.
 pub fn write(fit: &Fitted, note: Option<&str>, opts: &WriteOptions) -> Result<String, ExportError> {
+    if let Some(graph) = crate::materialx::lobe_graph(fit, Target::Usd, opts)? {
+        let doc = note.unwrap_or(
+            "exported exactly by brdf-export (the MaterialX graph as UsdShade prims, render context mtlx)",
+        );
+        return crate::usd_materialx::layer(&graph, doc);
+    }
     let name = &opts.name;
     let mut s = format!("#usda 1.0\n(\n    defaultPrim = {}\n", quoted(name));
     let doc = note.unwrap_or("exported exactly by brdf-export (UsdPreviewSurface mapping)");

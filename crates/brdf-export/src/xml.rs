@@ -31,12 +31,27 @@ impl Node {
         self
     }
 
-    /// The `name` attribute ("" when there is none).
-    pub(crate) fn name(&self) -> &str {
+    /// The element's tag.
+    pub(crate) fn tag(&self) -> &str {
+        &self.tag
+    }
+
+    /// The value of attribute `k`, if set.
+    pub(crate) fn get(&self, k: &str) -> Option<&str> {
         self.attrs
             .iter()
-            .find(|(k, _)| k == "name")
-            .map_or("", |(_, v)| v.as_str())
+            .find(|(key, _)| key == k)
+            .map(|(_, v)| v.as_str())
+    }
+
+    /// The child elements, in order.
+    pub(crate) fn children(&self) -> &[Node] {
+        &self.children
+    }
+
+    /// The `name` attribute ("" when there is none).
+    pub(crate) fn name(&self) -> &str {
+        self.get("name").unwrap_or("")
     }
 
     /// This element with `other`'s attributes and children appended.

@@ -488,6 +488,29 @@ fn a_coloured_lobe_fit_converts_to_its_twin() {
     assert!(flip <= 0.03, "{flip}");
 }
 
+/// USD takes MaterialX's graph: the `-materialx` configurations are exact
+/// there, the others convert to their MaterialX twin.
+#[test]
+fn usd_writes_the_materialx_configurations_exactly_and_converts_the_others_to_them() {
+    use brdf_export::table::{Support, support};
+    for name in [
+        "lobes-materialx",
+        "lobes-conductor-coat-materialx",
+        "film-materialx",
+    ] {
+        assert_eq!(support(name, Target::Usd), Support::Exact, "{name}");
+    }
+    assert_eq!(
+        support("lobes-cycles", Target::Usd),
+        Support::Converted("lobes-materialx".into())
+    );
+    let m = load("conductor_coat_cycles.json");
+    assert_eq!(
+        brdf_export::convert::via_for(m.as_ref(), Target::Usd),
+        "lobes-conductor-coat-materialx"
+    );
+}
+
 #[test]
 fn each_renderer_refuses_the_other_masking_naming_the_variant_to_fit() {
     let m = model("lobes-cycles", 2, &named(&plain_params()));
@@ -537,21 +560,74 @@ fn fixtures_are_the_current_exports() {
         } else {
             (Target::Blender, ".py")
         };
-        let text = export(m.as_ref(), target).unwrap();
-        let file = n.replace(".json", ext);
-        if std::env::var_os("LOBES_WRITE").is_some() {
-            std::fs::write(dir().join(&file), &text).unwrap();
+        let mut files = vec![(n.replace(".json", ext), target)];
+        // USD takes MaterialX's graph.
+        if target == Target::MaterialX {
+            files.push((n.replace(".json", ".usda"), Target::Usd));
         }
+        for (file, target) in files {
+            let text = export(m.as_ref(), target).unwrap();
+            if std::env::var_os("LOBES_WRITE").is_some() {
+                std::fs::write(dir().join(&file), &text).unwrap();
+            }
+            assert_eq!(
+                read(&file),
+                text,
+                "{file}: rerun with LOBES_WRITE=1, then lobes_check.sh"
+            );
+        }
+    }
+}
+
+/// USD (usd-core) and MaterialX (its Python package and standard library)
+/// read each `-materialx` fixture's USD layer and its MaterialX document
+/// (`usd_materialx_check.py`, run by `lobes_check.sh`): the layer is a
+/// material whose `mtlx` surface is the document's graph, node for node
+/// (each prim's `info:id` the node definition MaterialX resolves), input
+/// for input (USD's type of the definition's type, the same value or
+/// link). The answers are for the fixtures as written now.
+#[test]
+fn usd_and_materialx_read_each_usd_layer_as_the_materialx_document() {
+    let answers: serde_json::Value =
+        serde_json::from_str(&read("usd_check.json")).expect("usd_check.json");
+    let answers = answers.as_array().expect("a list");
+    let layers: Vec<String> = std::fs::read_dir(dir())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".usda"))
+        .collect();
+    assert!(!layers.is_empty());
+    assert_eq!(answers.len(), layers.len(), "rerun lobes_check.sh");
+    for a in answers {
+        let file = a["file"].as_str().expect("file");
+        let name = file.trim_start_matches("lobes/");
         assert_eq!(
-            read(&file),
-            text,
-            "{file}: rerun with LOBES_WRITE=1, then lobes_check.sh"
+            a["text"].as_str(),
+            Some(read(name).as_str()),
+            "{file}: the answer is for another text; rerun lobes_check.sh"
+        );
+        assert_eq!(a["valid"], true, "{file}: {}", a["problems"]);
+        let defs: Vec<&str> = a["node_definitions"]
+            .as_array()
+            .expect("node definitions")
+            .iter()
+            .filter_map(|d| d.as_str())
+            .collect();
+        // The diffuse term, a lobe, the sums and the surface at least.
+        assert!(defs.contains(&"ND_oren_nayar_diffuse_bsdf"), "{defs:?}");
+        assert!(
+            defs.contains(&"ND_add_bsdf") && defs.contains(&"ND_surface"),
+            "{defs:?}"
         );
     }
 }
 
 fn is_model(n: &str) -> bool {
-    n.ends_with(".json") && !matches!(n, "render_check.json" | "mitsuba_values.json")
+    n.ends_with(".json")
+        && !matches!(
+            n,
+            "render_check.json" | "mitsuba_values.json" | "usd_check.json"
+        )
 }
 
 fn ours(m: &dyn Parametric, wi: &[f64; 3], wo: &[f64; 3]) -> [f64; 3] {

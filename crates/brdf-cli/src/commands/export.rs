@@ -30,7 +30,7 @@ pub enum ToArg {
     /// MaterialX document (--surface picks the shader)
     #[value(alias = "mtlx")]
     Materialx,
-    /// USD layer (.usda) with a UsdPreviewSurface
+    /// USD layer (.usda): a UsdPreviewSurface, or the MaterialX graph of a coloured-lobe or thin-film fit
     #[value(alias = "usda")]
     Usd,
     /// Blender Python script building a Principled BSDF
@@ -313,25 +313,18 @@ fn report(
         });
         let v = serde_json::json!({
             "model": model, "target": target.to_string(), "out": out.to_string(),
-            "exact": exported.conversion.is_none(), "mapped": mapped(args, target),
+            "exact": exported.conversion.is_none(), "mapped": brdf_export::table::is_mapped(model, target, args.surface.into()),
             "conversion": conversion, "warnings": exported.warnings,
         });
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     match &exported.conversion {
-        None if mapped(args, target) => say!(
+        None if brdf_export::table::is_mapped(model, target, args.surface.into()) => say!(
             "wrote {out}: `{model}` mapped to {target} (its parameters; the renderer's own BRDF, see `brdf export --list`)"
         ),
         None => say!("wrote {out}: `{model}` exactly as {target}"),
         Some(c) => say!("wrote {out}: {}", c.note()),
     }
-}
-
-/// Whether the target writes the model's parameters into a material with
-/// the renderer's own BRDF (see `brdf_export::table`).
-fn mapped(args: &ExportArgs, target: Target) -> bool {
-    matches!(target, Target::Usd | Target::Blender)
-        || (target == Target::MaterialX && args.surface != SurfaceArg::GltfPbr)
 }
 
 #[cfg(test)]

@@ -5,6 +5,8 @@
 # Mitsuba 3 itself, writing what it said beside them (tests/lobes.rs reads it):
 #   lobes/mitsuba_values.json  mitsuba_check.py: Mitsuba's eval of each M.xml
 #                              at 300 direction pairs and at the normal
+#   lobes/usd_check.json       usd_materialx_check.py: USD's reading of each
+#                              M.usda against MaterialX's of M.mtlx
 #   lobes/render_check.json    render_check.py: Mitsuba's render of each M.xml
 #                              on the judge sphere (studio and sky), with
 #                              BLENDER_PYTHON (a python with bpy) Cycles' render
@@ -14,7 +16,7 @@
 #                              studio), beside
 #                              brdf-render's (examples/judge_exr.rs) of M.json,
 #                              by HDR-FLIP
-# Needs PYTHON with mitsuba, numpy, materialx, flip-evaluator. JUDGE_EXR: the judge_exr
+# Needs PYTHON with mitsuba, numpy, materialx, usd-core, flip-evaluator. JUDGE_EXR: the judge_exr
 # example's binary (default: cargo run --release). A few minutes.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -26,13 +28,14 @@ print(json.dumps([{"file": f, "xml": open(f).read()} for f in sorted(glob.glob("
 PY
 "$py" mitsuba_check.py lobes/mitsuba_cases.json >lobes/mitsuba_values.json
 rm lobes/mitsuba_cases.json
+"$py" usd_materialx_check.py lobes/*.usda >lobes/usd_check.json
 exr_dir="$(mktemp -d)"
 trap 'rm -rf "$exr_dir"' EXIT
 # One judge_exr run for every model: they share the judge's shading terms.
 judge_pairs=()
 for m in lobes/*.json; do
     b=$(basename "$m" .json)
-    case $b in render_check | mitsuba_values) continue ;; esac
+    case $b in render_check | mitsuba_values | usd_check) continue ;; esac
     judge_pairs+=("$here/$m" "$exr_dir/brdf-render/$b")
 done
 if [ -n "${JUDGE_EXR:-}" ]; then
