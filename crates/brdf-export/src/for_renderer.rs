@@ -11,9 +11,8 @@
 //! ([`brdf_fit::SelectRequest`]); the least mean FLIP wins.
 
 use brdf_fit::judged::COLOUR_PLANE_NOTE;
-use brdf_fit::select::Among;
-use brdf_fit::select_by_image::ImageChoice;
-use brdf_fit::{FitReport, Material, SelectBy, SelectOutcome, SelectRequest};
+use brdf_fit::select_by_image::{ImageChoice, ModelSpec};
+use brdf_fit::{FitReport, Material, SelectOutcome, SelectRequest};
 use brdf_models::{RendererForm, catalogue};
 
 use crate::convert::{Conversion, DELTA_E_WARN, FLIP_WARN};
@@ -87,19 +86,29 @@ pub struct ForSelection {
 /// only tie with `gltf-ext` at many times its fit's cost (its formula is
 /// evaluated over dual numbers: 54 s on cc_iris_purple_gem against 25 s
 /// for `gltf-ext`, in one `--for gltf` run).
-pub fn candidates_for(material: &Material, target: Target) -> Vec<&'static str> {
+///
+/// Where the data's colours leave every colour plane by more than
+/// [`TWO_LOBES_OUTSIDE`], the coloured-lobe model with a conductor lobe is
+/// also tried with a second, plain lobe ([`TWO_LOBES`]).
+pub fn candidates_for(material: &Material, target: Target) -> Vec<ModelSpec> {
     let isotropic = material
         .dense()
         .is_some_and(brdf_fit::isotropy::is_isotropic);
-    let off_plane = || {
-        material
-            .judge()
-            .ok()
-            .flatten()
-            .and_then(|j| j.data_colour_plane())
-            .is_some_and(|c| c.outside > COLOUR_PLANE_NOTE)
+    // How far the data's colours leave the nearest plane of white and one
+    // colour (0 where they cannot be rendered).
+    let outside = std::cell::OnceCell::new();
+    let outside = || {
+        *outside.get_or_init(|| {
+            material
+                .judge()
+                .ok()
+                .flatten()
+                .and_then(|j| j.data_colour_plane())
+                .map_or(0.0, |c| c.outside)
+        })
     };
-    exact_models(target)
+    let off_plane = || outside() > COLOUR_PLANE_NOTE;
+    let names: Vec<&str> = exact_models(target)
         .into_iter()
         .filter(|name| {
             let Some(e) = catalogue::entry(name) else {
@@ -108,8 +117,41 @@ pub fn candidates_for(material: &Material, target: Target) -> Vec<&'static str> 
             !(isotropic && e.form.is_anisotropic())
                 && (e.form != RendererForm::GltfIridescence || off_plane())
         })
-        .collect()
+        .collect();
+    let mut specs: Vec<ModelSpec> = names.iter().map(|n| ModelSpec::named(n)).collect();
+    if outside() > TWO_LOBES_OUTSIDE {
+        specs.extend(
+            names
+                .iter()
+                .filter(|n| {
+                    TWO_LOBES
+                        .iter()
+                        .any(|t| n.starts_with(t) && !n.contains("coat"))
+                })
+                .map(|n| ModelSpec {
+                    name: n.to_string(),
+                    lobes: 2,
+                }),
+        );
+    }
+    specs
 }
+
+/// The coloured-lobe models tried with a second lobe on data whose
+/// colours leave every colour plane (the films: a highlight of one hue
+/// over a body of another). Measured with brdf-render's judge (128 px,
+/// sky / studio HDR-FLIP), `lobes-conductor-mitsuba` with one lobe and two:
+/// cc_ibiza_sunset 0.297 / 0.170 and 0.261 / 0.142, cc_iris_purple_gem
+/// 0.307 / 0.210 and 0.304 / 0.183, vch_golden_yellow 0.191 / 0.138 and
+/// 0.172 / 0.119; `lobes-f82-cycles` on cc_ibiza_sunset gained
+/// nothing (0.302 / 0.207 and 0.274 / 0.212).
+pub const TWO_LOBES: [&str; 1] = ["lobes-conductor-"];
+
+/// How far the data's colours must leave every colour plane (the judge's
+/// `outside`, under white light) for [`TWO_LOBES`] to be tried: the three
+/// films of the RGL files lie 0.010-0.036 outside, the two paints
+/// 0.0005-0.0016 (`results/colour_planes.md`).
+pub const TWO_LOBES_OUTSIDE: f64 = 0.005;
 
 /// Fit every model `target` renders exactly to the request's material for
 /// appearance and keep the one of least image error (`brdf select
@@ -136,25 +178,12 @@ pub fn select_for(
             target: target.to_string(),
         });
     }
-    let request = SelectRequest {
-        by: SelectBy::Image,
-        among: Among {
-            models: models.iter().map(|m| m.to_string()).collect(),
-            max_parameters: request.among.max_parameters,
-        },
-        limit_deg: request.limit_deg,
-        grey: request.grey,
-        search: request.search,
-        polish: request.polish,
-        progress: request.progress,
-        ..SelectRequest::new(material)
-    };
     let SelectOutcome::Image {
         rows,
         choice,
         chosen,
         ..
-    } = request.run()?
+    } = request.by_image_among(&models)?
     else {
         // A selection by image always answers with image rows.
         return Err(brdf_fit::FitError::NoModelToFit.into());
@@ -213,6 +242,7 @@ pub fn conversion_warning(c: &Conversion, target: Target, front: FrontEnd) -> Op
 #[cfg(test)]
 mod tests {
     use brdf_core::SampleSet;
+    use brdf_fit::select::Among;
     use brdf_models::{ModelConfig, build};
 
     use super::*;
@@ -225,16 +255,47 @@ mod tests {
         Material::new(name, samples, Some(m))
     }
 
+    fn names(specs: &[ModelSpec]) -> Vec<&str> {
+        specs.iter().map(|s| s.name.as_str()).collect()
+    }
+
     #[test]
     fn anisotropic_forms_are_candidates_on_anisotropic_data_only() {
         let iso = candidates_for(&material("lambert", &[0.5]), Target::Mitsuba);
+        let iso = names(&iso);
         assert!(iso.contains(&"ggx-separable"), "{iso:?}");
         assert!(!iso.contains(&"ggx-aniso-separable"), "{iso:?}");
         // kd, ks, ax, ay, f0: widths 0.05 and 0.4.
         let aniso = material("ggx-aniso-separable", &[0.2, 0.5, 0.05, 0.4, 0.04]);
         let all = candidates_for(&aniso, Target::Mitsuba);
-        assert_eq!(all, exact_models(Target::Mitsuba));
-        assert!(all.contains(&"ggx-aniso-separable"), "{all:?}");
+        assert_eq!(names(&all), exact_models(Target::Mitsuba));
+        assert!(all.iter().all(|s| s.lobes == 1), "{all:?}");
+    }
+
+    /// An orange body under a magenta highlight leaves every colour plane:
+    /// there the conductor lobe is tried with a second lobe too; a grey
+    /// material keeps every model at one lobe.
+    #[test]
+    fn a_second_lobe_is_tried_where_the_colours_leave_every_plane() {
+        let config = ModelConfig {
+            channels: 3,
+            ..ModelConfig::default()
+        };
+        let mut m = build("lobes-cycles", &config).expect("model");
+        // kd (rgb), ks1 (rgb), alpha1.
+        m.set_params(&[0.6, 0.3, 0.05, 0.5, 0.0, 0.5, 0.05])
+            .expect("in the box");
+        let samples = SampleSet::new("two hues", "test", vec!["r".into(), "g".into(), "b".into()]);
+        let two_hues = Material::new("two hues", samples, Some(m));
+        let specs = candidates_for(&two_hues, Target::Blender);
+        let two: Vec<&str> = specs
+            .iter()
+            .filter(|s| s.lobes == 2)
+            .map(|s| s.name.as_str())
+            .collect();
+        assert_eq!(two, ["lobes-conductor-cycles"], "{specs:?}");
+        let grey = candidates_for(&material("lambert", &[0.5]), Target::Blender);
+        assert!(grey.iter().all(|s| s.lobes == 1), "{grey:?}");
     }
 
     #[test]

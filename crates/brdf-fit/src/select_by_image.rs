@@ -5,17 +5,49 @@
 use std::time::Instant;
 
 use brdf_core::progress::Task;
+use brdf_models::ModelConfig;
 use brdf_render::ImageError;
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::{FitError, FitReport, FitRequest, Material, Metric};
 
+/// A model of [`select_by_image`]: its catalogue name and its number of
+/// specular lobes (the models with several: the coloured lobes,
+/// Lafortune, Cook-Torrance).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ModelSpec {
+    /// Catalogue name (forgiving names resolve).
+    pub name: String,
+    /// Specular lobes (`ModelConfig::lobes`).
+    pub lobes: usize,
+}
+
+impl ModelSpec {
+    /// `name` with one lobe.
+    pub fn named(name: &str) -> Self {
+        ModelSpec {
+            name: name.to_string(),
+            lobes: 1,
+        }
+    }
+
+    /// The name, with the lobe count when it is not one.
+    pub fn label(&self, name: &str) -> String {
+        match self.lobes {
+            1 => name.to_string(),
+            k => format!("{name} ({k} lobes)"),
+        }
+    }
+}
+
 /// One model of [`select_by_image`]: its appearance fit and image errors.
 #[derive(Clone, Debug, Serialize)]
 pub struct ImageChoice {
     /// Catalogue name.
     pub model: String,
+    /// The name with the lobe count where it is not one.
+    pub label: String,
     /// Objective of the chosen candidate of this model.
     pub objective: String,
     /// Optional lobes it kept.
@@ -58,7 +90,7 @@ pub struct ByImage {
 /// made once for every model, the models fitted in parallel (rows in the
 /// order of `models`, each fit the same for any number of threads).
 pub fn select_by_image(
-    models: &[&str],
+    models: &[ModelSpec],
     material: &Material,
     how: ByImage,
     task: &dyn Task,
@@ -68,20 +100,27 @@ pub fn select_by_image(
     material.judge()?;
     let fitted: Vec<(ImageChoice, FitReport)> = models
         .par_iter()
-        .map(|name| {
-            task.item(&format!("{name} on {}", material.name()));
+        .map(|spec| {
+            let entry = crate::resolve(&spec.name)?;
+            let label = spec.label(entry.name);
+            task.item(&format!("{label} on {}", material.name()));
             let t0 = Instant::now();
             let request = FitRequest {
                 metric: Metric::Appearance,
                 polish: how.polish,
                 limit_deg: how.limit_deg,
-                ..FitRequest::new(material, crate::resolve(name)?)
+                config: ModelConfig {
+                    lobes: spec.lobes,
+                    ..ModelConfig::default()
+                },
+                ..FitRequest::new(material, entry)
             };
             let report = request.run()?.into_report()?;
             task.advance(1);
             let chosen = report.candidates.iter().find(|c| c.chosen);
             let row = ImageChoice {
                 model: report.summary.model.clone(),
+                label,
                 objective: chosen.map_or_else(String::new, |c| c.objective.clone()),
                 lobes: chosen.map_or_else(Vec::new, |c| c.lobes.clone()),
                 image: report

@@ -10,7 +10,7 @@ use brdf_core::progress::{Progress, Silent};
 use brdf_render::ImageError;
 
 use crate::select::{Among, Search, SelectRow};
-use crate::select_by_image::{ByImage, ImageChoice, select_by_image};
+use crate::select_by_image::{ByImage, ImageChoice, ModelSpec, select_by_image};
 use crate::{FitError, FitOptions, FitReport, Material};
 
 /// How the choice among candidates is made.
@@ -203,28 +203,36 @@ impl<'a> SelectRequest<'a> {
     }
 
     fn by_image(&self) -> Result<SelectOutcome, FitError> {
+        let names: Vec<&str> = if self.among.models.is_empty() {
+            brdf_models::by_image_models()
+        } else {
+            self.among.models.iter().map(String::as_str).collect()
+        };
+        let specs: Vec<ModelSpec> = names.into_iter().map(ModelSpec::named).collect();
+        self.by_image_among(&specs)
+    }
+
+    /// A selection by image among `specs` (models with their number of
+    /// specular lobes), whatever `among` names: the request's material,
+    /// limit, polish and progress.
+    pub fn by_image_among(&self, specs: &[ModelSpec]) -> Result<SelectOutcome, FitError> {
         if !self.material.is_renderable() {
             return Err(FitError::NotRenderable {
                 data: self.material.spec().to_string(),
             });
         }
         self.refuse_l2_options()?;
-        let names: Vec<&str> = if self.among.models.is_empty() {
-            brdf_models::by_image_models()
-        } else {
-            self.among.models.iter().map(String::as_str).collect()
-        };
-        let task = self.progress.task("select", names.len());
+        let task = self.progress.task("select", specs.len());
         task.item(&format!(
             "{} renderer models on {}",
-            names.len(),
+            specs.len(),
             self.material.name()
         ));
         let how = ByImage {
             polish: self.polish,
             limit_deg: self.limit_deg,
         };
-        let (rows, choice, chosen) = select_by_image(&names, self.material, how, task.as_ref())?;
+        let (rows, choice, chosen) = select_by_image(specs, self.material, how, task.as_ref())?;
         task.finish();
         Ok(SelectOutcome::Image {
             data: self.material.samples().name.clone(),

@@ -204,7 +204,7 @@ fn fit_for(args: &FitArgs, material: &Material, bars: &Bars) -> Result<(), CliEr
     say!(
         "wrote {} ({}, exact in the renderer)",
         out.display(),
-        done.rows[done.choice].model
+        done.rows[done.choice].label
     )
 }
 

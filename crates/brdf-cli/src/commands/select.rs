@@ -197,7 +197,7 @@ fn select_for(
     print_samples(&s.rows[s.choice])?;
     say!(
         "`{}` renders exactly in {}: write it with `brdf fit --data {} --for {} --out FILE`",
-        s.rows[s.choice].model,
+        s.rows[s.choice].label,
         target.target(),
         args.data,
         target.target()
@@ -245,7 +245,7 @@ pub(crate) fn print_by_image(
         say!(
             "{} {:<11} {:<9} lobes [{}]: FLIP {}, CIEDE2000 {:.1}, Ngan L2 {:.4e}, {} parameters, {:.1} s",
             if i == choice { "*" } else { " " },
-            r.model,
+            r.label,
             r.objective,
             r.lobes.join(", "),
             flips.join(", "),
