@@ -120,14 +120,14 @@ def export(fit_json, summary, route, data):
 
 def fit_for(data, renderer, workdir):
     """`brdf fit --for RENDERER`; returns (material file, the chosen model's
-    name, wall seconds)."""
+    label: its name, with its lobe count where not one; wall seconds)."""
     ext = {"blender": "py", "materialx": "mtlx"}.get(renderer, "xml")
     out = Path(workdir) / f"{data.stem}.for.{renderer}.{ext}"
     cmd = [brdf_bin(), "fit", "--data", str(data), "--for", renderer, "--out", str(out),
            "--json", "--quiet"]
     t0 = time.time()
     done = subprocess.run(cmd, check=True, capture_output=True, text=True)
-    return out, json.loads(done.stdout)["choice"]["model"], time.time() - t0
+    return out, json.loads(done.stdout)["choice"]["label"], time.time() - t0
 
 
 def fit_and_export(data, model, objective, workdir, route="exported"):

@@ -45,7 +45,7 @@ def main():
                                        for i in (ref, mitsuba, cycles, materialx))
     exposure = 1.0 / float(np.percentile(ref, 99))
     tiles = {"measured": ref, "mitsuba": mitsuba, "cycles": cycles, "materialx": materialx}
-    chosen = {k: json.load(open(os.path.join(out, f"{name}.{k}.json")))["model"]
+    chosen = {k: label(json.load(open(os.path.join(out, f"{name}.{k}.json"))))
               for k in ("mitsuba", "blender", "materialx")}
     for k, img in tiles.items():
         png(img, exposure, os.path.join(out, f"{name}.{k}.studio.png"))
@@ -61,6 +61,13 @@ def main():
                "models": chosen,
                "mitsuba": mi.__version__}, open(os.path.join(out, "renderers.json"), "w"), indent=1)
     print(md)
+
+
+def label(saved):
+    """A saved model's name, with its lobe count where it is not one (as
+    `brdf fit --for` names its choice)."""
+    lobes = saved.get("structure", {}).get("lobes", 1)
+    return saved["model"] + (f" ({lobes} lobes)" if lobes != 1 else "")
 
 
 if __name__ == "__main__":
