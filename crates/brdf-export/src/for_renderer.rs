@@ -95,17 +95,15 @@ pub fn candidates_for(material: &Material, target: Target) -> Vec<ModelSpec> {
         .dense()
         .is_some_and(brdf_fit::isotropy::is_isotropic);
     // How far the data's colours leave the nearest plane of white and one
-    // colour (0 where they cannot be rendered).
-    let outside = std::cell::OnceCell::new();
+    // colour (0 where they cannot be rendered); asked only where a
+    // candidate depends on it.
     let outside = || {
-        *outside.get_or_init(|| {
-            material
-                .judge()
-                .ok()
-                .flatten()
-                .and_then(|j| j.data_colour_plane())
-                .map_or(0.0, |c| c.outside)
-        })
+        material
+            .judge()
+            .ok()
+            .flatten()
+            .and_then(|j| j.data_colour_plane())
+            .map_or(0.0, |c| c.outside)
     };
     let off_plane = || outside() > COLOUR_PLANE_NOTE;
     let names: Vec<&str> = exact_models(target)
@@ -118,21 +116,21 @@ pub fn candidates_for(material: &Material, target: Target) -> Vec<ModelSpec> {
                 && (e.form != RendererForm::GltfIridescence || off_plane())
         })
         .collect();
-    let mut specs: Vec<ModelSpec> = names.iter().map(|n| ModelSpec::named(n)).collect();
-    if outside() > TWO_LOBES_OUTSIDE {
-        specs.extend(
-            names
+    let two_lobes: Vec<ModelSpec> = names
+        .iter()
+        .filter(|n| {
+            TWO_LOBES
                 .iter()
-                .filter(|n| {
-                    TWO_LOBES
-                        .iter()
-                        .any(|t| n.starts_with(t) && !n.contains("coat"))
-                })
-                .map(|n| ModelSpec {
-                    name: n.to_string(),
-                    lobes: 2,
-                }),
-        );
+                .any(|t| n.starts_with(t) && !n.contains("coat"))
+        })
+        .map(|n| ModelSpec {
+            name: n.to_string(),
+            lobes: 2,
+        })
+        .collect();
+    let mut specs: Vec<ModelSpec> = names.iter().map(|n| ModelSpec::named(n)).collect();
+    if !two_lobes.is_empty() && outside() > TWO_LOBES_OUTSIDE {
+        specs.extend(two_lobes);
     }
     specs
 }
