@@ -598,7 +598,12 @@ def users_wait_section(d):
             "films (ibiza, iris) the bounded LM creeps along a flat valley with several parameters on bounds for "
             "hundreds of iterations (see `iterations` in the JSON), each a fused pass over 20,196 samples x 3 "
             "channels (kernel, then the 13-column Gram update `add_gram`). Left: a better step in such valleys "
-            "(e.g. an active-set Gauss-Newton step once the bounds settle), the kernel below.",
+            "(e.g. an active-set Gauss-Newton step once the bounds settle), the kernel below. Measured and "
+            "not adopted: Marquardt's scaling from the current column norms, without MINPACK's memory of the "
+            "largest (so a width whose column was once large is not held back by it): the `principled` "
+            "`--metric ngan` fits kept their L2 but took 163 iterations instead of 345 on cc_ibiza_sunset and 12 "
+            "instead of 25 on paper_white, 411 instead of 328 on cc_iris_purple_gem and 336 (the cap) instead "
+            "of 45 on vch_golden_yellow.",
             "- The command floor: every `brdf fit` of an RGL file needs the data and the fit rendered at 128 px "
             "for its report; the data's render, mostly the RGL interpolation (`brdf_io::rgl`), is made on a file's "
             "first fit and then read from the render cache (`brdf_fit::render_cache`; `floor` against `floor, "
@@ -673,7 +678,8 @@ def users_wait_section(d):
             "degrees, and `new_models_fits.md` gives each study fit's L2 on both sets: the `ngan` rows here compare "
             "with its `Ngan L2 (every node)` column.",
             "- `brdf fit --for` (table above): each fits every model the renderer renders exactly (8 for "
-            "Mitsuba and Blender, 10 for MaterialX on isotropic data), each by the whole appearance pipeline, "
+            "Mitsuba and Blender, 10 for MaterialX on isotropic data; on the three films one more, the "
+            "conductor-lobe model with a second lobe), each by the whole appearance pipeline, "
             "in parallel, so its wall clock is about half its processor time. Profiled (`perf record` of "
             "`brdf fit --for mitsuba` on paper_white, after the kernels were vectorised): the vectorised "
             "kernels (with faer's factorisations, under one symbol `pulp::...::vectorize`) about a third, the "
@@ -698,7 +704,10 @@ def users_wait_section(d):
             "the same image errors in 60 s before and 67 s after (one core busy with other work), and the "
             "default `principled` and `gltf-ext` fits of the five files moved their 128-px FLIP by at most "
             "0.0002 and their BRDF-space candidates' seconds by -24% to +44%: the zero column is not what "
-            "makes those bases slow. Left: the kernels' per-sample geometry computed once per sample set.",
+            "makes those bases slow. Nor is their polish: the BRDF-space bases of the models without optional "
+            "lobes solved only as starts, as a fitted-data model's are, gave the same choices and image errors "
+            "in about the same time (`--for mitsuba` and `--for blender` on four files). Left: the kernels' "
+            "per-sample geometry computed once per sample set.",
             "- `brdf reproduce` (with `PEERS_LONG=1`): its parts timed one by one beside this run "
             "(`brdf reproduce --only PART`, two cores): `new_models` about 90% of the wall clock, `kurt_9_3` "
             "about 30 s, `kurt_9_4_times` 9 s, the other ten parts 10 s together. `new_models` fits 29 models "
