@@ -344,6 +344,9 @@ fn new_targets_write_their_files() {
         let (ok, stdout, stderr) = brdf(&args);
         assert!(ok, "{to}: {stderr}");
         assert!(stdout.contains("mapped"), "{to}: {stdout}");
+        // How to put the file to use, naming it.
+        let usage = stdout.lines().find(|l| l.starts_with("use it: "));
+        assert!(usage.is_some_and(|l| l.contains(s(&out))), "{to}: {stdout}");
         let text = std::fs::read_to_string(&out).expect("written");
         assert!(text.contains(want), "{to}: {text}");
     }

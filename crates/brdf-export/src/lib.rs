@@ -124,6 +124,32 @@ impl Target {
             Target::Blender => "py",
         }
     }
+
+    /// How a user puts `file`, written for this target, to use: one line
+    /// the commands print after writing it (the details are in
+    /// `docs/export.md`).
+    pub fn usage(self, file: &str) -> String {
+        match self {
+            Target::Mitsuba => format!(
+                "use it: paste the `<bsdf>` of {file} into a Mitsuba 3 scene and refer to it by its id (`brdf export --to mitsuba --scene` writes a whole judge scene)"
+            ),
+            Target::Pbrt => format!(
+                "use it: `Include \"{file}\"` in a pbrt-v4 scene, then `NamedMaterial` its name before a shape"
+            ),
+            Target::Gltf => format!(
+                "use it: open {file} in a glTF 2.0 viewer, or import it into Blender (File > Import > glTF 2.0)"
+            ),
+            Target::MaterialX => format!(
+                "use it: `MaterialXView --material {file}`, or load it where MaterialX is read (USD, Houdini, Maya, Blender's importers)"
+            ),
+            Target::Usd => format!(
+                "use it: reference {file} from a scene (`references = @{file}@`) and bind it to a shape; `usdview` shows it"
+            ),
+            Target::Blender => format!(
+                "use it: `blender -b -P {file} -- --blend material.blend` (or `python {file} --blend material.blend` with pip's bpy), or run it in Blender's Scripting workspace"
+            ),
+        }
+    }
 }
 
 /// A light set of the judge scene (`docs/appearance.md`).

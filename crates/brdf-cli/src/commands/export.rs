@@ -324,7 +324,8 @@ fn report(
         ),
         None => say!("wrote {out}: `{model}` exactly as {target}"),
         Some(c) => say!("wrote {out}: {}", c.note()),
-    }
+    }?;
+    say!("{}", target.usage(&out.to_string()))
 }
 
 #[cfg(test)]

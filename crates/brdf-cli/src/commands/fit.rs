@@ -202,9 +202,10 @@ fn fit_for(args: &FitArgs, material: &Material, bars: &Bars) -> Result<(), CliEr
     crate::commands::select::print_by_image(&done.rows, done.choice)?;
     crate::commands::select::print_samples(&done.rows[done.choice])?;
     say!(
-        "wrote {} ({}, exact in the renderer)",
+        "wrote {} ({}, exact in the renderer)\n{}",
         out.display(),
-        done.rows[done.choice].label
+        done.rows[done.choice].label,
+        target.target().usage(&out.display().to_string())
     )
 }
 
