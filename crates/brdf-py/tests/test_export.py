@@ -50,13 +50,16 @@ def test_conversion_as_the_command(brdf_cli, tmp_path):
     # On paper_white that conversion changes the render beyond the warning
     # limit (FLIP 0.02 under a light set), not the refusal limit (0.1): it
     # is written, with a UserWarning naming Python's route to an exact
-    # material, the same bytes as the command's.
+    # material (USD renders the coloured lobes and films exactly, through
+    # their MaterialX graph: `for_renderer="usd"`), the same bytes as the
+    # command's.
     saved = str(FIXTURES / "principled.json")
     with pytest.raises(brdf.BrdfError, match="no exact equivalent"):
         brdf.export(saved, "usd")
     out = tmp_path / "m.usda"
     brdf_cli("export", "--from", saved, "--to", "usd", str(out), "--name", "fitted")
-    with pytest.warns(UserWarning, match=r'renders differently.*brdf\.fit\(data, "gltf"\)') as caught:
+    with pytest.warns(UserWarning,
+                      match=r'renders differently.*brdf\.fit\(data, for_renderer="usd"\)') as caught:
         text = brdf.export(saved, "usd", convert=True)
     assert not any("--" in str(w.message) for w in caught)
     assert text == out.read_text()
