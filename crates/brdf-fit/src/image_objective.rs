@@ -37,8 +37,11 @@
 //! error at a few bright ones. Its Jacobian sums the pixels' un-logged
 //! derivatives.
 
+use std::sync::Arc;
+
 use brdf_core::{Brdf, DirPairs, Parametric};
 use brdf_render::ShadingPoints;
+use brdf_render::by_size::BySize;
 use brdf_render::judge::standard_lights;
 use brdf_solve::{LeastSquaresProblem, ModelProblem};
 use rayon::prelude::*;
@@ -651,8 +654,8 @@ impl LeastSquaresProblem for ImageProblem<'_> {
 /// refines a fit, it does not search from scratch).
 #[derive(Clone, Debug)]
 pub struct ImageTarget {
-    /// The shading terms of the images.
-    pub terms: ImageTerms,
+    /// The shading terms of the images (shared: [`image_terms`]).
+    pub terms: Arc<ImageTerms>,
     /// Reference pixels, channel-major.
     pub reference: Vec<f64>,
     /// Exposure of every image.
@@ -665,7 +668,12 @@ impl ImageTarget {
     /// The target of `reference` (anything evaluable: measured data, a
     /// model) seen through `terms` by a fit with `channels` channels,
     /// starting at `start`.
-    pub fn new(terms: ImageTerms, reference: &dyn Brdf, channels: usize, start: Vec<f64>) -> Self {
+    pub fn new(
+        terms: Arc<ImageTerms>,
+        reference: &dyn Brdf,
+        channels: usize,
+        start: Vec<f64>,
+    ) -> Self {
         let px = terms.render(reference, channels);
         let exposures = terms.exposures(&px, channels);
         ImageTarget {
@@ -678,8 +686,15 @@ impl ImageTarget {
 }
 
 /// The shading terms of the standard light sets at `size` pixels (no
-/// background: only the sphere is fitted), as image-objective terms.
-pub fn image_terms(size: usize) -> Result<ImageTerms, FitError> {
+/// background: only the sphere is fitted), as image-objective terms;
+/// made once and shared by every target alive at the time
+/// ([`BySize`]: each candidate of a selection fits in the image objective).
+pub fn image_terms(size: usize) -> Result<Arc<ImageTerms>, FitError> {
+    static TERMS: BySize<ImageTerms> = BySize::new();
+    TERMS.get_or_make(size, || make_image_terms(size))
+}
+
+fn make_image_terms(size: usize) -> Result<ImageTerms, FitError> {
     let mut pairs = DirPairs::with_capacity(0);
     let mut weight_rows: [Vec<f64>; 3] = Default::default();
     let mut pixel = Vec::new();

@@ -12,6 +12,7 @@ use std::sync::Arc;
 
 use brdf_core::Brdf;
 
+use crate::by_size::BySize;
 use crate::flip::FlipMap;
 use crate::image_error::{DataColourPlane, ImageError};
 use crate::reference::Reference;
@@ -39,17 +40,23 @@ pub struct Judge {
 
 impl Judge {
     /// The judge at `size x size` pixels (backgrounds shown, as the
-    /// reference renderer's images; the terms are computed once).
+    /// reference renderer's images; the terms are computed once and
+    /// shared with every judge of the same size alive at the time,
+    /// [`BySize`]).
     pub fn new(size: usize) -> Self {
-        let points = Arc::new(
-            standard_lights()
+        // The terms depend on the size alone: judges alive at once share
+        // them (a `select` makes one per candidate).
+        static TERMS: BySize<Vec<(LightSet, ShadingPoints)>> = BySize::new();
+        let made: Result<_, std::convert::Infallible> = TERMS.get_or_make(size, || {
+            Ok(standard_lights()
                 .into_iter()
                 .map(|l| {
                     let sp = ShadingPoints::judge_with_background(&l, size);
                     (l, sp)
                 })
-                .collect(),
-        );
+                .collect())
+        });
+        let Ok(points) = made;
         Judge {
             size,
             points,

@@ -47,6 +47,7 @@
 
 pub mod area_light;
 pub mod batch;
+pub mod by_size;
 pub mod camera;
 pub mod colour;
 pub mod colour_plane;
