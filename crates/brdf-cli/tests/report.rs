@@ -136,3 +136,79 @@ fn scattered_data_have_no_image_error() {
     assert!(page.contains("no image error can be formed"));
     assert!(!page.contains("id=\"errors\""));
 }
+
+/// A selection by image (the default on RGL data) shows in the report as
+/// what it chose by: every candidate's image errors, with the choice
+/// marked, the numbers those of `brdf select --json`; a selection of
+/// another file is refused.
+#[test]
+#[ignore = "needs BRDF_DATA"]
+fn a_selection_by_image_shows_each_candidates_image_errors() {
+    let p = data_file("rgl/paper_white_rgb.bsdf").display().to_string();
+    let dir = tmp("by-image");
+    let (select, fit, html) = (
+        dir.join("select.json"),
+        dir.join("fit.json"),
+        dir.join("page.html"),
+    );
+    let (ok, out, err) = brdf(&[
+        "select",
+        "--data",
+        &p,
+        "--models",
+        "lambert,gltf",
+        "--json",
+        "--quiet",
+    ]);
+    assert!(ok, "{err}");
+    std::fs::write(&select, &out).expect("selection written");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("select JSON");
+    let chosen = v["choice"]["label"].as_str().expect("choice").to_string();
+    let (ok, _, err) = brdf(&[
+        "fit",
+        "--data",
+        &p,
+        "--model",
+        &chosen,
+        "--quiet",
+        "--save",
+        &fit.display().to_string(),
+    ]);
+    assert!(ok, "{err}");
+    let report = |data: &str| {
+        brdf(&[
+            "report",
+            "--data",
+            data,
+            "--fit",
+            &fit.display().to_string(),
+            "--select",
+            &select.display().to_string(),
+            "--out",
+            &html.display().to_string(),
+            "--quiet",
+        ])
+    };
+    let (ok, _, err) = report(&p);
+    assert!(ok, "{err}");
+    let page = read(&html);
+    assert_page(&page, &["selection"]);
+    assert!(page.contains("Chosen by image error"));
+    assert!(page.contains(&format!("<strong>{chosen}</strong> (chosen)")));
+    for c in v["candidates"].as_array().expect("candidates") {
+        let lights = c["image"]["lights"].as_array().expect("lights");
+        let mean = lights
+            .iter()
+            .map(|l| l["flip"].as_f64().expect("flip"))
+            .sum::<f64>()
+            / lights.len() as f64;
+        let used = format!("{} of {}", c["samples"], c["samples_present"]);
+        assert!(page.contains(&format!("<td>{mean:.4}</td>")), "{mean:.4}");
+        assert!(page.contains(&used), "{used}");
+    }
+    let other = data_file("rgl/colodur_napoli_4f_rgb.bsdf")
+        .display()
+        .to_string();
+    let (ok, _, err) = report(&other);
+    assert!(!ok && err.contains("not on the report's data"), "{err}");
+}

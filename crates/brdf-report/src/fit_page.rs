@@ -252,8 +252,8 @@ pub fn render(input: &FitInput, a: &Analysis, back: Option<&str>) -> Result<Stri
         polar_svgs.push((polar::svg(sl, false)?, polar::svg(sl, true)?));
     }
     let selection = match input.selection {
-        Some((v, path)) => select_plot::svgs(v, path)?,
-        None => Vec::new(),
+        Some((v, path)) => Some(select_plot::selection(v, path, input.data)?),
+        None => None,
     };
     let material = material(input.data);
     let ctx = minijinja::context! {
