@@ -237,8 +237,8 @@ fn fit_for(
     if let Some(path) = &save {
         saved.save(path).map_err(to_py)?;
     }
-    let report =
-        brdf_fit::select_by_image_json(material.name(), &done.rows, done.choice).map_err(to_py)?;
+    let report = brdf_fit::select_by_image_json(&material.samples().name, &done.rows, done.choice)
+        .map_err(to_py)?;
     Ok(PyFit {
         models: vec![PyModel { saved }],
         report: crate::json::to_py_object(py, &report)?.unbind(),

@@ -9,7 +9,8 @@
 //!   solver, time, termination, parameters with standard errors and bound
 //!   marks), polar incidence-plane slices, the data's coverage, sphere
 //!   renders (measured | fitted | FLIP) with image errors, the selection
-//!   plot and a plain-words [`verdict`];
+//!   ([`select_plot`]: plots and a table by L2 or by image error) and a
+//!   plain-words [`verdict`];
 //! - [`batch_page`]: the index of `DIR/fits.jsonl`, sortable, with
 //!   thumbnails and one linked fit page per row;
 //! - [`polar`], [`coverage`], [`spheres`], [`embed`]: the pictures.

@@ -196,7 +196,7 @@ fn fit_for(args: &FitArgs, material: &Material, bars: &Bars) -> Result<(), CliEr
         done.report.saved_model(material.name())?.save(path)?;
     }
     if args.json {
-        let v = brdf_fit::select_by_image_json(material.name(), &done.rows, done.choice)?;
+        let v = brdf_fit::select_by_image_json(&material.samples().name, &done.rows, done.choice)?;
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     crate::commands::select::print_by_image(&done.rows, done.choice)?;

@@ -20,8 +20,8 @@ pub struct ReportArgs {
     /// A model saved by `brdf fit --save`.
     #[arg(long, requires = "data")]
     pub fit: Option<PathBuf>,
-    /// The output of `brdf select --json` for the same data (adds the
-    /// selection plot).
+    /// The output of `brdf select --json` (or `brdf select --for RENDERER
+    /// --json`) for the same data: adds the selection's plots and table.
     #[arg(long)]
     pub select: Option<PathBuf>,
     /// A `brdf batch --out` folder: write its index and one page per fit.

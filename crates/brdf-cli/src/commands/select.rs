@@ -190,7 +190,7 @@ fn select_for(
     };
     let s = brdf_export::for_renderer::select_for(&request, target.target())?;
     if args.json {
-        let v = brdf_fit::select_by_image_json(material.name(), &s.rows, s.choice)?;
+        let v = brdf_fit::select_by_image_json(&material.samples().name, &s.rows, s.choice)?;
         return say!("{}", serde_json::to_string_pretty(&v)?);
     }
     print_by_image(&s.rows, s.choice)?;
