@@ -189,6 +189,9 @@ fn other_file(name: &str) -> &'static str {
         "render_fidelity/" => {
             "the Mitsuba 3 renders behind `render_fidelity.md` (one PNG per material, fit and light set), its `table.json`, and the peer's rows `peer.json` (`python benches/judge/peer_inverse.py`; `--rejudge` judges its parameters again)"
         }
+        "for_stages.jsonl" => {
+            "where `brdf fit --for` spends its time, model by model (BRDF-space stages and image refinements, seconds and FLIP), written by `python benches/peers/for_stages.py target/release/brdf cc_ibiza_sunset_rgb.bsdf`"
+        }
         "colour_planes.md" => {
             "what colour alone costs a renderer model with one base colour (principled, glTF) on each RGL measurement, written by `python benches/judge/colour_planes.py`"
         }
