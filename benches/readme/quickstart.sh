@@ -2,7 +2,7 @@
 # Time the README's quick start: run every command of its "Quick start"
 # block, exactly as written, in a scratch folder (`brdf` the release build),
 # and write their wall times into results/quickstart.md and into the README
-# between its `quickstart-times` markers (crates/brdf-cli/tests/readme.rs
+# between its `quickstart-times` markers (crates/brdf-cli/tests/cli/readme.rs
 # fails when the two differ or a command of the block has no time).
 #
 #   cargo build --release -p brdf-cli

@@ -4,7 +4,7 @@
 # command's time includes compiling the workspace), without BRDF_DATA,
 # each command run exactly as the README writes it. Writes the times into
 # results/setup.md and into the README between its `setup-times` markers
-# (crates/brdf-cli/tests/readme.rs fails when the two differ or a set-up
+# (crates/brdf-cli/tests/cli/readme.rs fails when the two differ or a set-up
 # command has no time).
 #
 #   bash benches/readme/setup.sh

@@ -15,7 +15,7 @@
 //! part exact in `f64` and a correction; `e^r` by its Taylor polynomial of
 //! degree 13 (truncation `< 5e-18` relative); `2^k` assembled in the
 //! exponent bits. Accuracy: within 2 ulp of the correctly rounded value on
-//! `[-708, 709]` (tested against `f64::exp` in `tests/vmath.rs`).
+//! `[-708, 709]` (tested against `f64::exp` in `tests/core/vmath.rs`).
 
 /// `e^x`: within 2 ulp on `[-708, 709]`; `0` below `-708` (the true value
 /// is below `3.4e-308`, at the edge of the normal range), `+inf` above

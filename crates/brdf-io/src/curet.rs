@@ -9,7 +9,7 @@
 //! the darkest sample (61) is divided by the cosine of columns 4-5, as only
 //! the illumination angle is, and with the columns swapped removing it
 //! would leave 125 negative BRDF values (the argument and its numbers are
-//! the test `real_curet_column_order_from_the_data` in `tests/curet.rs`). The per-channel layout (`rbrdf.dat`, `gbrdf.dat`, `bbrdf.dat`,
+//! the test `real_curet_column_order_from_the_data` in `tests/io/curet.rs`). The per-channel layout (`rbrdf.dat`, `gbrdf.dat`, `bbrdf.dat`,
 //! same shape) is read by [`read_rgb`].
 //!
 //! Slightly negative values (29 in `abrdf.dat`) are measurement noise, i.e.

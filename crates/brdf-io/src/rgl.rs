@@ -28,7 +28,7 @@
 //!    `eval`, which includes the foreshortening of the outgoing direction;
 //!    pbrt-v4's `Sample_f` divides by that cosine as here). Without the
 //!    division, `f(L, V)` and `f(V, L)` of `paper_white` differ by a median
-//!    17% over the 48 pairs of `tests/rgl.rs` (29% over a wider grid
+//!    17% over the 48 pairs of `tests/io/rgl.rs` (29% over a wider grid
 //!    reaching 75 deg); with it, by 1.7% (largest 7%). A file
 //!    whose `jacobian` flag is 0 stores values that already include
 //!    `ndf / (4 sigma)`: only the cosine is divided out.

@@ -22,7 +22,7 @@
 //! non-negative; finite above the horizon (`V.H >= sqrt((1 + L.V)/2) > 0`
 //! and `max(N.L, N.V) >= 1e-6` within `1e-6` of the horizon). Energy:
 //! `kd + ks <= 1` keeps the albedo at most 1 at every incidence, for both
-//! diffuse forms, every exponent and `F0` (tested in `tests/energy.rs`).
+//! diffuse forms, every exponent and `F0` (tested in `tests/models/energy.rs`).
 //!
 //! ```
 //! use brdf_core::Brdf;

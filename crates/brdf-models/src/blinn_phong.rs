@@ -17,7 +17,7 @@
 //! same exponent, so for large `n` the lobe's albedo at normal incidence tends
 //! to about `4 ks` (exceeding 1 for `ks > 1/4`). Plausible domain:
 //! `kd + 4 ks <= 1`, which conserves energy at every exponent and incidence
-//! (tested in `tests/energy.rs`, with a point just outside that does not).
+//! (tested in `tests/models/energy.rs`, with a point just outside that does not).
 //!
 //! ```
 //! use brdf_core::Brdf;

@@ -14,7 +14,7 @@
 //! `pi Fr(theta_i)` to the directional albedo, which exceeds 1 towards
 //! grazing incidence (`Fr -> 1`); the albedo is at most 1 exactly where
 //! `pi Fr + (1 - Fr) a_base <= 1`, i.e. for base albedo `a_base` while
-//! `Fr(theta_i) <= (1 - a_base) / (pi - a_base)`. `tests/energy.rs` checks
+//! `Fr(theta_i) <= (1 - a_base) / (pi - a_base)`. `tests/models/energy.rs` checks
 //! this domain.
 //!
 //! ```

@@ -16,7 +16,7 @@
 //! evaluated as 0 once `exp(-tan^2/m^2)` underflows, before `cos^4` can
 //! vanish). Not energy conserving for every `ks`: each lobe's albedo
 //! approaches `4 F0`, so the domain is `kd + 4 sum_k ks_k <= 1` (tested in
-//! `tests/energy.rs`). Fits with 1 and 2
+//! `tests/models/energy.rs`). Fits with 1 and 2
 //! lobes (Ngan).
 //!
 //! ```

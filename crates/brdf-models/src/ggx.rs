@@ -47,7 +47,7 @@
 //! `1/N.L`). Energy: `G <= min(G1(L), G1(V))` and the GGX `D` is normalised
 //! for the visible projected area, so each lobe's albedo is at most
 //! `max F <= 1`; the model conserves energy for `kd + sum ks <= 1` (tested
-//! in `tests/renderer_models.rs`).
+//! in `tests/models/renderer_models.rs`).
 //!
 //! ```
 //! use brdf_core::{Brdf, Parametric};

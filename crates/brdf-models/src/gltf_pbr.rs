@@ -41,7 +41,7 @@
 //! (the coat's Fresnel uses `N.V`, as the extension specifies), so it
 //! declares itself non-reciprocal. Non-negative and finite above the
 //! horizon. The appendix's mix is not energy conserving in general (its own
-//! discussion); the albedo checks in `tests/renderer_models.rs` state the
+//! discussion); the albedo checks in `tests/models/renderer_models.rs` state the
 //! domain found.
 //!
 //! ```

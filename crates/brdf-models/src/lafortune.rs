@@ -23,7 +23,7 @@
 //! overflow. Energy: the normalised lobe is a cosine power of `u` against a
 //! vector of length at most 1, so it is bounded by a Phong lobe and the
 //! albedo stays at most 1 for `kd + sum_k ks_k <= 1` at every incidence
-//! and for any axis weights and exponents (tested in `tests/energy.rs`,
+//! and for any axis weights and exponents (tested in `tests/models/energy.rs`,
 //! including retro-reflective and off-specular lobes; the bound is reached
 //! at normal incidence by `-Cxy = Cz`).
 //!

@@ -50,7 +50,7 @@
 //! `N(B, C) = integral D(H) (N.H) dH` ([`abc_normalisation`]), the lobe is a
 //! Cook-Torrance lobe of strength `A N / pi` with a distribution normalised
 //! as Beckmann's, so the Cook-Torrance domain applies: `kd + 4 A N / pi <= 1`
-//! (both tested in `tests/new_models.rs`).
+//! (both tested in `tests/models/new_models.rs`).
 //!
 //! ```
 //! use brdf_core::Brdf;

@@ -15,7 +15,7 @@
 //!
 //! Energy: at `kd = 1` the albedo exceeds 1 near grazing incidence (the
 //! `tan(beta)` term), for the full model too; both conserve energy for
-//! `kd <= 0.95` (tested in `tests/energy.rs`).
+//! `kd <= 0.95` (tested in `tests/models/energy.rs`).
 //!
 //! Properties: reciprocal (`alpha`, `beta` and `cos(dphi)` are symmetric);
 //! non-negative (`A >= 1/2`, the `B` term is `>= 0`); `sigma = 0` is

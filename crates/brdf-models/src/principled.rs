@@ -55,7 +55,7 @@
 //! Properties: reciprocal; non-negative; finite above the horizon. Not
 //! energy conserving on the whole box: the retro-reflective diffuse term
 //! exceeds albedo 1 at grazing incidence for bright rough bases; the domain
-//! found by `tests/renderer_models.rs` is stated there.
+//! found by `tests/models/renderer_models.rs` is stated there.
 //!
 //! ```
 //! use brdf_core::Brdf;

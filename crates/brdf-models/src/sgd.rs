@@ -53,7 +53,7 @@
 //! lobes the lobe's albedo tends to `4 ks F G1^2 / (pi K_ap)`, as
 //! Cook-Torrance's tends to `4 ks F0`; the domain is
 //! `kd + 4 ks max F / (pi K_ap) <= 1` for `alpha <= 0.1` and incidence up
-//! to 70 deg even without shadowing (tested in `tests/new_models.rs`, and
+//! to 70 deg even without shadowing (tested in `tests/models/new_models.rs`, and
 //! shown exceeded just outside: at 1.3 times the bound; for a rough lobe,
 //! `alpha = 0.5`, by 10% at the bound; towards grazing incidence when
 //! `Lambda = 0`, since `G1 = 1` leaves the `1 / (N.L)`).

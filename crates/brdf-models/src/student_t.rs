@@ -42,7 +42,7 @@
 //! `D` is normalised and `Lambda` is its exact Smith function, so the
 //! visible normals are normalised and `G <= G1`: each lobe's albedo is at
 //! most `max F <= 1`; the model conserves energy for `kd + ks <= 1` (tested
-//! in `tests/new_models.rs`).
+//! in `tests/models/new_models.rs`).
 //!
 //! ```
 //! use brdf_core::Brdf;

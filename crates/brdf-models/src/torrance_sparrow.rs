@@ -17,7 +17,7 @@
 //! `1/max(NL, NV)`). Not energy conserving towards grazing incidence for
 //! every `ks`: the lobe's albedo approaches `4 F0` for sharp lobes, so the
 //! domain is `kd + 4 ks <= 1` (at every incidence; tested in
-//! `tests/energy.rs`, with `ks = 0.3` shown to exceed 1).
+//! `tests/models/energy.rs`, with `ks = 0.3` shown to exceed 1).
 //!
 //! ```
 //! use brdf_core::Brdf;

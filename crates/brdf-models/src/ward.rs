@@ -22,7 +22,7 @@
 //! denominator makes the lobe's albedo grow without bound towards grazing
 //! incidence for rough surfaces; Duer's variant is the better-normalised one.
 //!
-//! Energy (directional albedo at most 1, tested in `tests/energy.rs`):
+//! Energy (directional albedo at most 1, tested in `tests/models/energy.rs`):
 //! Ward for `kd + ks <= 1` at incidence up to 85 deg (a rough lobe, `a =
 //! 0.5`, exceeds 1 at grazing); Ward-Duer for `kd + ks <= 1` up to 70 deg
 //! (an anisotropic lobe with `ax = 0.05`, `ay = 0.48` exceeds 1 at 80 deg).

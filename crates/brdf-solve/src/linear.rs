@@ -12,7 +12,7 @@
 //!   is what many codes do, and documented as the worse choice: it squares the
 //!   condition number, so a problem with `kappa(A) = 1e8` loses all digits
 //!   (the polynomial model's design matrix at high degree is such a problem;
-//!   `tests/linear.rs` shows the loss).
+//!   `tests/solve/linear.rs` shows the loss).
 
 use faer::linalg::solvers::SolveLstsq;
 use faer::{Mat, MatRef, Side};

@@ -8,7 +8,7 @@
 //! The synthetic data sets are deterministic: [`pairs`] gives CUReT's
 //! count of 205 direction pairs (golden-ratio sequences, elevations up to
 //! 75 deg), [`synthetic`] evaluates a catalogue model at them. The CLI
-//! tests (`tests/stability_cli.rs`) write the same sets as CSV files and
+//! tests (`crates/brdf-cli/tests/cli/stability_cli.rs`) write the same sets as CSV files and
 //! run the `brdf` binary on them.
 
 use std::path::Path;

@@ -40,7 +40,7 @@
 //! render) reads both films from a Catmull-Rom table over `V.H` of
 //! [`INTERVALS`] steps, built once per parameter vector with the films'
 //! exact derivatives at its nodes: within 3e-5 of the exact value on the
-//! test pairs (`tests/gltf_iridescence.rs`), its Jacobian the derivative
+//! test pairs (`tests/models/gltf_iridescence.rs`), its Jacobian the derivative
 //! of the interpolant, and a fit's time no longer spent evaluating the
 //! film at every sample.
 
