@@ -6,7 +6,7 @@
 
 use crate::common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use common::{brdf, data_file};
@@ -28,11 +28,8 @@ fn brdf_in(cwd: &Path, data: Option<&Path>, args: &[&str]) -> (bool, String, Str
     )
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("brdf-messages-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp folder");
-    d
+fn tmp(name: &str) -> std::path::PathBuf {
+    common::scratch("messages", name)
 }
 
 #[test]

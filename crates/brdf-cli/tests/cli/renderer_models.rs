@@ -10,21 +10,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn temp(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("brdf-renderer-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use crate::common::Data;
 
-/// Which data `brdf reproduce` runs on.
-#[derive(Clone, Copy)]
-enum Data {
-    /// The measured files under `BRDF_DATA` (which must be set).
-    Measured,
-    /// The built-in synthetic data (`BRDF_DATA` removed from the command's
-    /// environment).
-    Synthetic,
+fn temp(name: &str) -> std::path::PathBuf {
+    common::scratch("renderer", name)
 }
 
 /// Run `brdf reproduce --spec` with `spec` into a folder under `dir` on

@@ -8,10 +8,7 @@ use crate::common;
 use common::{brdf, data_file};
 
 fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("brdf-report-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp folder");
-    d
+    common::scratch("report-cli", name)
 }
 
 fn read(path: &std::path::Path) -> String {

@@ -8,10 +8,7 @@ use crate::common;
 use common::{brdf, data_file};
 
 fn scratch(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("brdf-partial-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("scratch folder");
-    d
+    common::scratch("partial", name)
 }
 
 #[test]

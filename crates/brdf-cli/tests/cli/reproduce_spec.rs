@@ -7,21 +7,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn temp(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("brdf-spec-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use crate::common::{self, Data};
 
-/// Which data `brdf reproduce` runs on.
-#[derive(Clone, Copy)]
-enum Data {
-    /// The measured files under `BRDF_DATA`, which must be set.
-    Measured,
-    /// The built-in synthetic data: `BRDF_DATA` is removed from the
-    /// command's environment.
-    Synthetic,
+fn temp(name: &str) -> std::path::PathBuf {
+    common::scratch("spec", name)
 }
 
 /// Run `brdf reproduce` with `args` into `out` on `data`; the folder the

@@ -5,6 +5,27 @@
 use std::path::PathBuf;
 use std::process::Command;
 
+/// An empty scratch folder `brdf-{prefix}-{name}-{pid}` in the system's
+/// temporary folder (emptied first: a folder of an earlier run is not
+/// trusted). Each test module passes its own prefix, so tests running at
+/// once in this binary never share one.
+pub fn scratch(prefix: &str, name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("brdf-{prefix}-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("scratch folder");
+    d
+}
+
+/// Which data `brdf reproduce` runs on.
+#[derive(Clone, Copy)]
+pub enum Data {
+    /// The measured files under `BRDF_DATA`, which must be set.
+    Measured,
+    /// The built-in synthetic data: `BRDF_DATA` is removed from the
+    /// command's environment.
+    Synthetic,
+}
+
 /// Run the `brdf` binary: (success, stdout, stderr).
 pub fn brdf(args: &[&str]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_brdf"))
