@@ -8,7 +8,7 @@
 //! warped towards the specular peak, both directions within `limit_deg` of
 //! the normal). The target's model is fitted to those values by
 //! [`brdf_fit::appearance::fit_for_appearance`]: BRDF-space candidates
-//! (Ngan's L2, log, cube root; optional lobes only when they pay) ranked by
+//! (log and cube root; optional lobes only when they pay) ranked by
 //! their image error, the winner refined in the image objective
 //! (`Objective::Image`, the source rendered through the judge's shading
 //! terms: the source is a model, evaluable at any pair). With

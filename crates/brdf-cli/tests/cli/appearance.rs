@@ -30,7 +30,7 @@ fn fit_of_a_renderer_model_reports_image_errors_and_candidates() {
     assert_eq!(candidates.iter().filter(|c| c["chosen"] == true).count(), 1);
     assert!(
         candidates.len() >= 4,
-        "three objectives and the image refinement"
+        "two objectives, the lobes and the image refinement"
     );
 }
 
