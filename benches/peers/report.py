@@ -608,7 +608,7 @@ def users_wait_section(d):
             "for its report; the data's render, mostly the RGL interpolation (`brdf_io::rgl`), is made on a file's "
             "first fit and then read from the render cache (`brdf_fit::render_cache`; `floor` against `floor, "
             "no cache`); the goal is judged on `fit CPU` too.",
-            "- Default command (appearance pipeline): 3 objectives, optional lobes, then image refinements from "
+            "- Default command (appearance pipeline): 2 objectives (log and cube root: a renderer model's Ngan's L2 candidates were measured to change nothing that renders), optional lobes, then image refinements from "
             "the winner and from the other lobe-less candidates within 1.4 times its 32-px image error (one to "
             "three), each candidate ranked by its 32-px renders, then the 128-px image errors of the report. The "
             "image-objective refinements now run chunk by chunk over the shading terms with the normal equations "

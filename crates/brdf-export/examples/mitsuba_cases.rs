@@ -16,5 +16,5 @@ fn main() {
     println!("{}", serde_json::to_string_pretty(&out).unwrap_or_default());
 }
 
-#[path = "../tests/cases.rs"]
+#[path = "../tests/export/cases.rs"]
 mod brdf_export_cases;

@@ -50,7 +50,7 @@
 //! (`brdf-cli`) call it. It never renders; its tests check the exports by
 //! rendering them in the renderers (`tests/reference/check_exports.sh`:
 //! Mitsuba 3, Blender Cycles through `bpy`) beside `brdf-render`'s render
-//! of the same model (`tests/render_check.rs`).
+//! of the same model (`tests/export/render_check.rs`).
 //!
 //! ## Crate features
 //!

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Check the committed exports with the renderers' own tools and write what
 # they said beside the files (the Rust tests read these):
-#   mitsuba_check.py        Mitsuba 3 evaluates tests/cases.rs and paper_white/*.xml
+#   mitsuba_check.py        Mitsuba 3 evaluates tests/export/cases.rs and paper_white/*.xml
 #                           (snippets pasted into a scene, as a user does)
 #   mitsuba_scene_check.py  Mitsuba 3 loads and renders paper_white/*.scene.xml
 #   gltf_validate.js        the Khronos glTF validator on paper_white/*.gltf (material

@@ -27,7 +27,7 @@ nodes' largest difference.
 Run with a Python that has bpy (5.0.1) and numpy (lobes_check.sh runs it
 when BLENDER_PYTHON is set):
     python film_cycles_mirror.py
-writes film/cycles_mirror.json beside this script (tests/film_cycles.rs
+writes film/cycles_mirror.json beside this script (tests/export/film_cycles.rs
 reads it). About a minute on two cores.
 """
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Check the coloured-lobe Mitsuba fixtures (lobes/M.xml, the exports of the
 # hand-chosen models lobes/M.json, written by
-# `LOBES_WRITE=1 cargo test --release -p brdf-export --test lobes`) with
-# Mitsuba 3 itself, writing what it said beside them (tests/lobes.rs reads it):
+# `LOBES_WRITE=1 cargo test --release -p brdf-export --test export lobes::`) with
+# Mitsuba 3 itself, writing what it said beside them (tests/export/lobes.rs reads it):
 #   lobes/mitsuba_values.json  mitsuba_check.py: Mitsuba's eval of each M.xml
 #                              at 300 direction pairs and at the normal
 #   lobes/usd_check.json       usd_materialx_check.py: USD's reading of each
@@ -46,7 +46,7 @@ fi
 render_files=(lobes/*.xml)
 if [ -n "${BLENDER_PYTHON:-}" ]; then
     "$BLENDER_PYTHON" cycles_render.py "$exr_dir" --spp 128 lobes/*.py >&2
-    "$BLENDER_PYTHON" film_cycles_mirror.py >&2 # film/cycles_mirror.json (tests/film_cycles.rs)
+    "$BLENDER_PYTHON" film_cycles_mirror.py >&2 # film/cycles_mirror.json (tests/export/film_cycles.rs)
     render_files+=(lobes/*.py)
 else
     echo "Cycles render checks skipped: set BLENDER_PYTHON to a python with bpy"

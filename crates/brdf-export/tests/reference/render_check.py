@@ -2,7 +2,7 @@
 beside brdf-render's render of the model the file holds, by HDR-FLIP
 (flip-evaluator, brdf-render's noise-free render as the reference). Prints
 the answers as JSON (paper_white/render_check.json); the Rust test
-tests/render_check.rs asserts the bounds.
+tests/export/render_check.rs asserts the bounds.
 
   python render_check.py EXR_DIR [--lights studio[,sky]] [--spp N] FILE...
 

@@ -4,7 +4,7 @@
 //! the Blender script's node values, the refusals across renderers, and
 //! the checks by Mitsuba 3 itself on the fixtures of
 //! `tests/reference/lobes/` (written by `LOBES_WRITE=1 cargo test
-//! --release -p brdf-export --test lobes`, checked by
+//! --release -p brdf-export --test export lobes::`, checked by
 //! `tests/reference/lobes_check.sh`):
 //!
 //! - `mitsuba_values.json`: Mitsuba's `eval` of each `.xml` at 300
@@ -15,7 +15,7 @@
 //!   sphere beside `brdf-render`'s render of the model; under the studio
 //!   set HDR-FLIP at most [`MITSUBA_FLIP`] (Mitsuba) and [`CYCLES_FLIP`]
 //!   (Cycles), the bounds of the other exact exports
-//!   (`tests/render_check.rs`).
+//!   (`tests/export/render_check.rs`).
 
 use std::path::PathBuf;
 
@@ -26,15 +26,15 @@ use brdf_render::{LightSet, ShadingPoints};
 use quick_xml::events::Event;
 
 /// HDR-FLIP bound of a Mitsuba render of an exact export (as in
-/// `tests/render_check.rs`).
+/// `tests/export/render_check.rs`).
 const MITSUBA_FLIP: f64 = 0.02;
 /// HDR-FLIP bound of a Cycles render of a Blender export (as in
-/// `tests/render_check.rs`).
+/// `tests/export/render_check.rs`).
 const CYCLES_FLIP: f64 = 0.03;
 /// HDR-FLIP bound of MaterialX's GLSL render of an exact MaterialX export:
 /// the `-materialx` models carry MaterialX's energy compensation, so the
 /// bound of an exact export applies (the looser one of
-/// `tests/render_check.rs` covers `gltf_pbr`, whose GLSL is not the glTF
+/// `tests/export/render_check.rs` covers `gltf_pbr`, whose GLSL is not the glTF
 /// formula).
 const MATERIALX_FLIP: f64 = 0.02;
 

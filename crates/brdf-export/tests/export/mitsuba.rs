@@ -1,5 +1,5 @@
 //! Mitsuba 3 round trip: `tests/reference/mitsuba_check.py` loaded every
-//! exported `<bsdf>` of `tests/cases.rs` in Mitsuba 3 (scalar_rgb) and
+//! exported `<bsdf>` of `tests/export/cases.rs` in Mitsuba 3 (scalar_rgb) and
 //! evaluated it at 300 direction pairs spread over the hemisphere up to
 //! 85 deg (components rounded to single precision, so both sides evaluate
 //! at the same directions) and at the normal; `mitsuba_values.json` holds
@@ -7,7 +7,7 @@
 //! the XML Mitsuba evaluated, and the model must equal Mitsuba's BSDF to
 //! 1e-4 relative at every pair.
 
-mod cases;
+use crate::cases;
 
 use brdf_core::Parametric;
 

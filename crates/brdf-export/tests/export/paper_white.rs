@@ -184,7 +184,7 @@ fn khronos_validator_accepts_the_gltf() {
 #[test]
 fn materialx_validates_the_documents() {
     let v: serde_json::Value = serde_json::from_str(&read("materialx_validation.json")).unwrap();
-    // The gltf_pbr documents (tests/targets.rs checks the OpenPBR ones).
+    // The gltf_pbr documents (tests/export/targets.rs checks the OpenPBR ones).
     let v: Vec<_> = v
         .as_array()
         .unwrap()
