@@ -108,8 +108,8 @@ pub const CANDIDATE_OBJECTIVES: [Objective; 3] =
 /// but paper_white's `principled` (0.0433 to 0.0437: its Ngan candidate
 /// with sheen and clear coat gave way to the log one). The log objective
 /// stays: without it colodur_napoli's conductor lobe ended in another basin
-/// (`--for mitsuba` 0.0514 to 0.0727). A base candidate is about a third
-/// of a renderer model's appearance fit.
+/// (`lobes-conductor-mitsuba` in `--for mitsuba`: 0.0514 to 0.0722). A
+/// base candidate is about a third of a renderer model's appearance fit.
 pub const RENDERER_OBJECTIVES: [Objective; 2] = [Objective::Log, Objective::CubeRoot];
 
 /// One candidate fit and its image errors.
